@@ -1,0 +1,91 @@
+/**
+ * @file
+ * The interface every analysis type implements, and what a run hands it.
+ */
+#ifndef ROCKDDA_IO_ANALYSIS_H
+#define ROCKDDA_IO_ANALYSIS_H
+
+#include <rockdda/io/output.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace rockdda::io
+{
+  /**
+   * What a running analysis may use: the output folder, the log and the
+   * summary of key scalars (summary.csv). The driver writes parameters.prm,
+   * summary.csv and log.txt; the analysis writes its own files (at least
+   * statistics.csv) through @p output.
+   */
+  struct RunContext
+  {
+    const OutputDirectory &output;
+    Log                   &log;
+    Summary               &summary;
+  };
+
+  /**
+   * One kind of analysis, selected by the top-level key "Analysis type". It
+   * declares the parameter sections it owns, reads and checks them (loading
+   * every input file) without writing anything, and then runs.
+   */
+  class Analysis
+  {
+  public:
+    virtual ~Analysis() = default;
+
+    /// The value of "Analysis type" that selects this analysis.
+    virtual std::string
+    name() const = 0;
+
+    /// One line for --help.
+    virtual std::string
+    description() const = 0;
+
+    /// Declare the subsections this analysis owns (not the shared ones).
+    virtual void
+    declare_parameters(dealii::ParameterHandler &prm) const = 0;
+
+    /**
+     * Read and validate every value this analysis uses from @p prm and load
+     * its input files; throw InputError (naming @p parameter_file and the
+     * key) for anything invalid. Writes nothing.
+     */
+    virtual void
+    parse_parameters(dealii::ParameterHandler &prm,
+                     const std::string        &parameter_file) = 0;
+
+    /// Run the analysis.
+    virtual void
+    run(RunContext &context) = 0;
+  };
+
+  /// Every analysis type the driver knows.
+  std::vector<std::unique_ptr<Analysis>>
+  all_analyses();
+
+  /**
+   * Declare every parameter the driver knows: the top level, the shared
+   * sections, and each analysis's own sections.
+   */
+  void
+  declare_all_parameters(dealii::ParameterHandler                     &prm,
+                         const std::vector<std::unique_ptr<Analysis>> &analyses);
+
+  /**
+   * The driver: rockdda [--validate] [--print-parameters] [FILE.prm].
+   * Returns the process exit code (0 success, 1 bad input, 2 usage, 3 run-time
+   * failure).
+   */
+  int
+  run_driver(int argc, char **argv);
+} // namespace rockdda::io
+
+#endif

@@ -1,0 +1,71 @@
+/**
+ * @file
+ * Parameter files: parsing with clear errors, paths, and the parameter
+ * reference.
+ */
+#ifndef ROCKDDA_IO_PARAMETERS_H
+#define ROCKDDA_IO_PARAMETERS_H
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <ostream>
+#include <string>
+
+namespace rockdda::io
+{
+  /**
+   * Parse @p file into @p prm. Any problem (a missing file, an unknown section
+   * or key, a value that does not match its pattern or range, unbalanced
+   * subsections) becomes one InputError whose message names the file, the
+   * line, the key and the valid values.
+   */
+  void
+  parse_parameter_file(dealii::ParameterHandler &prm, const std::string &file);
+
+  /**
+   * Declare an entry whose help text starts with its SI unit in brackets, e.g.
+   * declare(prm, "Time step", "0.01", Patterns::Double(0), "s", "...").
+   * Use "-" for dimensionless values, names and choices. The unit then shows
+   * in --print-parameters and doc/parameters.md.
+   */
+  void
+  declare(dealii::ParameterHandler     &prm,
+          const std::string            &key,
+          const std::string            &default_value,
+          const dealii::Patterns::PatternBase &pattern,
+          const std::string            &unit,
+          const std::string            &help);
+
+  /**
+   * Resolve a file name given in parameter file @p prm_file: $VAR and ${VAR}
+   * are replaced by environment variables (an unset variable is an error
+   * naming @p key), and a relative path is taken relative to the parameter
+   * file's folder.
+   */
+  std::string
+  resolve_path(const std::string &path,
+               const std::string &prm_file,
+               const std::string &key);
+
+  /**
+   * Throw an InputError for @p key (with its section path) in @p prm_file
+   * unless @p ok; @p range describes the valid values, e.g. "0 <= dip < 90
+   * deg".
+   */
+  void
+  require(const bool         ok,
+          const std::string &prm_file,
+          const std::string &key,
+          const double       value,
+          const std::string &range);
+
+  /**
+   * Write the reference of every declared parameter as Markdown: section,
+   * key, default, valid values, SI unit and help text.
+   */
+  void
+  print_parameter_reference(const dealii::ParameterHandler &prm,
+                            std::ostream                   &out);
+} // namespace rockdda::io
+
+#endif

@@ -1,0 +1,465 @@
+#include <rockdda/analytical/rate_state.h>
+#include <rockdda/io/error.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace rockdda::analytical
+{
+  namespace
+  {
+    /// Throw InputError "<key> = <value> is out of range; expected <range>".
+    void
+    require(const bool         ok,
+            const std::string &key,
+            const double       value,
+            const std::string &range)
+    {
+      if (ok && std::isfinite(value))
+        return;
+      std::ostringstream message;
+      message << key << " = " << value << " is out of range; expected "
+              << range;
+      throw InputError(message.str());
+    }
+
+    /// Equally spaced output times 0, T/n, ..., T.
+    std::vector<double>
+    output_times(const double duration, const unsigned int n_outputs)
+    {
+      std::vector<double> times(n_outputs + 1);
+      for (unsigned int i = 0; i <= n_outputs; ++i)
+        times[i] = duration * i / n_outputs;
+      times.back() = duration;
+      return times;
+    }
+
+    /// Psi = mu0 + B ln(theta V0/Dc), the state part of Eq. 2.1.
+    double
+    state_term(const RateStateParameters &p, const double theta)
+    {
+      return p.mu0 + p.b * std::log(theta * p.v0 / p.dc);
+    }
+
+    /// ln x with x = |V|/(2 V0) exp(Psi/A), the asinh argument; V != 0.
+    double
+    log_asinh_argument(const RateStateParameters &p,
+                       const double               v,
+                       const double               theta)
+    {
+      return std::log(std::abs(v) / (2. * p.v0)) + state_term(p, theta) / p.a;
+    }
+  } // namespace
+
+
+
+  void
+  RateStateParameters::validate() const
+  {
+    require(std::isfinite(mu0), "rate_state.mu0", mu0, "a finite number");
+    require(a > 0., "rate_state.a", a, "a > 0");
+    require(b >= 0., "rate_state.b", b, "b >= 0");
+    require(v0 > 0., "rate_state.v0", v0, "v0 > 0 (m/s)");
+    require(dc > 0., "rate_state.dc", dc, "dc > 0 (m)");
+  }
+
+
+
+  double
+  friction_coefficient(const RateStateParameters &p,
+                       const double               v,
+                       const double               theta)
+  {
+    if (!(v > 0.) || !(theta > 0.))
+      throw std::domain_error(
+        "friction_coefficient: Eq. 2.1 needs slip rate V > 0 and state "
+        "theta > 0; use regularized_friction_coefficient at V <= 0");
+    return p.mu0 + p.a * std::log(v / p.v0) +
+           p.b * std::log(theta * p.v0 / p.dc);
+  }
+
+
+
+  double
+  steady_state_friction(const RateStateParameters &p, const double v)
+  {
+    if (!(v > 0.))
+      throw std::domain_error("steady_state_friction: needs V > 0");
+    return p.mu0 + (p.a - p.b) * std::log(v / p.v0);
+  }
+
+
+
+  double
+  steady_state_theta(const RateStateParameters &p, const double v)
+  {
+    if (!(v > 0.))
+      throw std::domain_error("steady_state_theta: needs V > 0");
+    return p.dc / v;
+  }
+
+
+
+  double
+  aging_law_rate(const RateStateParameters &p,
+                 const double               v,
+                 const double               theta)
+  {
+    return 1. - std::abs(v) * theta / p.dc;
+  }
+
+
+
+  double
+  regularized_friction_coefficient(const RateStateParameters &p,
+                                   const double               v,
+                                   const double               theta)
+  {
+    if (v == 0.)
+      return 0.;
+    const double log_x = log_asinh_argument(p, v, theta);
+    // asinh(x) = ln(2x) + 1/(4x^2) + O(x^-4): for ln x > 20 the correction is
+    // below 1e-18 and exp(log_x) might overflow, so use the logarithm.
+    const double magnitude = (log_x > 20.) ?
+                               p.a * (log_x + std::log(2.)) :
+                               p.a * std::asinh(std::exp(log_x));
+    return v > 0. ? magnitude : -magnitude;
+  }
+
+
+
+  void
+  regularized_friction_derivatives(const RateStateParameters &p,
+                                   const double               v,
+                                   const double               theta,
+                                   double                    &dmu_dv,
+                                   double                    &dmu_dln_theta)
+  {
+    if (v == 0.)
+      {
+        // d/dV A asinh(V/(2V0) e^{Psi/A}) at 0 = A/(2V0) e^{Psi/A}.
+        const double log_value =
+          std::log(p.a / (2. * p.v0)) + state_term(p, theta) / p.a;
+        dmu_dv        = std::exp(std::min(log_value, 690.));
+        dmu_dln_theta = 0.;
+        return;
+      }
+    // With x = |V|/(2V0) e^{Psi/A} and r = x/sqrt(1+x^2):
+    // dmu/dV = A r/|V|, dmu/dPsi = sign(V) r, dPsi/dln(theta) = B.
+    const double log_x = log_asinh_argument(p, v, theta);
+    const double sign  = v > 0. ? 1. : -1.;
+    if (log_x >= 0.)
+      {
+        const double inv_x = std::exp(-log_x); // <= 1
+        const double r     = 1. / std::sqrt(1. + inv_x * inv_x);
+        dmu_dv             = p.a * r / std::abs(v);
+        dmu_dln_theta      = sign * p.b * r;
+      }
+    else
+      {
+        // x < 1: dmu/dV = A/(2V0) e^{Psi/A} / sqrt(1+x^2), computed in
+        // logarithms so that a tiny |V| cannot overflow A/|V|.
+        const double x = std::exp(log_x);
+        const double s = std::sqrt(1. + x * x);
+        const double log_value =
+          std::log(p.a / (2. * p.v0)) + state_term(p, theta) / p.a;
+        dmu_dv        = std::exp(std::min(log_value, 690.)) / s;
+        dmu_dln_theta = sign * p.b * x / s;
+      }
+  }
+
+
+
+  double
+  critical_stiffness(const RateStateParameters &p)
+  {
+    return (p.b - p.a) / p.dc;
+  }
+
+
+
+  RateStateHistory
+  velocity_step(const RateStateParameters &p,
+                const double               v1,
+                const double               v2,
+                const double               duration,
+                const unsigned int         n_outputs,
+                const StiffOdeSettings    &settings)
+  {
+    p.validate();
+    require(v1 > 0., "velocity_step.v1", v1, "v1 > 0 (m/s)");
+    require(v2 > 0., "velocity_step.v2", v2, "v2 > 0 (m/s)");
+    require(duration > 0., "velocity_step.duration", duration, "> 0 (s)");
+    require(n_outputs > 0,
+            "velocity_step.n_outputs",
+            n_outputs,
+            "at least 1");
+
+    // Unknown: theta (s). d theta/dt = 1 - V2 theta/Dc (Eq. 2.2), which is
+    // linear with Jacobian -V2/Dc.
+    StiffOdeSolver solver(
+      [&p, v2](const double,
+               const std::vector<double> &y,
+               std::vector<double>       &ydot) {
+        ydot[0] = aging_law_rate(p, v2, y[0]);
+      },
+      {steady_state_theta(p, v1)},
+      0.,
+      settings,
+      [&p, v2](const double, const std::vector<double> &, std::vector<double> &j) {
+        j[0] = -v2 / p.dc;
+      });
+
+    RateStateHistory history;
+    for (const double t : output_times(duration, n_outputs))
+      {
+        const double theta = solver.advance(t)[0];
+        history.time.push_back(t);
+        history.displacement.push_back(v2 * t);
+        history.velocity.push_back(v2);
+        history.theta.push_back(theta);
+        history.mu.push_back(friction_coefficient(p, v2, theta));
+      }
+    return history;
+  }
+
+
+
+  void
+  SpringSliderParameters::validate() const
+  {
+    friction.validate();
+    require(load_point_velocity > 0.,
+            "spring_slider.load_point_velocity",
+            load_point_velocity,
+            "> 0 (m/s)");
+    require(stiffness > 0., "spring_slider.stiffness", stiffness, "> 0 (1/m)");
+    require(radiation_damping >= 0.,
+            "spring_slider.radiation_damping",
+            radiation_damping,
+            ">= 0 (s/m)");
+    require(mass >= 0., "spring_slider.mass", mass, ">= 0 (s^2/m)");
+    require(std::isfinite(initial_velocity),
+            "spring_slider.initial_velocity",
+            initial_velocity,
+            "a finite number (m/s; <= 0 means the load-point velocity)");
+    require(std::isfinite(initial_theta),
+            "spring_slider.initial_theta",
+            initial_theta,
+            "a finite number (s; <= 0 means steady state)");
+  }
+
+
+
+  RateStateHistory
+  spring_slider(const SpringSliderParameters &p,
+                const double                  duration,
+                const unsigned int            n_outputs,
+                const StiffOdeSettings       &settings)
+  {
+    p.validate();
+    require(duration > 0., "spring_slider.duration", duration, "> 0 (s)");
+    require(n_outputs > 0,
+            "spring_slider.n_outputs",
+            n_outputs,
+            "at least 1");
+    const RateStateParameters &f   = p.friction;
+    const double               vlp = p.load_point_velocity;
+    const double               k   = p.stiffness;
+    const double               eta = p.radiation_damping;
+    const double v_init = p.initial_velocity > 0. ? p.initial_velocity : vlp;
+    const double theta_init =
+      p.initial_theta > 0. ? p.initial_theta : steady_state_theta(f, vlp);
+
+    RateStateHistory history;
+    if (p.mass == 0.)
+      {
+        // Quasi-static; unknowns y = (delta, ln V, ln theta).
+        StiffOdeSolver solver(
+          [&f, vlp, k, eta](const double,
+                            const std::vector<double> &y,
+                            std::vector<double>       &ydot) {
+            const double v          = std::exp(y[1]);
+            const double dln_theta  = std::exp(-y[2]) - v / f.dc;
+            ydot[0]                 = v;
+            ydot[1]                 = (k * (vlp - v) - f.b * dln_theta) /
+                      (f.a + eta * v);
+            ydot[2]                 = dln_theta;
+          },
+          {0., std::log(v_init), std::log(theta_init)},
+          0.,
+          settings);
+        for (const double t : output_times(duration, n_outputs))
+          {
+            const std::vector<double> &y     = solver.advance(t);
+            const double               v     = std::exp(y[1]);
+            const double               theta = std::exp(y[2]);
+            history.time.push_back(t);
+            history.displacement.push_back(y[0]);
+            history.velocity.push_back(v);
+            history.theta.push_back(theta);
+            history.mu.push_back(friction_coefficient(f, v, theta));
+          }
+      }
+    else
+      {
+        // With inertia; unknowns y = (delta, V, ln theta); tau0 balances the
+        // initial friction and damping.
+        const double m = p.mass;
+        const double tau0 =
+          regularized_friction_coefficient(f, v_init, theta_init) +
+          eta * v_init;
+        StiffOdeSolver solver(
+          [&f, vlp, k, eta, m, tau0](const double               t,
+                                     const std::vector<double> &y,
+                                     std::vector<double>       &ydot) {
+            const double theta = std::exp(y[2]);
+            const double mu    = regularized_friction_coefficient(f, y[1], theta);
+            ydot[0]            = y[1];
+            ydot[1] = (tau0 + k * (vlp * t - y[0]) - mu - eta * y[1]) / m;
+            ydot[2] = std::exp(-y[2]) - std::abs(y[1]) / f.dc;
+          },
+          {0., v_init, std::log(theta_init)},
+          0.,
+          settings,
+          [&f, k, eta, m](const double,
+                          const std::vector<double> &y,
+                          std::vector<double>       &j) {
+            double dmu_dv = 0., dmu_dln_theta = 0.;
+            regularized_friction_derivatives(
+              f, y[1], std::exp(y[2]), dmu_dv, dmu_dln_theta);
+            j[0 * 3 + 1] = 1.;
+            j[1 * 3 + 0] = -k / m;
+            j[1 * 3 + 1] = -(dmu_dv + eta) / m;
+            j[1 * 3 + 2] = -dmu_dln_theta / m;
+            j[2 * 3 + 1] = -(y[1] > 0. ? 1. : (y[1] < 0. ? -1. : 0.)) / f.dc;
+            j[2 * 3 + 2] = -std::exp(-y[2]);
+          });
+        for (const double t : output_times(duration, n_outputs))
+          {
+            const std::vector<double> &y     = solver.advance(t);
+            const double               theta = std::exp(y[2]);
+            history.time.push_back(t);
+            history.displacement.push_back(y[0]);
+            history.velocity.push_back(y[1]);
+            history.theta.push_back(theta);
+            history.mu.push_back(
+              regularized_friction_coefficient(f, y[1], theta));
+          }
+      }
+    return history;
+  }
+
+
+
+  void
+  SlidingBlockParameters::validate() const
+  {
+    friction.validate();
+    require(dip_deg >= 0. && dip_deg < 90.,
+            "sliding_block.dip",
+            dip_deg,
+            "0 <= dip < 90 (degrees)");
+    require(gravity > 0., "sliding_block.gravity", gravity, "> 0 (m/s^2)");
+    require(std::isfinite(initial_velocity),
+            "sliding_block.initial_velocity",
+            initial_velocity,
+            "a finite number (m/s)");
+    require(std::isfinite(initial_theta),
+            "sliding_block.initial_theta",
+            initial_theta,
+            "a finite number (s; <= 0 means Dc/V0)");
+  }
+
+
+
+  RateStateHistory
+  sliding_block(const SlidingBlockParameters &p,
+                const seismic::Record        &record,
+                const double                  duration,
+                const double                  output_interval,
+                const StiffOdeSettings       &settings)
+  {
+    p.validate();
+    require(duration > 0., "sliding_block.duration", duration, "> 0 (s)");
+    require(output_interval > 0.,
+            "sliding_block.output_interval",
+            output_interval,
+            "> 0 (s)");
+    if (!record.acceleration.empty())
+      require(record.dt > 0., "record.dt", record.dt, "> 0 (s)");
+
+    const RateStateParameters &f     = p.friction;
+    const double               alpha = p.dip_deg * M_PI / 180.;
+    const double               sin_a = std::sin(alpha);
+    const double               cos_a = std::cos(alpha);
+    const double               g     = p.gravity;
+    const double               theta_init =
+      p.initial_theta > 0. ? p.initial_theta : f.dc / f.v0;
+
+    // Normal force per unit mass over g, cos a - k sin a; must stay > 0.
+    const auto normal = [&record, sin_a, cos_a](const double t) {
+      const double n = cos_a - record.at(t) * sin_a;
+      if (!(n > 0.))
+        {
+          std::ostringstream message;
+          message << "sliding_block: the normal force vanishes at t = " << t
+                  << " s (k = " << record.at(t)
+                  << " g): the block lifts off the plane";
+          throw std::domain_error(message.str());
+        }
+      return n;
+    };
+
+    StiffOdeSettings ode_settings = settings;
+    if (ode_settings.max_step == 0. && !record.acceleration.empty())
+      ode_settings.max_step = record.dt;
+
+    // Unknowns y = (delta, V, ln theta).
+    StiffOdeSolver solver(
+      [&f, &record, &normal, g, sin_a, cos_a](const double               t,
+                                               const std::vector<double> &y,
+                                               std::vector<double> &ydot) {
+        const double kh    = record.at(t);
+        const double theta = std::exp(y[2]);
+        const double mu    = regularized_friction_coefficient(f, y[1], theta);
+        ydot[0]            = y[1];
+        ydot[1]            = g * ((sin_a + kh * cos_a) - mu * normal(t));
+        ydot[2]            = std::exp(-y[2]) - std::abs(y[1]) / f.dc;
+      },
+      {0., p.initial_velocity, std::log(theta_init)},
+      0.,
+      ode_settings,
+      [&f, &normal, g](const double               t,
+                       const std::vector<double> &y,
+                       std::vector<double>       &j) {
+        double dmu_dv = 0., dmu_dln_theta = 0.;
+        regularized_friction_derivatives(
+          f, y[1], std::exp(y[2]), dmu_dv, dmu_dln_theta);
+        const double n = normal(t);
+        j[0 * 3 + 1]   = 1.;
+        j[1 * 3 + 1]   = -g * n * dmu_dv;
+        j[1 * 3 + 2]   = -g * n * dmu_dln_theta;
+        j[2 * 3 + 1] = -(y[1] > 0. ? 1. : (y[1] < 0. ? -1. : 0.)) / f.dc;
+        j[2 * 3 + 2] = -std::exp(-y[2]);
+      });
+
+    RateStateHistory history;
+    const auto       n_intervals =
+      static_cast<unsigned long>(std::ceil(duration / output_interval - 1e-9));
+    for (unsigned long i = 0; i <= n_intervals; ++i)
+      {
+        const double t = std::min(i * output_interval, duration);
+        const std::vector<double> &y     = solver.advance(t);
+        const double               theta = std::exp(y[2]);
+        history.time.push_back(t);
+        history.displacement.push_back(y[0]);
+        history.velocity.push_back(y[1]);
+        history.theta.push_back(theta);
+        history.mu.push_back(regularized_friction_coefficient(f, y[1], theta));
+      }
+    return history;
+  }
+} // namespace rockdda::analytical

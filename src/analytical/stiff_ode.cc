@@ -1,0 +1,403 @@
+#include <rockdda/analytical/stiff_ode.h>
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <sstream>
+
+namespace rockdda::analytical
+{
+  struct StiffOdeSolver::Impl
+  {
+    RightHandSide       rhs;
+    Jacobian            jacobian;
+    std::size_t         n          = 0;
+    SUNContext          context    = nullptr;
+    void               *cvode_mem  = nullptr;
+    N_Vector            y          = nullptr;
+    N_Vector            y_out      = nullptr;
+    SUNMatrix           matrix     = nullptr;
+    SUNLinearSolver     linsol     = nullptr;
+    double              t_output   = 0.; // last output time
+    double              t_internal = 0.; // time CVODE has integrated to
+    std::vector<double> y_buffer, ydot_buffer, jacobian_buffer, output;
+    /// An exception thrown by a user callback, re-thrown from advance().
+    std::exception_ptr pending;
+    /// The last message CVODE sent to its error handler.
+    std::string last_message;
+    /// Number of callback evaluations that produced non-finite values.
+    long n_nonfinite = 0;
+
+    ~Impl()
+    {
+      if (cvode_mem != nullptr)
+        CVodeFree(&cvode_mem);
+      if (linsol != nullptr)
+        SUNLinSolFree(linsol);
+      if (matrix != nullptr)
+        SUNMatDestroy(matrix);
+      if (y_out != nullptr)
+        N_VDestroy(y_out);
+      if (y != nullptr)
+        N_VDestroy(y);
+      if (context != nullptr)
+        SUNContext_Free(&context);
+    }
+
+    /// Throw OdeError if @p flag is a CVODE error.
+    void
+    check(const int flag, const std::string &call) const
+    {
+      if (flag >= 0)
+        return;
+      std::string name = "flag " + std::to_string(flag);
+      if (char *s = CVodeGetReturnFlagName(flag))
+        {
+          name = s;
+          std::free(s);
+        }
+      std::ostringstream message;
+      message << "CVODE: " << call << " failed with " << name << " at t = "
+              << t_internal << " s";
+      if (!last_message.empty())
+        message << " (" << last_message << ")";
+      if (n_nonfinite > 0)
+        message << "; the right-hand side or Jacobian returned non-finite "
+                   "values "
+                << n_nonfinite << " time(s)";
+      throw OdeError(message.str());
+    }
+
+    /// Throw OdeError if the CVODE vector @p v holds a non-finite value.
+    void
+    check_finite(const N_Vector v, const double t) const
+    {
+      const double *data = N_VGetArrayPointer(v);
+      for (std::size_t i = 0; i < n; ++i)
+        if (!std::isfinite(data[i]))
+          {
+            std::ostringstream message;
+            message << "CVODE: the solution component " << i
+                    << " became non-finite (" << data[i] << ") at t = " << t
+                    << " s";
+            throw OdeError(message.str());
+          }
+    }
+
+    static int
+    rhs_callback(realtype t, N_Vector y, N_Vector ydot, void *user_data)
+    {
+      Impl *self = static_cast<Impl *>(user_data);
+      try
+        {
+          const double *in = N_VGetArrayPointer(y);
+          for (std::size_t i = 0; i < self->n; ++i)
+            {
+              if (!std::isfinite(in[i]))
+                {
+                  ++self->n_nonfinite;
+                  return 1; // recoverable: CVODE reduces the step
+                }
+              self->y_buffer[i] = in[i];
+            }
+          std::fill(self->ydot_buffer.begin(), self->ydot_buffer.end(), 0.);
+          self->rhs(t, self->y_buffer, self->ydot_buffer);
+          double *out = N_VGetArrayPointer(ydot);
+          for (std::size_t i = 0; i < self->n; ++i)
+            {
+              if (!std::isfinite(self->ydot_buffer[i]))
+                {
+                  ++self->n_nonfinite;
+                  return 1;
+                }
+              out[i] = self->ydot_buffer[i];
+            }
+          return 0;
+        }
+      catch (...)
+        {
+          self->pending = std::current_exception();
+          return -1; // unrecoverable
+        }
+    }
+
+    static int
+    jacobian_callback(realtype t,
+                      N_Vector y,
+                      N_Vector /*fy*/,
+                      SUNMatrix jac,
+                      void     *user_data,
+                      N_Vector /*tmp1*/,
+                      N_Vector /*tmp2*/,
+                      N_Vector /*tmp3*/)
+    {
+      Impl *self = static_cast<Impl *>(user_data);
+      try
+        {
+          const double *in = N_VGetArrayPointer(y);
+          for (std::size_t i = 0; i < self->n; ++i)
+            self->y_buffer[i] = in[i];
+          std::fill(self->jacobian_buffer.begin(),
+                    self->jacobian_buffer.end(),
+                    0.);
+          self->jacobian(t, self->y_buffer, self->jacobian_buffer);
+          for (std::size_t i = 0; i < self->n; ++i)
+            for (std::size_t j = 0; j < self->n; ++j)
+              {
+                const double value = self->jacobian_buffer[i * self->n + j];
+                if (!std::isfinite(value))
+                  {
+                    ++self->n_nonfinite;
+                    return 1;
+                  }
+                SM_ELEMENT_D(jac, i, j) = value;
+              }
+          return 0;
+        }
+      catch (...)
+        {
+          self->pending = std::current_exception();
+          return -1;
+        }
+    }
+
+    static void
+    error_handler(int /*error_code*/,
+                  const char * /*module*/,
+                  const char *function,
+                  char       *msg,
+                  void       *user_data)
+    {
+      Impl *self         = static_cast<Impl *>(user_data);
+      self->last_message = std::string(function ? function : "") + ": " +
+                           std::string(msg ? msg : "");
+    }
+
+    /// Re-throw a pending callback exception, if any.
+    void
+    rethrow_pending()
+    {
+      if (pending)
+        {
+          std::exception_ptr p = pending;
+          pending              = nullptr;
+          std::rethrow_exception(p);
+        }
+    }
+  };
+
+
+
+  StiffOdeSolver::StiffOdeSolver(RightHandSide              rhs,
+                                 const std::vector<double> &y0,
+                                 const double               t0,
+                                 const StiffOdeSettings    &settings,
+                                 Jacobian                   jacobian)
+    : impl(std::make_unique<Impl>())
+  {
+    if (!rhs)
+      throw std::invalid_argument("StiffOdeSolver: empty right-hand side");
+    if (y0.empty())
+      throw std::invalid_argument("StiffOdeSolver: empty initial state");
+    for (const double v : y0)
+      if (!std::isfinite(v))
+        throw std::invalid_argument(
+          "StiffOdeSolver: non-finite initial state");
+    if (!std::isfinite(t0))
+      throw std::invalid_argument("StiffOdeSolver: non-finite initial time");
+    if (!(settings.relative_tolerance > 0.))
+      throw std::invalid_argument(
+        "StiffOdeSolver: relative_tolerance must be > 0");
+    if (settings.absolute_tolerances.empty() &&
+        !(settings.absolute_tolerance > 0.))
+      throw std::invalid_argument(
+        "StiffOdeSolver: absolute_tolerance must be > 0");
+    if (!settings.absolute_tolerances.empty())
+      {
+        if (settings.absolute_tolerances.size() != y0.size())
+          throw std::invalid_argument(
+            "StiffOdeSolver: absolute_tolerances must have one entry per "
+            "component");
+        for (const double a : settings.absolute_tolerances)
+          if (!(a > 0.))
+            throw std::invalid_argument(
+              "StiffOdeSolver: absolute_tolerances must be > 0");
+      }
+    if (settings.max_order < 1 || settings.max_order > 5)
+      throw std::invalid_argument(
+        "StiffOdeSolver: max_order must be in 1..5 for BDF");
+
+    Impl &d    = *impl;
+    d.rhs      = std::move(rhs);
+    d.jacobian = std::move(jacobian);
+    d.n        = y0.size();
+    d.y_buffer.assign(d.n, 0.);
+    d.ydot_buffer.assign(d.n, 0.);
+    d.jacobian_buffer.assign(d.n * d.n, 0.);
+    d.output     = y0;
+    d.t_output   = t0;
+    d.t_internal = t0;
+
+    if (SUNContext_Create(nullptr, &d.context) != 0 || d.context == nullptr)
+      throw OdeError("CVODE: SUNContext_Create failed");
+    const sunindextype n = static_cast<sunindextype>(d.n);
+    d.y                  = N_VNew_Serial(n, d.context);
+    d.y_out              = N_VNew_Serial(n, d.context);
+    if (d.y == nullptr || d.y_out == nullptr)
+      throw OdeError("CVODE: N_VNew_Serial failed");
+    for (std::size_t i = 0; i < d.n; ++i)
+      NV_Ith_S(d.y, i) = y0[i];
+
+    d.cvode_mem = CVodeCreate(CV_BDF, d.context);
+    if (d.cvode_mem == nullptr)
+      throw OdeError("CVODE: CVodeCreate failed");
+    d.check(CVodeSetErrHandlerFn(d.cvode_mem, &Impl::error_handler, &d),
+            "CVodeSetErrHandlerFn");
+    d.check(CVodeInit(d.cvode_mem, &Impl::rhs_callback, t0, d.y), "CVodeInit");
+    d.check(CVodeSetUserData(d.cvode_mem, &d), "CVodeSetUserData");
+    if (settings.absolute_tolerances.empty())
+      d.check(CVodeSStolerances(d.cvode_mem,
+                                settings.relative_tolerance,
+                                settings.absolute_tolerance),
+              "CVodeSStolerances");
+    else
+      {
+        N_Vector atol = N_VNew_Serial(n, d.context);
+        if (atol == nullptr)
+          throw OdeError("CVODE: N_VNew_Serial failed");
+        for (std::size_t i = 0; i < d.n; ++i)
+          NV_Ith_S(atol, i) = settings.absolute_tolerances[i];
+        const int flag = CVodeSVtolerances(d.cvode_mem,
+                                           settings.relative_tolerance,
+                                           atol); // CVODE copies atol
+        N_VDestroy(atol);
+        d.check(flag, "CVodeSVtolerances");
+      }
+    d.matrix = SUNDenseMatrix(n, n, d.context);
+    if (d.matrix == nullptr)
+      throw OdeError("CVODE: SUNDenseMatrix failed");
+    d.linsol = SUNLinSol_Dense(d.y, d.matrix, d.context);
+    if (d.linsol == nullptr)
+      throw OdeError("CVODE: SUNLinSol_Dense failed");
+    d.check(CVodeSetLinearSolver(d.cvode_mem, d.linsol, d.matrix),
+            "CVodeSetLinearSolver");
+    if (d.jacobian)
+      d.check(CVodeSetJacFn(d.cvode_mem, &Impl::jacobian_callback),
+              "CVodeSetJacFn");
+    d.check(CVodeSetMaxOrd(d.cvode_mem, settings.max_order), "CVodeSetMaxOrd");
+    d.check(CVodeSetMaxNumSteps(d.cvode_mem, settings.max_steps),
+            "CVodeSetMaxNumSteps");
+    if (settings.max_step > 0.)
+      d.check(CVodeSetMaxStep(d.cvode_mem, settings.max_step),
+              "CVodeSetMaxStep");
+    if (settings.initial_step > 0.)
+      d.check(CVodeSetInitStep(d.cvode_mem, settings.initial_step),
+              "CVodeSetInitStep");
+  }
+
+
+
+  StiffOdeSolver::~StiffOdeSolver() = default;
+
+
+
+  const std::vector<double> &
+  StiffOdeSolver::advance(const double t_out)
+  {
+    Impl &d = *impl;
+    if (!std::isfinite(t_out) || t_out < d.t_output)
+      {
+        std::ostringstream message;
+        message << "StiffOdeSolver::advance: output time " << t_out
+                << " s is before the current time " << d.t_output << " s";
+        throw std::invalid_argument(message.str());
+      }
+    if (t_out == d.t_output)
+      return d.output;
+
+    while (d.t_internal < t_out)
+      {
+        double    t_return = d.t_internal;
+        const int flag =
+          CVode(d.cvode_mem, t_out, d.y, &t_return, CV_ONE_STEP);
+        d.rethrow_pending();
+        d.check(flag, "CVode");
+        d.t_internal = t_return;
+        d.check_finite(d.y, t_return);
+      }
+
+    if (d.t_internal == t_out)
+      N_VScale(1., d.y, d.y_out);
+    else
+      d.check(CVodeGetDky(d.cvode_mem, t_out, 0, d.y_out), "CVodeGetDky");
+    d.check_finite(d.y_out, t_out);
+    const double *data = N_VGetArrayPointer(d.y_out);
+    d.output.assign(data, data + d.n);
+    d.t_output = t_out;
+    return d.output;
+  }
+
+
+
+  void
+  StiffOdeSolver::set_stop_time(const double t_stop)
+  {
+    impl->check(CVodeSetStopTime(impl->cvode_mem, t_stop), "CVodeSetStopTime");
+  }
+
+
+
+  void
+  StiffOdeSolver::reinit(const double t0, const std::vector<double> &y0)
+  {
+    Impl &d = *impl;
+    if (y0.size() != d.n)
+      throw std::invalid_argument(
+        "StiffOdeSolver::reinit: the state size cannot change");
+    for (std::size_t i = 0; i < d.n; ++i)
+      {
+        if (!std::isfinite(y0[i]))
+          throw std::invalid_argument(
+            "StiffOdeSolver::reinit: non-finite state");
+        NV_Ith_S(d.y, i) = y0[i];
+      }
+    d.check(CVodeReInit(d.cvode_mem, t0, d.y), "CVodeReInit");
+    d.output      = y0;
+    d.t_output    = t0;
+    d.t_internal  = t0;
+    d.n_nonfinite = 0;
+    d.last_message.clear();
+  }
+
+
+
+  double
+  StiffOdeSolver::time() const
+  {
+    return impl->t_output;
+  }
+
+
+
+  const std::vector<double> &
+  StiffOdeSolver::state() const
+  {
+    return impl->output;
+  }
+
+
+
+  long
+  StiffOdeSolver::n_steps() const
+  {
+    long steps = 0;
+    impl->check(CVodeGetNumSteps(impl->cvode_mem, &steps), "CVodeGetNumSteps");
+    return steps;
+  }
+} // namespace rockdda::analytical

@@ -1,0 +1,242 @@
+/**
+ * @file
+ * The io subsystem: output files, data files, parameter-file errors and the
+ * parameter reference.
+ */
+#include <rockdda/io/analysis.h>
+#include <rockdda/io/data_file.h>
+#include <rockdda/io/error.h>
+#include <rockdda/io/output.h>
+#include <rockdda/io/parameters.h>
+#include <rockdda/seismic/record.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+namespace
+{
+  namespace fs = std::filesystem;
+
+  /// A fresh temporary folder for one test.
+  fs::path
+  scratch(const std::string &name)
+  {
+    const fs::path p = fs::temp_directory_path() /
+                       ("rockdda-test-" + name + "-" +
+                        std::to_string(::getpid()));
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+  }
+
+  void
+  write_file(const fs::path &p, const std::string &text)
+  {
+    std::ofstream(p) << text;
+  }
+
+  /// The message of the InputError that f() throws ("" if none).
+  template <typename F>
+  std::string
+  error_of(F &&f)
+  {
+    try
+      {
+        f();
+      }
+    catch (const rockdda::InputError &e)
+      {
+        return e.what();
+      }
+    return "";
+  }
+
+  void
+  declare_toy(dealii::ParameterHandler &prm)
+  {
+    prm.enter_subsection("Block");
+    rockdda::io::declare(prm,
+                         "Dip",
+                         "10",
+                         dealii::Patterns::Double(0., 90.),
+                         "deg",
+                         "Dip.");
+    prm.leave_subsection();
+  }
+} // namespace
+
+
+
+TEST(Output, AtomicWriteLeavesNoTemporaryFile)
+{
+  const auto                      dir = scratch("atomic");
+  const rockdda::io::OutputDirectory out((dir / "a" / "b").string());
+  out.write("x.csv", "1\n");
+  out.write("x.csv", "2\n");
+  std::ifstream in(dir / "a" / "b" / "x.csv");
+  std::string   text;
+  in >> text;
+  EXPECT_EQ(text, "2");
+  unsigned int n = 0;
+  for (const auto &e : fs::directory_iterator(dir / "a" / "b"))
+    n += e.is_regular_file();
+  EXPECT_EQ(n, 1u); // no *.tmp.* left behind
+}
+
+
+
+TEST(Output, TableHeaderCarriesUnits)
+{
+  rockdda::io::Table t;
+  t.add_column("time", "s");
+  t.add_column("velocity", "m/s");
+  t.add_column("state", "-");
+  t.add_row({0.5, 1.25, 1});
+  EXPECT_EQ(t.csv(), "time_s,velocity_m_s,state\n0.5,1.25,1\n");
+  EXPECT_THROW(t.add_row({1.}), std::logic_error);
+}
+
+
+
+TEST(DataFile, MalformedNumberNamesTheLine)
+{
+  const auto dir = scratch("data");
+  write_file(dir / "r.txt", "# header\n0.1\n0.2\n\n0.x3\n");
+  const std::string msg = error_of(
+    [&]() { rockdda::io::read_columns((dir / "r.txt").string(), 1, 1); });
+  EXPECT_NE(msg.find("r.txt:5"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("0.x3"), std::string::npos) << msg;
+
+  write_file(dir / "ragged.txt", "1 2\n3\n");
+  EXPECT_NE(error_of([&]() {
+              rockdda::io::read_columns((dir / "ragged.txt").string(), 1, 2);
+            }).find("ragged.txt:2"),
+            std::string::npos);
+  EXPECT_NE(error_of([&]() { rockdda::io::read_columns("/no/such", 1, 1); })
+              .find("/no/such"),
+            std::string::npos);
+}
+
+
+
+TEST(Record, ReadsBothLayoutsAndInterpolates)
+{
+  const auto dir = scratch("record");
+  write_file(dir / "one.txt", "0\n1\n-1\n");
+  write_file(dir / "two.txt", "0.0 0\n0.5 1\n1.0 -1\n");
+  const auto one = rockdda::seismic::read_record((dir / "one.txt").string(), 0.5);
+  const auto two = rockdda::seismic::read_record((dir / "two.txt").string(), 99.);
+  EXPECT_DOUBLE_EQ(one.dt, 0.5);
+  EXPECT_DOUBLE_EQ(two.dt, 0.5);
+  EXPECT_DOUBLE_EQ(one.at(0.25), 0.5);
+  EXPECT_DOUBLE_EQ(one.at(0.75), 0.);
+  EXPECT_DOUBLE_EQ(one.at(1.0), -1.);
+  EXPECT_DOUBLE_EQ(one.at(5.0), 0.); // at rest after the record
+  EXPECT_DOUBLE_EQ(one.peak(), 1.);
+  EXPECT_NE(error_of([&]() {
+              rockdda::seismic::read_record((dir / "one.txt").string(), 0.);
+            }).find("dt > 0"),
+            std::string::npos);
+}
+
+
+
+TEST(Parameters, UnknownKeyNamesFileLineAndSection)
+{
+  const auto dir = scratch("prm");
+  write_file(dir / "a.prm", "subsection Block\n  set Dip = 10\n  set Dpi = 3\nend\n");
+  dealii::ParameterHandler prm;
+  declare_toy(prm);
+  const std::string msg = error_of([&]() {
+    rockdda::io::parse_parameter_file(prm, (dir / "a.prm").string());
+  });
+  EXPECT_NE(msg.find("a.prm:3"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("Dpi"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'Block'"), std::string::npos) << msg;
+}
+
+
+
+TEST(Parameters, OutOfRangeValueNamesKeyAndRange)
+{
+  const auto dir = scratch("range");
+  write_file(dir / "b.prm", "subsection Block\n  set Dip = 95\nend\n");
+  dealii::ParameterHandler prm;
+  declare_toy(prm);
+  const std::string msg = error_of([&]() {
+    rockdda::io::parse_parameter_file(prm, (dir / "b.prm").string());
+  });
+  EXPECT_NE(msg.find("b.prm:2"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'Dip'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("90"), std::string::npos) << msg; // the valid range
+}
+
+
+
+TEST(Parameters, UnknownSectionAndMissingFile)
+{
+  const auto dir = scratch("section");
+  write_file(dir / "c.prm", "subsection Blok\n  set Dip = 5\nend\n");
+  dealii::ParameterHandler prm;
+  declare_toy(prm);
+  const std::string msg = error_of([&]() {
+    rockdda::io::parse_parameter_file(prm, (dir / "c.prm").string());
+  });
+  EXPECT_NE(msg.find("c.prm:1"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("Blok"), std::string::npos) << msg;
+  EXPECT_NE(error_of([&]() {
+              rockdda::io::parse_parameter_file(prm, "/no/such.prm");
+            }).find("/no/such.prm"),
+            std::string::npos);
+}
+
+
+
+TEST(Parameters, ResolvePathExpandsVariablesRelativeToFile)
+{
+  ::setenv("ROCKDDA_TEST_DIR", "/data/x", 1);
+  EXPECT_EQ(rockdda::io::resolve_path("$ROCKDDA_TEST_DIR/r.txt", "/a/b.prm", "k"),
+            "/data/x/r.txt");
+  EXPECT_EQ(rockdda::io::resolve_path("${ROCKDDA_TEST_DIR}/r.txt", "/a/b.prm", "k"),
+            "/data/x/r.txt");
+  EXPECT_EQ(rockdda::io::resolve_path("../r.txt", "/a/b/c.prm", "k"), "/a/r.txt");
+  EXPECT_NE(error_of([]() {
+              rockdda::io::resolve_path("$ROCKDDA_UNSET_VARIABLE/x", "p.prm", "Key");
+            }).find("ROCKDDA_UNSET_VARIABLE"),
+            std::string::npos);
+}
+
+
+
+TEST(Parameters, EveryKeyDocumentsItsUnit)
+{
+  // The reference rows are "| `key` | `default` | valid | unit | help |":
+  // every key of every analysis must carry a unit ([-] if dimensionless)
+  // and a help text.
+  dealii::ParameterHandler prm;
+  const auto               analyses = rockdda::io::all_analyses();
+  rockdda::io::declare_all_parameters(prm, analyses);
+  std::ostringstream out;
+  rockdda::io::print_parameter_reference(prm, out);
+  std::istringstream lines(out.str());
+  std::string        line;
+  unsigned int       n_keys = 0;
+  const std::regex   row("^\\| `([^`]+)` \\| `[^`]*` \\| (.+) \\| (.+) \\| (.+) \\|$");
+  while (std::getline(lines, line))
+    if (line.rfind("| `", 0) == 0)
+      {
+        std::smatch m;
+        ASSERT_TRUE(std::regex_match(line, m, row)) << line;
+        EXPECT_FALSE(m[3].str().empty()) << line;
+        EXPECT_GT(m[4].str().size(), 5u) << "help text missing: " << line;
+        ++n_keys;
+      }
+  EXPECT_GT(n_keys, 20u);
+}

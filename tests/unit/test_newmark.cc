@@ -1,0 +1,707 @@
+/**
+ * @file
+ * Tests of the 1D rigid-block Newmark analysis: SLAMMER reference results,
+ * the closed-form harmonic solution, model equivalences and bad input.
+ */
+#include <rockdda/analytical/newmark.h>
+#include <rockdda/io/error.h>
+#include <rockdda/seismic/record.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifndef ROCKDDA_SHARED_DATA
+#  error "ROCKDDA_SHARED_DATA must name the shared data folder"
+#endif
+
+using namespace rockdda;
+using namespace rockdda::analytical;
+
+namespace
+{
+  const double g_std = 9.80665; // m/s^2, as in SLAMMER
+
+  const std::string slammer_dir =
+    std::string(ROCKDDA_SHARED_DATA) + "/ground-motions/slammer/";
+
+  /// Split one CSV line into fields; double quotes protect commas.
+  std::vector<std::string>
+  split_csv(const std::string &line)
+  {
+    std::vector<std::string> fields(1);
+    bool                     quoted = false;
+    for (const char c : line)
+      if (c == '"')
+        quoted = !quoted;
+      else if (c == ',' && !quoted)
+        fields.emplace_back();
+      else if (c != '\r')
+        fields.back() += c;
+    return fields;
+  }
+
+  /// Rows of a CSV file (header skipped).
+  std::vector<std::vector<std::string>>
+  read_csv(const std::string &file_name)
+  {
+    std::ifstream in(file_name);
+    EXPECT_TRUE(in.good()) << "cannot open " << file_name;
+    std::vector<std::vector<std::string>> rows;
+    std::string                           line;
+    std::getline(in, line);
+    while (std::getline(in, line))
+      if (!line.empty())
+        rows.push_back(split_csv(line));
+    return rows;
+  }
+
+  /// A record of A sin(omega t) (g) sampled at dt for [0, duration].
+  seismic::Record
+  sine_record(const double amplitude,
+              const double omega,
+              const double dt,
+              const double duration)
+  {
+    seismic::Record record;
+    record.name = "sine";
+    record.dt   = dt;
+    const auto n = static_cast<std::size_t>(std::llround(duration / dt));
+    for (std::size_t i = 0; i <= n; ++i)
+      record.acceleration.push_back(amplitude * std::sin(omega * i * dt));
+    return record;
+  }
+
+  /// A record of constant value (g).
+  seismic::Record
+  constant_record(const double value, const double dt, const std::size_t n)
+  {
+    seismic::Record record;
+    record.name = "constant";
+    record.dt   = dt;
+    record.acceleration.assign(n, value);
+    return record;
+  }
+} // namespace
+
+
+
+// All 90 SLAMMER rigid-block cases, normal and inverse polarity. Tolerance
+// max(2 % of the reference, 0.05 cm): SLAMMER integrates the same equations
+// with the same trapezoidal rule but locates the start and stop of sliding at
+// the samples (it starts sliding at the beginning of the step whose sample
+// exceeds ky and stops at the end of the step where v changes sign), an
+// O(dt) difference per slip event; 2 % is the criterion pySLAMMER uses against
+// SLAMMER, and 0.05 cm covers the cases whose reference is a few hundredths
+// of a centimetre (the reference is printed with 5 decimals in cm).
+TEST(Newmark, SlammerReference)
+{
+  std::map<std::string, double> dt_of;
+  for (const auto &row : read_csv(slammer_dir + "records.csv"))
+    dt_of[row.at(0)] = std::stod(row.at(9));
+
+  const auto cases = read_csv(slammer_dir + "rigid_newmark_reference.csv");
+  ASSERT_EQ(cases.size(), 90u);
+
+  std::map<std::string, seismic::Record> records;
+  for (const auto &row : cases)
+    if (records.count(row[0]) == 0)
+      records[row[0]] =
+        seismic::read_record(slammer_dir + row[0], dt_of.at(row[0]));
+
+  double      worst_rel = 0., worst_abs = 0.;
+  std::string worst_rel_case, worst_abs_case;
+  double      seconds = 0.;
+  unsigned    n_runs  = 0;
+  for (const auto &row : cases)
+    {
+      const double target_pga = std::stod(row[1]);
+      const double ky         = std::stod(row[2]);
+      for (const int polarity : {+1, -1})
+        {
+          seismic::Record record = records.at(row[0]);
+          seismic::scale_to_pga(record, target_pga);
+          if (polarity < 0)
+            seismic::scale(record, -1.);
+          NewmarkOptions options;
+          options.ky = ky;
+
+          const auto   start  = std::chrono::steady_clock::now();
+          const auto   result = newmark_sliding(record, options);
+          const double d_cm   = 100. * result.final_displacement;
+          seconds += std::chrono::duration<double>(
+                       std::chrono::steady_clock::now() - start)
+                       .count();
+          ++n_runs;
+
+          const double ref = std::stod(row[polarity > 0 ? 3 : 4]);
+          const double err = std::abs(d_cm - ref);
+          const double tol = std::max(0.02 * ref, 0.05);
+          const std::string name = row[0] + " pga=" + row[1] + " ky=" +
+                                   row[2] +
+                                   (polarity > 0 ? " normal" : " inverse");
+          EXPECT_LE(err, tol) << name << ": " << d_cm << " cm vs SLAMMER "
+                              << ref << " cm";
+          if (ref > 0.05 && err / ref > worst_rel)
+            {
+              worst_rel      = err / ref;
+              worst_rel_case = name;
+            }
+          if (err > worst_abs)
+            {
+              worst_abs      = err;
+              worst_abs_case = name;
+            }
+        }
+    }
+  std::printf("SLAMMER: %u runs in %.3f s; worst relative discrepancy "
+              "%.3f %% (%s), worst absolute %.4f cm (%s)\n",
+              n_runs,
+              seconds,
+              100. * worst_rel,
+              worst_rel_case.c_str(),
+              worst_abs,
+              worst_abs_case.c_str());
+  // Performance requirement: the whole suite well under a second (it takes a
+  // few milliseconds; 1 s leaves room for a loaded machine).
+  EXPECT_LT(seconds, 1.);
+}
+
+
+
+// The same cases integrated the SLAMMER way (start at the sample), as a check
+// that the remaining differences come from the event location only.
+TEST(Newmark, SlammerReferenceAtSampleStart)
+{
+  std::map<std::string, double> dt_of;
+  for (const auto &row : read_csv(slammer_dir + "records.csv"))
+    dt_of[row.at(0)] = std::stod(row.at(9));
+  double worst_rel = 0., worst_abs = 0.;
+  for (const auto &row : read_csv(slammer_dir + "rigid_newmark_reference.csv"))
+    for (const int polarity : {+1, -1})
+      {
+        auto record =
+          seismic::read_record(slammer_dir + row[0], dt_of.at(row[0]));
+        seismic::scale_to_pga(record, polarity * std::stod(row[1]));
+        NewmarkOptions options;
+        options.ky              = std::stod(row[2]);
+        options.start_detection = NewmarkOptions::StartDetection::at_sample;
+        const double d_cm = 100. * newmark_sliding(record, options).final_displacement;
+        const double ref  = std::stod(row[polarity > 0 ? 3 : 4]);
+        const double err  = std::abs(d_cm - ref);
+        // Same tolerance as above.
+        EXPECT_LE(err, std::max(0.02 * ref, 0.05)) << row[0];
+        worst_abs = std::max(worst_abs, err);
+        if (ref > 0.05)
+          worst_rel = std::max(worst_rel, err / ref);
+      }
+  std::printf("SLAMMER (start at sample): worst relative %.3f %%, worst "
+              "absolute %.4f cm\n",
+              100. * worst_rel,
+              worst_abs);
+}
+
+
+
+// The closed form itself: t_start, v(t_stop) = 0 and the displacement per
+// cycle against a brute-force quadrature of v(t) (composite Simpson, 2e5
+// intervals: error ~1e-15 relative), for several ky/A.
+TEST(Newmark, HarmonicClosedFormIsConsistent)
+{
+  const double amplitude = 0.5, omega = 10.;
+  for (const double ratio : {0., 0.1, 0.3, 0.5, 0.8, 0.99})
+    {
+      const double ky    = ratio * amplitude;
+      const auto   cycle = harmonic_sliding_cycle(amplitude, omega, ky);
+      EXPECT_NEAR(cycle.t_start, std::asin(ratio) / omega, 1e-15);
+      const auto v = [&](const double t) {
+        return amplitude / omega *
+                 (std::cos(omega * cycle.t_start) - std::cos(omega * t)) -
+               ky * (t - cycle.t_start);
+      };
+      // The root to machine precision: |v| ~ a few ulps of A/omega.
+      EXPECT_LT(std::abs(v(cycle.t_stop)), 1e-14);
+      EXPECT_GT(cycle.t_stop, M_PI / omega - cycle.t_start);
+      EXPECT_LE(cycle.t_stop, cycle.t_start + 2. * M_PI / omega + 1e-15);
+
+      const unsigned int n = 200000;
+      const double       h = (cycle.t_stop - cycle.t_start) / n;
+      double             integral = v(cycle.t_start) + v(cycle.t_stop);
+      for (unsigned int i = 1; i < n; ++i)
+        integral += (i % 2 ? 4. : 2.) * v(cycle.t_start + i * h);
+      integral *= h / 3.;
+      EXPECT_NEAR(cycle.displacement_per_cycle,
+                  integral,
+                  1e-10 * integral + 1e-16);
+      // Displacement at any time: continuous, cycles add up.
+      const double period = 2. * M_PI / omega;
+      EXPECT_NEAR(harmonic_sliding_displacement(amplitude, omega, ky, 3.5 * period),
+                  (ratio == 0. ? 3.5 : 3.) * cycle.displacement_per_cycle +
+                    (ratio == 0. ?
+                       0. :
+                       harmonic_sliding_displacement(amplitude,
+                                                     omega,
+                                                     ky,
+                                                     0.5 * period)),
+                  1e-12 * cycle.displacement_per_cycle);
+    }
+  // No sliding when ky >= A.
+  EXPECT_EQ(harmonic_sliding_cycle(0.5, 10., 0.5).displacement_per_cycle, 0.);
+  EXPECT_EQ(harmonic_sliding_displacement(0.5, 10., 0.6, 100.), 0.);
+  EXPECT_THROW(harmonic_sliding_cycle(0., 10., 0.1), InputError);
+  EXPECT_THROW(harmonic_sliding_cycle(0.5, -1., 0.1), InputError);
+  EXPECT_THROW(harmonic_sliding_cycle(0.5, 10., -0.1), InputError);
+}
+
+
+
+// Numerical integration of a(t) = 0.5 g sin(10 t) against the closed form
+// after 5.25 cycles (t = 3.30 s), dt = 0.001 s (63 samples per period). The
+// sampled record is linearly interpolated (error ~ A (omega dt)^2 / 8 =
+// 1.25e-5 A) and integrated with second-order accuracy, so the error is far
+// below the required 0.5 %.
+TEST(Newmark, HarmonicMatchesClosedForm)
+{
+  const double amplitude = 0.5, omega = 10., period = 2. * M_PI / omega;
+  const double t_end = 5.25 * period;
+  for (const double ratio : {0.1, 0.3, 0.5, 0.8})
+    {
+      const double ky = ratio * amplitude;
+      const double dt = 0.001;
+      auto         record = sine_record(amplitude, omega, dt, t_end);
+      NewmarkOptions options;
+      options.ky     = ky;
+      const auto res = newmark_sliding(record, options);
+      const double t_last = res.time.back();
+      const double exact =
+        g_std * harmonic_sliding_displacement(amplitude, omega, ky, t_last);
+      const double rel = std::abs(res.final_displacement - exact) / exact;
+      std::printf("harmonic ky/A = %.1f, dt = %g s: numerical %.6f m, exact "
+                  "%.6f m, relative error %.2e\n",
+                  ratio,
+                  dt,
+                  res.final_displacement,
+                  exact,
+                  rel);
+      EXPECT_LT(rel, 0.005);
+      // Also along the history (sampled every 0.1 s), relative to the final
+      // displacement.
+      for (std::size_t i = 0; i < res.time.size(); i += 100)
+        EXPECT_NEAR(res.displacement[i],
+                    g_std * harmonic_sliding_displacement(amplitude,
+                                                          omega,
+                                                          ky,
+                                                          res.time[i]),
+                    0.005 * exact);
+      // One slip event per cycle: 6 starts within 5.25 cycles.
+      EXPECT_EQ(res.n_slip_events, 6u);
+    }
+}
+
+
+
+// Convergence: halving dt (of the sampled record itself) must reduce the
+// error; the scheme and the event location are second order, so each
+// halving should gain close to a factor 4 (we require > 2.5 to allow for the
+// irregular position of the events relative to the samples).
+TEST(Newmark, HarmonicConvergence)
+{
+  const double amplitude = 0.5, omega = 10., period = 2. * M_PI / omega;
+  const double t_end = 5. * period;
+  for (const double ratio : {0.1, 0.3, 0.5, 0.8})
+    {
+      const double ky = ratio * amplitude;
+      const double exact =
+        g_std * harmonic_sliding_displacement(amplitude, omega, ky, t_end);
+      std::vector<double> errors;
+      for (const double dt : {0.02, 0.01, 0.005, 0.0025})
+        {
+          // dt does not divide t_end; compare at the last sample.
+          auto record = sine_record(
+            amplitude, omega, dt, std::floor(t_end / dt) * dt);
+          NewmarkOptions options;
+          options.ky     = ky;
+          const auto res = newmark_sliding(record, options);
+          const double ex =
+            g_std * harmonic_sliding_displacement(amplitude,
+                                                  omega,
+                                                  ky,
+                                                  res.time.back());
+          errors.push_back(std::abs(res.final_displacement - ex) / exact);
+          std::printf("  ky/A = %.1f dt = %-7g relative error %.3e\n",
+                      ratio,
+                      dt,
+                      errors.back());
+        }
+      for (std::size_t i = 1; i < errors.size(); ++i)
+        EXPECT_LT(errors[i], errors[i - 1] / 2.5)
+          << "ky/A = " << ratio << " refinement " << i;
+    }
+}
+
+
+
+// Sub-stepping a coarse record: with time_step < dt the record is linearly
+// interpolated, so the result must converge to the same limit as the native
+// step, and agree with it to the accuracy of the native step (< 0.5 % here,
+// as in the harmonic test at dt = 0.01 s).
+TEST(Newmark, SubSteppingAgreesWithNativeStep)
+{
+  auto record = sine_record(0.5, 10., 0.01, 3.);
+  NewmarkOptions options;
+  options.ky            = 0.15;
+  const auto native     = newmark_sliding(record, options);
+  options.time_step     = 0.001;
+  options.output_interval = 0.1;
+  const auto fine       = newmark_sliding(record, options);
+  EXPECT_NEAR(fine.final_displacement,
+              native.final_displacement,
+              0.005 * native.final_displacement);
+  EXPECT_EQ(fine.n_steps, 3000u);
+  // Output every 0.1 s: t = 0, 0.1, ..., 3.0.
+  ASSERT_EQ(fine.time.size(), 31u);
+  EXPECT_NEAR(fine.time.back(), 3., 1e-12);
+  EXPECT_EQ(fine.displacement.back(), fine.final_displacement);
+}
+
+
+
+// Two-way sliding, symmetric yield: a positive half-sine pulse, a rest long
+// enough for the block to stop, then the same pulse negated. The block slides
+// down by D, then up by exactly D (same equations mirrored): net zero to
+// round-off (1e-12 of D). Mirroring the whole record mirrors the history.
+TEST(Newmark, TwoWaySymmetry)
+{
+  const double    dt = 0.005, omega = 2. * M_PI;
+  seismic::Record record;
+  record.name = "pulses";
+  record.dt   = dt;
+  for (int i = 0; i <= 100; ++i) // half sine, 0.5 s
+    record.acceleration.push_back(0.4 * std::sin(omega * i * dt));
+  record.acceleration.resize(record.acceleration.size() + 200, 0.); // 1 s rest
+  const std::size_t n = record.acceleration.size();
+  for (std::size_t i = 0; i < 101; ++i)
+    record.acceleration.push_back(-record.acceleration[i]);
+  record.acceleration.resize(record.acceleration.size() + 200, 0.);
+
+  NewmarkOptions options;
+  options.ky        = 0.1;
+  options.direction = NewmarkOptions::Direction::two_way;
+  const auto res    = newmark_sliding(record, options);
+  const double down = res.displacement[n - 1];
+  EXPECT_GT(down, 0.01);
+  EXPECT_NEAR(res.final_displacement, 0., 1e-12 * down);
+  EXPECT_EQ(res.n_slip_events, 2u);
+  EXPECT_EQ(*std::min_element(res.state.begin(), res.state.end()), -1);
+
+  // Downslope only: the second pulse does nothing.
+  options.direction = NewmarkOptions::Direction::downslope;
+  EXPECT_NEAR(newmark_sliding(record, options).final_displacement,
+              down,
+              1e-12 * down);
+
+  // Mirrored record, two-way: mirrored history, step by step.
+  options.direction = NewmarkOptions::Direction::two_way;
+  auto mirrored     = record;
+  seismic::scale(mirrored, -1.);
+  const auto res_m = newmark_sliding(mirrored, options);
+  ASSERT_EQ(res_m.displacement.size(), res.displacement.size());
+  for (std::size_t i = 0; i < res.displacement.size(); ++i)
+    {
+      EXPECT_EQ(res_m.displacement[i], -res.displacement[i]);
+      EXPECT_EQ(res_m.state[i], -res.state[i]);
+    }
+}
+
+
+
+// A ky table with a constant value is the constant model (identical
+// arithmetic: equal to 1e-14 relative). A table that drops from 0.2 to 0.1 g
+// over the first centimetres gives a displacement between the two constant
+// cases.
+TEST(Newmark, TableModel)
+{
+  auto record = seismic::read_record(slammer_dir +
+                                       "Imperial_Valley_1940_ELC-180.txt",
+                                     0.01);
+  NewmarkOptions constant;
+  constant.ky        = 0.15;
+  const double d_c   = newmark_sliding(record, constant).final_displacement;
+  NewmarkOptions table;
+  table.yield_model        = NewmarkOptions::YieldModel::table;
+  table.table_displacement = {0., 0.5};
+  table.table_ky           = {0.15, 0.15};
+  EXPECT_NEAR(newmark_sliding(record, table).final_displacement,
+              d_c,
+              1e-14 * d_c);
+  EXPECT_GT(d_c, 0.);
+
+  table.table_displacement = {0.001, 0.02};
+  table.table_ky           = {0.2, 0.1};
+  const double d_t         = newmark_sliding(record, table).final_displacement;
+  constant.ky              = 0.2;
+  const double d_hi        = newmark_sliding(record, constant).final_displacement;
+  constant.ky              = 0.1;
+  const double d_lo        = newmark_sliding(record, constant).final_displacement;
+  EXPECT_GT(d_t, d_hi);
+  EXPECT_LT(d_t, d_lo);
+}
+
+
+
+// Plane model with Coulomb friction (phi = 30, alpha = 20 deg). The start
+// condition g(sin a + k cos a) > tan(phi) g (cos a - k sin a) is exactly
+// k > tan(phi - alpha); when sliding, the relative acceleration is
+// g (cos a + tan(phi) sin a) (k - tan(phi - alpha)), so the along-plane
+// displacement is cos(phi - alpha) / cos(phi) times the Newmark displacement
+// with ky = tan(phi - alpha) (same arithmetic up to round-off: 1e-10).
+TEST(Newmark, PlaneCoulombReducesToConstantKy)
+{
+  const double phi = 30., alpha = 20.;
+  const double ky_eff = std::tan((phi - alpha) * M_PI / 180.);
+
+  NewmarkOptions plane;
+  plane.yield_model = NewmarkOptions::YieldModel::plane;
+  plane.dip_deg     = alpha;
+  plane.friction    = FrictionLaw::coulomb_deg(phi);
+
+  // Start threshold: a constant input just above / below tan(phi - alpha).
+  const auto above = newmark_sliding(
+    constant_record(ky_eff * (1. + 1e-9), 0.01, 101), plane);
+  EXPECT_EQ(above.n_slip_events, 1u);
+  EXPECT_GT(above.final_displacement, 0.);
+  const auto below = newmark_sliding(
+    constant_record(ky_eff * (1. - 1e-9), 0.01, 101), plane);
+  EXPECT_EQ(below.n_slip_events, 0u);
+  EXPECT_EQ(below.final_displacement, 0.);
+
+  // Equivalence on the thesis case (Figure 4-2A): 0.5 g sin(10 t), 10
+  // cycles, dt = 0.001 s.
+  const auto record = sine_record(0.5, 10., 0.001, 2. * M_PI);
+  NewmarkOptions constant;
+  constant.ky = ky_eff;
+  const double factor =
+    std::cos((phi - alpha) * M_PI / 180.) / std::cos(phi * M_PI / 180.);
+  const double d_plane = newmark_sliding(record, plane).final_displacement;
+  const double d_const = newmark_sliding(record, constant).final_displacement;
+  EXPECT_NEAR(d_plane, factor * d_const, 1e-10 * d_plane);
+  // And against the closed form (0.5 %, as in the harmonic test).
+  const double exact =
+    factor * g_std *
+    harmonic_sliding_displacement(0.5, 10., ky_eff, record.duration());
+  EXPECT_NEAR(d_plane, exact, 0.005 * exact);
+  std::printf("plane alpha=20 phi=30, 0.5 g sin(10t), 10 cycles: %.5f m "
+              "(closed form %.5f m)\n",
+              d_plane,
+              exact);
+}
+
+
+
+// Gravity alone on a plane steeper than the friction angle (alpha = 35,
+// phi = 25 deg): constant relative acceleration g (sin a - cos a tan phi),
+// x = 1/2 g (sin a - cos a tan phi) t^2. The trapezoidal rule is exact for
+// constant acceleration: agreement to round-off (1e-12 relative).
+TEST(Newmark, PlaneGravityAlone)
+{
+  const double   alpha = 35. * M_PI / 180., phi = 25. * M_PI / 180.;
+  NewmarkOptions plane;
+  plane.yield_model = NewmarkOptions::YieldModel::plane;
+  plane.dip_deg     = 35.;
+  plane.friction    = FrictionLaw::coulomb_deg(25.);
+  const auto res    = newmark_sliding(constant_record(0., 0.01, 201), plane);
+  const double acc  = g_std * (std::sin(alpha) - std::cos(alpha) * std::tan(phi));
+  for (std::size_t i = 0; i < res.time.size(); i += 20)
+    EXPECT_NEAR(res.displacement[i],
+                0.5 * acc * res.time[i] * res.time[i],
+                1e-12 * 0.5 * acc * 4.);
+  EXPECT_NEAR(res.final_displacement, 0.5 * acc * 4., 1e-12 * 2. * acc);
+  EXPECT_NEAR(res.max_velocity, acc * 2., 1e-12 * acc * 2.);
+  EXPECT_EQ(res.n_slip_events, 1u);
+  EXPECT_NEAR(res.sliding_duration, 2., 1e-12);
+}
+
+
+
+// Plane model, two-way: upslope sliding starts at k < -tan(phi + alpha).
+// A constant input just beyond that threshold slides upslope, just inside it
+// does not.
+TEST(Newmark, PlaneUpslopeThreshold)
+{
+  NewmarkOptions plane;
+  plane.yield_model = NewmarkOptions::YieldModel::plane;
+  plane.dip_deg     = 20.;
+  plane.friction    = FrictionLaw::coulomb_deg(30.);
+  plane.direction   = NewmarkOptions::Direction::two_way;
+  const double k_up = -std::tan(50. * M_PI / 180.);
+  const auto   beyond =
+    newmark_sliding(constant_record(k_up * (1. + 1e-9), 0.01, 11), plane);
+  EXPECT_LT(beyond.final_displacement, 0.);
+  EXPECT_EQ(beyond.state.back(), -1);
+  const auto inside =
+    newmark_sliding(constant_record(k_up * (1. - 1e-9), 0.01, 11), plane);
+  EXPECT_EQ(inside.final_displacement, 0.);
+}
+
+
+
+// Rate-dependent friction mu(V) = mu0 + (A - B) ln(V / V0), V0 = cutoff, so
+// the static coefficient is mu0: A - B = 0 is Coulomb (to round-off);
+// velocity strengthening (A - B > 0) gives less displacement than Coulomb,
+// weakening more. The implicit update converges: halving the step changes
+// the result by < 0.5 % (the second-order scheme at dt = 1e-3 s).
+TEST(Newmark, PlaneRateDependentFriction)
+{
+  const auto     record = sine_record(0.5, 10., 0.001, 2. * M_PI);
+  NewmarkOptions plane;
+  plane.yield_model = NewmarkOptions::YieldModel::plane;
+  plane.dip_deg     = 20.;
+  plane.friction    = FrictionLaw::coulomb_deg(30.);
+  const double d_coulomb = newmark_sliding(record, plane).final_displacement;
+
+  FrictionLaw law = plane.friction;
+  law.type        = FrictionLaw::Type::steady_state;
+  law.v0          = 1e-6;
+  law.v_cutoff    = 1e-6;
+  law.a_minus_b   = 0.;
+  plane.friction  = law;
+  EXPECT_NEAR(newmark_sliding(record, plane).final_displacement,
+              d_coulomb,
+              1e-12 * d_coulomb);
+
+  double d[2] = {0., 0.};
+  for (const int i : {0, 1})
+    {
+      plane.friction.a_minus_b = i == 0 ? 0.005 : -0.005;
+      d[i]            = newmark_sliding(record, plane).final_displacement;
+      plane.time_step = 0.0005;
+      const double d_fine = newmark_sliding(record, plane).final_displacement;
+      plane.time_step     = 0.;
+      EXPECT_NEAR(d_fine, d[i], 0.005 * d[i]);
+      EXPECT_TRUE(std::isfinite(d[i]));
+    }
+  std::printf("rate dependence: strengthening %.5f m < Coulomb %.5f m < "
+              "weakening %.5f m\n",
+              d[0],
+              d_coulomb,
+              d[1]);
+  EXPECT_LT(d[0], d_coulomb);
+  EXPECT_GT(d[1], d_coulomb);
+}
+
+
+
+// Lift-off: a horizontal input beyond cot(alpha) makes the normal force
+// negative; the analysis must stop with an error, not produce NaN.
+TEST(Newmark, PlaneLiftOffIsAnError)
+{
+  NewmarkOptions plane;
+  plane.yield_model = NewmarkOptions::YieldModel::plane;
+  plane.dip_deg     = 30.;
+  plane.friction    = FrictionLaw::coulomb_deg(35.);
+  EXPECT_THROW(newmark_sliding(constant_record(2., 0.01, 11), plane),
+               std::runtime_error);
+}
+
+
+
+// Bad input is an InputError naming the quantity.
+TEST(Newmark, BadInput)
+{
+  const auto record = sine_record(0.5, 10., 0.01, 1.);
+  const auto throws = [&](const NewmarkOptions &o, const std::string &word) {
+    try
+      {
+        newmark_sliding(record, o);
+        ADD_FAILURE() << "no InputError for " << word;
+      }
+    catch (const InputError &e)
+      {
+        EXPECT_NE(std::string(e.what()).find(word), std::string::npos)
+          << e.what();
+      }
+  };
+  NewmarkOptions o;
+  o.time_step = -0.01;
+  throws(o, "time step");
+  o           = NewmarkOptions();
+  o.output_interval = -1.;
+  throws(o, "output interval");
+  o    = NewmarkOptions();
+  o.ky = -0.1;
+  throws(o, "ky");
+  o.ky = std::nan("");
+  throws(o, "ky");
+
+  o                    = NewmarkOptions();
+  o.yield_model        = NewmarkOptions::YieldModel::table;
+  o.table_displacement = {0., 0.1, 0.1};
+  o.table_ky           = {0.1, 0.1, 0.1};
+  throws(o, "increasing");
+  o.table_displacement = {0., 0.1};
+  throws(o, "same number");
+  o.table_displacement = {0., 0.1, 0.2};
+  o.table_ky           = {0.1, -0.1, 0.1};
+  throws(o, ">= 0 g");
+
+  o             = NewmarkOptions();
+  o.yield_model = NewmarkOptions::YieldModel::plane;
+  o.dip_deg     = 90.;
+  throws(o, "[0, 90)");
+  o.dip_deg = -1.;
+  throws(o, "[0, 90)");
+  o.dip_deg  = 20.;
+  o.friction = FrictionLaw::coulomb_deg(90.); // tan(pi/2) = 1.6e16
+  throws(o, "friction angle");
+  o.friction = FrictionLaw::coulomb_deg(100.); // negative coefficient
+  throws(o, "friction angle");
+  o.friction.mu0 = std::numeric_limits<double>::infinity();
+  throws(o, "friction angle");
+  o.friction      = FrictionLaw::coulomb_deg(30.);
+  o.friction.type = FrictionLaw::Type::steady_state;
+  o.friction.v0   = 0.;
+  throws(o, "V0");
+
+  // A record with a zero or negative time step.
+  auto bad_dt = record;
+  bad_dt.dt   = 0.;
+  EXPECT_THROW(newmark_sliding(bad_dt, NewmarkOptions()), InputError);
+  bad_dt.dt = -0.01;
+  EXPECT_THROW(newmark_sliding(bad_dt, NewmarkOptions()), InputError);
+  auto bad_value               = record;
+  bad_value.acceleration[3]    = std::nan("");
+  EXPECT_THROW(newmark_sliding(bad_value, NewmarkOptions()), InputError);
+}
+
+
+
+// A record file with a non-numeric line: InputError naming the line.
+TEST(Newmark, RecordFileWithJunkNamesTheLine)
+{
+  const std::string file_name =
+    ::testing::TempDir() + "rockdda_newmark_bad_record.txt";
+  {
+    std::ofstream out(file_name);
+    out << "0.01\n0.02\n-0.01\n0.0x3\n0.04\n";
+  }
+  try
+    {
+      seismic::read_record(file_name, 0.01);
+      ADD_FAILURE() << "no InputError";
+    }
+  catch (const InputError &e)
+    {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(":4:"), std::string::npos) << message;
+      EXPECT_NE(message.find("0.0x3"), std::string::npos) << message;
+    }
+  std::remove(file_name.c_str());
+}
