@@ -269,8 +269,8 @@ namespace rockdda::analytical
     const SlidingModel model(options);
     const bool         two_way =
       options.direction == NewmarkOptions::Direction::two_way;
-    const bool at_sample =
-      options.start_detection == NewmarkOptions::StartDetection::at_sample;
+    const bool at_samples =
+      options.event_location == NewmarkOptions::EventLocation::at_samples;
 
     // Time grid: the record's samples, or a uniform sub-step with the last
     // step shortened to end exactly at the end of the record.
@@ -355,7 +355,9 @@ namespace rockdda::analytical
               {
                 // At rest: does the driving exceed the static resistance at
                 // tau, or where within [tau, h]?  The excess is linear in
-                // the input, hence in time.
+                // the input, hence in time. (SLAMMER mode: only the sample
+                // at the end of the step is tested, and sliding starts at
+                // tau with zero relative acceleration.)
                 int    new_dir = 0;
                 double sigma   = length;
                 for (const int d : {+1, -1})
@@ -365,7 +367,13 @@ namespace rockdda::analytical
                     const double ea = d * model.at_rest(ka, d, s);
                     const double eb = d * model.at_rest(k1, d, s);
                     double       sd = length;
-                    if (ea > 0.)
+                    if (at_samples)
+                      {
+                        if (!(eb > 0.))
+                          continue;
+                        sd = 0.;
+                      }
+                    else if (ea > 0.)
                       sd = 0.;
                     else if (eb > 0.)
                       sd = length * ea / (ea - eb);
@@ -379,15 +387,13 @@ namespace rockdda::analytical
                   }
                 if (new_dir == 0)
                   break;
-                if (sigma > 0.)
+                if (at_samples)
+                  r = 0.;
+                else if (sigma > 0.)
                   {
-                    // Crossing within the step: relative acceleration 0
-                    // there. SLAMMER puts it at the beginning of the step.
-                    if (!at_sample)
-                      {
-                        ka += (k1 - ka) * sigma / length;
-                        tau += sigma;
-                      }
+                    // Crossing within the step: relative acceleration 0.
+                    ka += (k1 - ka) * sigma / length;
+                    tau += sigma;
                     r = 0.;
                   }
                 else
@@ -466,7 +472,7 @@ namespace rockdda::analytical
             double f_end = 0., df_end = 0.;
             speed(length, f_end, df_end);
             double sigma = length;
-            if (f_end > 0.)
+            if (f_end > 0. || at_samples)
               sigma = length;
             else if (dir * v > 0.)
               sigma = safeguarded_newton(speed, 0., length);

@@ -47,17 +47,22 @@ namespace rockdda::analytical
       /// 2008); the input is the horizontal acceleration.
       plane
     };
-    /// How the instant sliding starts is located.
-    enum class StartDetection
+    /// Where the start and the end of sliding are placed.
+    enum class EventLocation
     {
-      /// Linear interpolation of the input within the step: sliding starts
-      /// where the driving acceleration crosses the resistance (default; exact
-      /// for a piecewise-linear record).
+      /// Within the step (default): sliding starts where the linearly
+      /// interpolated input crosses the yield acceleration, and stops where
+      /// the relative velocity (quadratic in time for a relative
+      /// acceleration linear across the step) returns to zero. Second-order
+      /// accurate (doc/theory/newmark-harmonic.md).
       within_step,
-      /// Sliding starts at the beginning of the step in which the sample
-      /// exceeds the yield acceleration, with zero relative acceleration
-      /// there (what SLAMMER's rigorous rigid-block analysis does).
-      at_sample
+      /// At the samples, as SLAMMER's rigorous rigid-block analysis (Jibson
+      /// et al. 2013): sliding starts at the beginning of the step whose
+      /// end sample exceeds the yield acceleration, with zero relative
+      /// acceleration there, and stops at the end of the step in which the
+      /// velocity changes sign. First-order accurate; use it to reproduce
+      /// SLAMMER results.
+      at_samples
     };
 
     Direction  direction   = Direction::downslope;
@@ -82,8 +87,8 @@ namespace rockdda::analytical
     double output_interval = 0.;
     /// Gravitational acceleration (m/s^2), > 0.
     double g = 9.80665;
-    /// Location of the sliding start within a step.
-    StartDetection start_detection = StartDetection::within_step;
+    /// Location of the start and stop of sliding.
+    EventLocation event_location = EventLocation::within_step;
   };
 
   /// Time history and summary of a Newmark analysis.
@@ -116,10 +121,10 @@ namespace rockdda::analytical
    * @p input (g) from rest at t = 0 to the end of the record.
    *
    * The relative velocity is integrated with the average-acceleration
-   * (trapezoidal) rule, the displacement likewise. The instant the relative
-   * velocity returns to zero is located within the step (relative
-   * acceleration linear across the step); the start of sliding is located by
-   * linear interpolation of the input (see NewmarkOptions::StartDetection).
+   * (trapezoidal) rule, the displacement likewise. By default the instant
+   * the relative velocity returns to zero is located within the step
+   * (relative acceleration linear across the step) and the start of sliding
+   * by linear interpolation of the input (see NewmarkOptions::EventLocation).
    * A velocity-dependent friction law makes the update implicit; it is solved
    * by safeguarded Newton iterations.
    *
