@@ -59,7 +59,8 @@ namespace rockdda::analytical
           if (!(x_new > a && x_new < b))
             x_new = 0.5 * (a + b);
           const double scale = std::max(std::abs(a), std::abs(b));
-          if (std::abs(x_new - x) <= 2. * eps * scale || b - a <= 4. * eps * scale)
+          if (std::abs(x_new - x) <= 2. * eps * scale
+              || b - a <= 4. * eps * scale)
             return x_new;
           x = x_new;
         }
@@ -78,15 +79,14 @@ namespace rockdda::analytical
     {
     public:
       explicit SlidingModel(const NewmarkOptions &options)
-        : options(options)
-        , plane(options.yield_model == NewmarkOptions::YieldModel::plane)
-        , sin_dip(std::sin(options.dip_deg * M_PI / 180.))
-        , cos_dip(std::cos(options.dip_deg * M_PI / 180.))
-        , mu_static(options.friction.static_coefficient())
-        , rate_dependent(plane &&
-                         options.friction.type ==
-                           FrictionLaw::Type::steady_state &&
-                         options.friction.a_minus_b != 0.)
+          : options(options)
+          , plane(options.yield_model == NewmarkOptions::YieldModel::plane)
+          , sin_dip(std::sin(options.dip_deg * M_PI / 180.))
+          , cos_dip(std::cos(options.dip_deg * M_PI / 180.))
+          , mu_static(options.friction.static_coefficient())
+          , rate_dependent(
+              plane && options.friction.type == FrictionLaw::Type::steady_state
+              && options.friction.a_minus_b != 0.)
       {}
 
       /// Yield acceleration (g) at sliding distance s (constant and table).
@@ -101,8 +101,8 @@ namespace rockdda::analytical
           return k.front();
         if (s >= d.back())
           return k.back();
-        const std::size_t i =
-          std::upper_bound(d.begin(), d.end(), s) - d.begin() - 1;
+        const std::size_t i
+          = std::upper_bound(d.begin(), d.end(), s) - d.begin() - 1;
         const double w = (s - d[i]) / (d[i + 1] - d[i]);
         return (1. - w) * k[i] + w * k[i + 1];
       }
@@ -123,8 +123,9 @@ namespace rockdda::analytical
                   const double s) const
       {
         if (plane)
-          return options.g *
-                 ((sin_dip + k * cos_dip) - dir * mu * (cos_dip - k * sin_dip));
+          return options.g
+                 * ((sin_dip + k * cos_dip)
+                    - dir * mu * (cos_dip - k * sin_dip));
         return options.g * (k - dir * yield(s));
       }
 
@@ -135,8 +136,10 @@ namespace rockdda::analytical
                const double speed,
                const double s) const
       {
-        return relative_mu(
-          k, dir, plane ? options.friction.coefficient(speed) : 0., s);
+        return relative_mu(k,
+                           dir,
+                           plane ? options.friction.coefficient(speed) : 0.,
+                           s);
       }
 
       /// Relative acceleration (m/s^2) at rest, with the static resistance:
@@ -153,7 +156,8 @@ namespace rockdda::analytical
       dmu_dspeed(const double speed) const
       {
         const FrictionLaw &f = options.friction;
-        if (!rate_dependent || speed <= f.v_cutoff || f.coefficient(speed) <= 0.)
+        if (!rate_dependent || speed <= f.v_cutoff
+            || f.coefficient(speed) <= 0.)
           return 0.;
         return f.a_minus_b / speed;
       }
@@ -172,76 +176,87 @@ namespace rockdda::analytical
   {
     const std::string who = "Newmark sliding: ";
     if (!(o.time_step >= 0.) || !std::isfinite(o.time_step))
-      throw InputError(who + "time step must be >= 0 s (0 = the record's "
-                             "dt); given " +
-                       to_text(o.time_step));
+      throw InputError(who
+                       + "time step must be >= 0 s (0 = the record's "
+                         "dt); given "
+                       + to_text(o.time_step));
     if (!(o.output_interval >= 0.) || !std::isfinite(o.output_interval))
-      throw InputError(who + "output interval must be >= 0 s (0 = every "
-                             "step); given " +
-                       to_text(o.output_interval));
+      throw InputError(who
+                       + "output interval must be >= 0 s (0 = every "
+                         "step); given "
+                       + to_text(o.output_interval));
     if (!(o.g > 0.) || !std::isfinite(o.g))
-      throw InputError(who + "gravitational acceleration g must be > 0 m/s^2; "
-                             "given " +
-                       to_text(o.g));
+      throw InputError(who
+                       + "gravitational acceleration g must be > 0 m/s^2; "
+                         "given "
+                       + to_text(o.g));
     switch (o.yield_model)
       {
         case NewmarkOptions::YieldModel::constant:
           if (!(o.ky >= 0.) || !std::isfinite(o.ky))
-            throw InputError(who + "yield acceleration ky must be finite and "
-                                   ">= 0 g; given " +
-                             to_text(o.ky));
+            throw InputError(who
+                             + "yield acceleration ky must be finite and "
+                               ">= 0 g; given "
+                             + to_text(o.ky));
           break;
         case NewmarkOptions::YieldModel::table:
           {
             const auto &d = o.table_displacement;
             const auto &k = o.table_ky;
             if (d.empty() || d.size() != k.size())
-              throw InputError(
-                who + "the ky table needs the same number (>= 1) of "
-                      "displacements and yield accelerations; given " +
-                std::to_string(d.size()) + " and " + std::to_string(k.size()));
+              throw InputError(who
+                               + "the ky table needs the same number (>= 1) of "
+                                 "displacements and yield accelerations; given "
+                               + std::to_string(d.size()) + " and "
+                               + std::to_string(k.size()));
             for (std::size_t i = 0; i < d.size(); ++i)
               {
-                if (!std::isfinite(d[i]) ||
-                    (i > 0 && !(d[i] > d[i - 1])))
+                if (!std::isfinite(d[i]) || (i > 0 && !(d[i] > d[i - 1])))
                   throw InputError(
-                    who + "ky table displacements must be finite and "
-                          "strictly increasing (m); entry " +
-                    std::to_string(i + 1) + " is " + to_text(d[i]));
+                    who
+                    + "ky table displacements must be finite and "
+                      "strictly increasing (m); entry "
+                    + std::to_string(i + 1) + " is " + to_text(d[i]));
                 if (!(k[i] >= 0.) || !std::isfinite(k[i]))
-                  throw InputError(who + "ky table yield accelerations must "
-                                         "be finite and >= 0 g; entry " +
-                                   std::to_string(i + 1) + " is " +
-                                   to_text(k[i]));
+                  throw InputError(who
+                                   + "ky table yield accelerations must "
+                                     "be finite and >= 0 g; entry "
+                                   + std::to_string(i + 1) + " is "
+                                   + to_text(k[i]));
               }
             break;
           }
         case NewmarkOptions::YieldModel::plane:
           {
             if (!(o.dip_deg >= 0. && o.dip_deg < 90.))
-              throw InputError(who + "dip of the sliding plane must be in "
-                                     "[0, 90) deg; given " +
-                               to_text(o.dip_deg));
+              throw InputError(who
+                               + "dip of the sliding plane must be in "
+                                 "[0, 90) deg; given "
+                               + to_text(o.dip_deg));
             const FrictionLaw &f = o.friction;
             if (!(f.mu0 >= 0.) || !(std::atan(f.mu0) < 0.5 * M_PI))
-              throw InputError(who + "friction coefficient mu0 = tan(phi) "
-                                     "must be finite and >= 0 (friction "
-                                     "angle in [0, 90) deg); given " +
-                               to_text(f.mu0));
+              throw InputError(who
+                               + "friction coefficient mu0 = tan(phi) "
+                                 "must be finite and >= 0 (friction "
+                                 "angle in [0, 90) deg); given "
+                               + to_text(f.mu0));
             if (f.type == FrictionLaw::Type::steady_state)
               {
                 if (!std::isfinite(f.a_minus_b))
-                  throw InputError(who + "friction rate dependence A - B "
-                                         "must be finite; given " +
-                                   to_text(f.a_minus_b));
+                  throw InputError(who
+                                   + "friction rate dependence A - B "
+                                     "must be finite; given "
+                                   + to_text(f.a_minus_b));
                 if (!(f.v0 > 0.) || !std::isfinite(f.v0))
-                  throw InputError(who + "friction reference slip rate V0 "
-                                         "must be finite and > 0 m/s; given " +
-                                   to_text(f.v0));
+                  throw InputError(who
+                                   + "friction reference slip rate V0 "
+                                     "must be finite and > 0 m/s; given "
+                                   + to_text(f.v0));
                 if (!(f.v_cutoff > 0.) || !std::isfinite(f.v_cutoff))
-                  throw InputError(who + "friction cutoff slip rate must be "
-                                         "finite and > 0 m/s; given " +
-                                   to_text(f.v_cutoff));
+                  throw InputError(who
+                                   + "friction cutoff slip rate must be "
+                                     "finite and > 0 m/s; given "
+                                   + to_text(f.v_cutoff));
               }
             break;
           }
@@ -256,31 +271,32 @@ namespace rockdda::analytical
     validate(options);
     const std::string &name = input.name.empty() ? "record" : input.name;
     if (!(input.dt > 0.) || !std::isfinite(input.dt))
-      throw InputError(name + ": the time step of the record must be > 0 s; "
-                              "given " +
-                       to_text(input.dt));
+      throw InputError(name
+                       + ": the time step of the record must be > 0 s; "
+                         "given "
+                       + to_text(input.dt));
     if (input.acceleration.size() < 2)
       throw InputError(name + ": the record needs at least 2 samples");
     for (std::size_t i = 0; i < input.acceleration.size(); ++i)
       if (!std::isfinite(input.acceleration[i]))
-        throw InputError(name + ": sample " + std::to_string(i + 1) +
-                         " is not a finite number");
+        throw InputError(name + ": sample " + std::to_string(i + 1)
+                         + " is not a finite number");
 
     const SlidingModel model(options);
-    const bool         two_way =
-      options.direction == NewmarkOptions::Direction::two_way;
-    const bool at_samples =
-      options.event_location == NewmarkOptions::EventLocation::at_samples;
+    const bool         two_way
+      = options.direction == NewmarkOptions::Direction::two_way;
+    const bool at_samples
+      = options.event_location == NewmarkOptions::EventLocation::at_samples;
 
     // Time grid: the record's samples, or a uniform sub-step with the last
     // step shortened to end exactly at the end of the record.
     const double duration = input.duration();
-    const bool   native =
-      options.time_step == 0. || options.time_step == input.dt;
+    const bool   native
+      = options.time_step == 0. || options.time_step == input.dt;
     const double        step = native ? input.dt : options.time_step;
-    const unsigned long n_steps =
-      native ? input.acceleration.size() - 1 :
-               static_cast<unsigned long>(
+    const unsigned long n_steps
+      = native ? input.acceleration.size() - 1
+               : static_cast<unsigned long>(
                  std::max(1., std::ceil(duration / step - 1e-9)));
     const auto time_of = [&](const unsigned long n) {
       return native ? n * input.dt : std::min(n * step, duration);
@@ -290,28 +306,27 @@ namespace rockdda::analytical
     };
 
     NewmarkResult result;
-    result.n_steps          = n_steps;
-    const std::size_t n_out = options.output_interval > 0. ?
-                                static_cast<std::size_t>(
-                                  duration / options.output_interval) +
-                                  2 :
-                                n_steps + 1;
+    result.n_steps = n_steps;
+    const std::size_t n_out
+      = options.output_interval > 0.
+          ? static_cast<std::size_t>(duration / options.output_interval) + 2
+          : n_steps + 1;
     result.time.reserve(n_out);
     result.acceleration.reserve(n_out);
     result.velocity.reserve(n_out);
     result.displacement.reserve(n_out);
     result.state.reserve(n_out);
 
-    double v = 0.; // relative velocity (m/s)
-    double x = 0.; // relative displacement (m)
-    double s = 0.; // cumulative sliding distance (m)
-    double r = 0.; // relative acceleration at the current time (m/s^2)
+    double v   = 0.; // relative velocity (m/s)
+    double x   = 0.; // relative displacement (m)
+    double s   = 0.; // cumulative sliding distance (m)
+    double r   = 0.; // relative acceleration at the current time (m/s^2)
     int    dir = 0;
 
-    double       t0          = 0.;
-    double       k0          = input_of(0);
-    double       next_output = 0.;
-    const auto   store       = [&](const double t, const double k) {
+    double     t0          = 0.;
+    double     k0          = input_of(0);
+    double     next_output = 0.;
+    const auto store       = [&](const double t, const double k) {
       result.time.push_back(t);
       result.acceleration.push_back(k);
       result.velocity.push_back(v);
@@ -321,10 +336,10 @@ namespace rockdda::analytical
     const auto check_contact = [&](const double t, const double k) {
       if (!(model.normal(k) > 0.))
         throw std::runtime_error(
-          "Newmark sliding: the block lifts off the plane at t = " +
-          to_text(t) + " s (input " + to_text(k) +
-          " g gives a normal force <= 0; the input must stay below "
-          "cot(dip))");
+          "Newmark sliding: the block lifts off the plane at t = " + to_text(t)
+          + " s (input " + to_text(k)
+          + " g gives a normal force <= 0; the input must stay below "
+            "cot(dip))");
     };
     check_contact(0., k0);
     store(0., k0);
@@ -417,13 +432,16 @@ namespace rockdda::analytical
               {
                 // Implicit in the end speed w = dir * v1 >= 0:
                 // F(w) = w - dir (v + L/2 (r + r1(w))) = 0.
-                const double c =
-                  dir * (v + 0.5 * length * r); // explicit part (m/s)
-                const auto residual = [&](const double w, double &f, double &df) {
-                  f = w - c - 0.5 * length * dir * model.relative(k1, dir, w, s);
-                  df = 1. + 0.5 * length * options.g * model.normal(k1) *
-                              model.dmu_dspeed(w);
-                };
+                const double c
+                  = dir * (v + 0.5 * length * r); // explicit part (m/s)
+                const auto residual
+                  = [&](const double w, double &f, double &df) {
+                      f = w - c
+                          - 0.5 * length * dir * model.relative(k1, dir, w, s);
+                      df = 1.
+                           + 0.5 * length * options.g * model.normal(k1)
+                               * model.dmu_dspeed(w);
+                    };
                 double f0 = 0., df0 = 0.;
                 residual(0., f0, df0);
                 if (f0 >= 0.)
@@ -436,12 +454,12 @@ namespace rockdda::analytical
                   }
                 else
                   {
-                    const double driving =
-                      std::abs(std::sin(options.dip_deg * M_PI / 180.) +
-                               k1 * std::cos(options.dip_deg * M_PI / 180.));
-                    const double hi =
-                      std::max(0., c) + 0.5 * length * options.g * driving +
-                      std::abs(f0) + 1e-12;
+                    const double driving = std::abs(
+                      std::sin(options.dip_deg * M_PI / 180.)
+                      + k1 * std::cos(options.dip_deg * M_PI / 180.));
+                    const double hi = std::max(0., c)
+                                      + 0.5 * length * options.g * driving
+                                      + std::abs(f0) + 1e-12;
                     const double w = safeguarded_newton(residual, 0., hi);
                     v1             = dir * w;
                     r1             = model.relative(k1, dir, w, s);
@@ -451,7 +469,11 @@ namespace rockdda::analytical
 
             if (!stops)
               {
-                const double dx = 0.5 * length * (v + v1);
+                // Exact integral of the velocity for a relative acceleration
+                // linear across the step (SLAMMER: trapezoidal rule).
+                const double dx
+                  = at_samples ? 0.5 * length * (v + v1)
+                               : length * (v + length * (2. * r + r1) / 6.);
                 x += dx;
                 s += std::abs(dx);
                 result.sliding_duration += length;
@@ -465,7 +487,7 @@ namespace rockdda::analytical
             // acceleration linear in time, v(sigma) = v + r sigma +
             // (r1 - r) sigma^2 / (2 L).
             const double curvature = 0.5 * (r1 - r) / length;
-            const auto   speed     = [&](const double sg, double &f, double &df) {
+            const auto   speed = [&](const double sg, double &f, double &df) {
               f  = dir * (v + sg * (r + curvature * sg));
               df = dir * (r + 2. * curvature * sg);
             };
@@ -478,10 +500,13 @@ namespace rockdda::analytical
               sigma = safeguarded_newton(speed, 0., length);
             else
               // Started at tau (v = 0): the other root of v(sigma) = 0.
-              sigma = (dir * r > 0. && dir * curvature < 0.) ?
-                        std::min(length, -r / curvature) :
-                        0.;
-            const double dx = 0.5 * sigma * v;
+              sigma = (dir * r > 0. && dir * curvature < 0.)
+                        ? std::min(length, -r / curvature)
+                        : 0.;
+            const double dx
+              = at_samples
+                  ? 0.5 * sigma * v
+                  : sigma * (v + sigma * (r + curvature * sigma / 1.5) / 2.);
             x += dx;
             s += std::abs(dx);
             result.sliding_duration += sigma;
@@ -494,18 +519,18 @@ namespace rockdda::analytical
 
         if (!std::isfinite(v) || !std::isfinite(x))
           throw std::runtime_error("Newmark sliding: non-finite velocity or "
-                                   "displacement at t = " +
-                                   to_text(t1) + " s");
+                                   "displacement at t = "
+                                   + to_text(t1) + " s");
         result.max_velocity = std::max(result.max_velocity, std::abs(v));
         t0                  = t1;
         k0                  = k1;
 
-        if (options.output_interval == 0. || n + 1 == n_steps ||
-            t1 >= next_output - 1e-9 * step)
+        if (options.output_interval == 0. || n + 1 == n_steps
+            || t1 >= next_output - 1e-9 * step)
           {
             store(t1, k1);
-            while (options.output_interval > 0. &&
-                   next_output <= t1 + 1e-9 * step)
+            while (options.output_interval > 0.
+                   && next_output <= t1 + 1e-9 * step)
               next_output += options.output_interval;
           }
       }
@@ -524,16 +549,16 @@ namespace rockdda::analytical
     {
       if (!(amplitude > 0.) || !std::isfinite(amplitude))
         throw InputError("harmonic sliding: amplitude A must be finite and "
-                         "> 0; given " +
-                         to_text(amplitude));
+                         "> 0; given "
+                         + to_text(amplitude));
       if (!(omega > 0.) || !std::isfinite(omega))
         throw InputError("harmonic sliding: angular frequency omega must be "
-                         "finite and > 0 rad/s; given " +
-                         to_text(omega));
+                         "finite and > 0 rad/s; given "
+                         + to_text(omega));
       if (!(ky >= 0.) || !std::isfinite(ky))
         throw InputError("harmonic sliding: yield acceleration ky must be "
-                         "finite and >= 0; given " +
-                         to_text(ky));
+                         "finite and >= 0; given "
+                         + to_text(ky));
     }
 
 
@@ -548,10 +573,10 @@ namespace rockdda::analytical
                      const double tau)
     {
       const double half = 0.5 * omega * tau;
-      return amplitude / omega * std::cos(u) * tau -
-             2. * amplitude / (omega * omega) * std::cos(u + half) *
-               std::sin(half) -
-             0.5 * ky * tau * tau;
+      return amplitude / omega * std::cos(u) * tau
+             - 2. * amplitude / (omega * omega) * std::cos(u + half)
+                 * std::sin(half)
+             - 0.5 * ky * tau * tau;
     }
   } // namespace
 
@@ -577,15 +602,13 @@ namespace rockdda::analytical
     // decreases strictly on [pi/omega - 2 t1, T], where it changes sign.
     const auto velocity = [&](const double tau, double &f, double &df) {
       const double half = 0.5 * omega * tau;
-      f  = 2. * amplitude / omega * std::sin(u + half) * std::sin(half) -
-          ky * tau;
+      f = 2. * amplitude / omega * std::sin(u + half) * std::sin(half)
+          - ky * tau;
       df = amplitude * std::sin(u + omega * tau) - ky;
     };
-    const double tau2 =
-      safeguarded_newton(velocity, M_PI / omega - 2. * t1, period);
-    return {t1,
-            t1 + tau2,
-            harmonic_partial(amplitude, omega, ky, u, tau2)};
+    const double tau2
+      = safeguarded_newton(velocity, M_PI / omega - 2. * t1, period);
+    return {t1, t1 + tau2, harmonic_partial(amplitude, omega, ky, u, tau2)};
   }
 
 
@@ -597,17 +620,17 @@ namespace rockdda::analytical
                                 const double t)
   {
     if (!std::isfinite(t))
-      throw InputError("harmonic sliding: time must be finite; given " +
-                       to_text(t));
+      throw InputError("harmonic sliding: time must be finite; given "
+                       + to_text(t));
     const HarmonicSliding cycle = harmonic_sliding_cycle(amplitude, omega, ky);
     if (cycle.displacement_per_cycle == 0. || t <= cycle.t_start)
       return 0.;
     const double period = 2. * M_PI / omega;
     const double n      = std::floor((t - cycle.t_start) / period);
-    const double tau =
-      std::min(t - cycle.t_start - n * period, cycle.t_stop - cycle.t_start);
-    return n * cycle.displacement_per_cycle +
-           harmonic_partial(
+    const double tau
+      = std::min(t - cycle.t_start - n * period, cycle.t_stop - cycle.t_start);
+    return n * cycle.displacement_per_cycle
+           + harmonic_partial(
              amplitude, omega, ky, omega * cycle.t_start, std::max(0., tau));
   }
 } // namespace rockdda::analytical

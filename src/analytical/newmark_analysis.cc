@@ -95,6 +95,18 @@ namespace rockdda::analytical
                     "A smaller step sub-steps with linear interpolation of "
                     "the record.");
         io::declare(prm,
+                    "Event location",
+                    "within step",
+                    dealii::Patterns::Selection("within step|at samples"),
+                    "-",
+                    "'within step': sliding starts where the interpolated "
+                    "input crosses ky and stops where the relative velocity "
+                    "returns to zero inside the step (exact for the linearly interpolated "
+                    "record); 'at "
+                    "samples': both at step ends, as SLAMMER (less accurate in "
+                    "general; "
+                    "reproduces SLAMMER's published results).");
+        io::declare(prm,
                     "Output interval",
                     "0",
                     Double(0.),
@@ -122,6 +134,10 @@ namespace rockdda::analytical
         options.dip_deg         = prm.get_double("Plane dip");
         options.time_step       = prm.get_double("Integration time step");
         options.output_interval = prm.get_double("Output interval");
+        options.event_location =
+          prm.get("Event location") == "within step" ?
+            NewmarkOptions::EventLocation::within_step :
+            NewmarkOptions::EventLocation::at_samples;
         const double phi        = prm.get_double("Friction angle");
         const std::string table = prm.get("Yield table file");
         prm.leave_subsection();

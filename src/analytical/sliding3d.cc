@@ -65,9 +65,9 @@ namespace rockdda::analytical
       const double disc = std::max(0., p * p - 4. * q * u0);
       const double sq   = std::sqrt(disc);
       // Stable pair of roots.
-      const double w  = (p >= 0.) ? -p - sq : -p + sq;
-      double       t1 = w / (2. * q);
-      double       t2 = (w != 0.) ? 2. * u0 / w : t1;
+      const double w   = (p >= 0.) ? -p - sq : -p + sq;
+      double       t1  = w / (2. * q);
+      double       t2  = (w != 0.) ? 2. * u0 / w : t1;
       double       tau = std::numeric_limits<double>::infinity();
       for (const double t : {t1, t2})
         if (t > 0. && t <= h * (1. + 1e-12))
@@ -81,19 +81,19 @@ namespace rockdda::analytical
     class Integrator
     {
     public:
-      Integrator(const std::function<Eigen::Vector3d(double)> &resultant_g,
-                 const Sliding3dOptions                        &options)
-        : resultant_g(resultant_g)
-        , options(options)
-        , geometry(options)
+      Integrator(const std::function<Eigen::Vector3d(double)> &load,
+                 const Sliding3dOptions                       &input)
+          : resultant_g(load)
+          , options(input)
+          , geometry(input)
       {}
 
       /// Advance from @p t_a to @p t_b; returns the mode at the end.
       SlidingMode
       advance(double t_a, const double t_b);
 
-      Eigen::Vector3d D = Eigen::Vector3d::Zero();
-      Eigen::Vector3d V = Eigen::Vector3d::Zero();
+      Eigen::Vector3d D       = Eigen::Vector3d::Zero();
+      Eigen::Vector3d V       = Eigen::Vector3d::Zero();
       bool            at_rest = true;
 
     private:
@@ -123,6 +123,16 @@ namespace rockdda::analytical
                    const Eigen::Vector3d &e,
                    const double           speed) const;
 
+      /// Friction capacity mu1 N1 + mu2 N2 at @p speed.
+      double
+      capacity(const ContactForces &f, const double speed) const
+      {
+        double c = 0.;
+        for (unsigned int i = 0; i < geometry.n_planes(); ++i)
+          c += law(i).coefficient(speed) * f.normal[i];
+        return c;
+      }
+
       /// Perfectly inelastic, frictionless impact on touching planes the
       /// block moves into.
       void
@@ -133,8 +143,8 @@ namespace rockdda::analytical
       close_gaps(const SlidingMode mode, const int extra = -1);
 
       const std::function<Eigen::Vector3d(double)> &resultant_g;
-      const Sliding3dOptions                        &options;
-      const ContactGeometry                          geometry;
+      const Sliding3dOptions                       &options;
+      const ContactGeometry                         geometry;
     };
 
 
@@ -172,11 +182,8 @@ namespace rockdda::analytical
       const ContactForces f = geometry.forces(r_t, mode);
       if (mode == SlidingMode::lifted_off)
         return f.driving;
-      double capacity = 0.;
-      for (unsigned int i = 0; i < geometry.n_planes(); ++i)
-        capacity += law(i).coefficient(speed) * f.normal[i];
       // Eq. 4.5 / 4.10 (V != 0) and Eq. 4.11.
-      return f.driving - capacity * e;
+      return f.driving - capacity(f, speed) * e;
     }
 
 
@@ -184,9 +191,9 @@ namespace rockdda::analytical
     void
     Integrator::apply_impacts(const std::array<bool, 2> &touch)
     {
-      const unsigned int     n = geometry.n_planes();
-      std::array<bool, 2>    closing{{false, false}};
-      unsigned int           n_closing = 0;
+      const unsigned int  n = geometry.n_planes();
+      std::array<bool, 2> closing{{false, false}};
+      unsigned int        n_closing = 0;
       for (unsigned int i = 0; i < n; ++i)
         if (touch[i] && V.dot(geometry.normal(i)) < 0.)
           {
@@ -198,10 +205,11 @@ namespace rockdda::analytical
       if (n_closing == 2)
         {
           // Impulses P_i n_i that cancel both normal velocities.
-          const Eigen::Vector3d &n1 = geometry.normal(0), &n2 = geometry.normal(1);
-          const double           k  = n1.dot(n2), v1 = V.dot(n1), v2 = V.dot(n2);
-          const double           det = 1. - k * k;
-          const double           p1 = (-v1 + k * v2) / det, p2 = (-v2 + k * v1) / det;
+          const Eigen::Vector3d &n1 = geometry.normal(0),
+                                &n2 = geometry.normal(1);
+          const double k = n1.dot(n2), v1 = V.dot(n1), v2 = V.dot(n2);
+          const double det = 1. - k * k;
+          const double p1 = (-v1 + k * v2) / det, p2 = (-v2 + k * v1) / det;
           if (p1 >= 0. && p2 >= 0.)
             {
               V = geometry.tangential(V, SlidingMode::wedge);
@@ -289,23 +297,21 @@ namespace rockdda::analytical
           else
             e = V / speed;
 
-          // Eqs. 4.11-4.14 over [t_a, t_b]. Friction direction from the
-          // velocity at the start of the step (Eq. 4.5); its magnitude at the
-          // speed at each end (predicted at t_b).
-          const Eigen::Vector3d s_a = acceleration(r_a, mode, e, speed);
-          const Eigen::Vector3d r_b = r(t_b);
-          const Eigen::Vector3d s_b =
-            acceleration(r_b, mode, e, (V + s_a * h).norm());
-          auto substep_to = [&](const double tau) {
-            const Eigen::Vector3d s_tau =
-              (tau == h) ?
-                s_b :
-                acceleration(r(t_a + tau), mode, e, (V + s_a * tau).norm());
-            const Eigen::Vector3d S = 0.5 * (s_a + s_tau);  // Eq. 4.12
-            D += V * tau + 0.5 * S * tau * tau;             // Eq. 4.14
-            V += S * tau;                                   // Eq. 4.13
+          // Eqs. 4.11-4.14 over [t_a, t_b]. At t_a the friction opposes the
+          // velocity at the start of the step (Eq. 4.5); its magnitude is
+          // evaluated at the speed at each end (predicted at t_b).
+          const Eigen::Vector3d s_a        = acceleration(r_a, mode, e, speed);
+          const double          speed_b    = (V + s_a * h).norm();
+          const Eigen::Vector3d r_b        = r(t_b);
+          auto                  substep_to = [&](const double tau) {
+            const Eigen::Vector3d s_tau
+              = acceleration(r(t_a + tau), mode, e, (V + s_a * tau).norm());
+            const Eigen::Vector3d S = 0.5 * (s_a + s_tau); // Eq. 4.12
+            D += V * tau + 0.5 * S * tau * tau; // Eq. 4.14
+            V += S * tau;                       // Eq. 4.13
           };
 
+          Eigen::Vector3d s_b = acceleration(r_b, mode, e, speed_b);
           if (mode != SlidingMode::lifted_off)
             {
               // Does the velocity along its previous direction vanish?
@@ -323,11 +329,20 @@ namespace rockdda::analytical
                   t_a += tau;
                   continue;
                 }
+              // No stop: at t_b the friction opposes the velocity at t_b,
+              // which is then parallel to W = V + h/2 (s_a + m_b). This keeps
+              // the direction of sliding stable at small speeds (an explicit
+              // direction amplifies transverse round-off when |V| < mu N h).
+              const ContactForces   f_b = geometry.forces(r_b, mode);
+              const double          cap = capacity(f_b, speed_b);
+              const Eigen::Vector3d W   = V + 0.5 * h * (s_a + f_b.driving);
+              if (W.norm() > 0.5 * h * cap)
+                s_b = f_b.driving - cap * W.normalized();
             }
 
           // Does the block reach a plane it does not slide on?
-          const Eigen::Vector3d S_full = 0.5 * (s_a + s_b);
-          const Eigen::Vector3d D_b    = D + V * h + 0.5 * S_full * h * h;
+          const Eigen::Vector3d S_full  = 0.5 * (s_a + s_b);
+          const Eigen::Vector3d D_b     = D + V * h + 0.5 * S_full * h * h;
           double                tau_hit = 2. * h;
           int                   hit     = -1;
           for (unsigned int i = 0; i < geometry.n_planes(); ++i)
@@ -339,7 +354,7 @@ namespace rockdda::analytical
                 continue;
               const double g0 = D.dot(n), vn = V.dot(n), an = s_a.dot(n),
                            jn = (s_b - s_a).dot(n) / h;
-              auto gap = [&](const double t) {
+              auto gap        = [&](const double t) {
                 return g0 + vn * t + 0.5 * an * t * t + 0.25 * jn * t * t * t;
               };
               double lo = 0., hi = h;
@@ -423,8 +438,8 @@ namespace rockdda::analytical
       throw InputError(n + " dip = " + to_text(plane.dip_deg)
                        + " deg is outside the valid range [0, 90] deg");
     if (!(plane.dip_direction_deg >= 0. && plane.dip_direction_deg <= 360.))
-      throw InputError(n + " dip direction = "
-                       + to_text(plane.dip_direction_deg)
+      throw InputError(n
+                       + " dip direction = " + to_text(plane.dip_direction_deg)
                        + " deg is outside the valid range [0, 360] deg");
     const FrictionLaw &f = plane.friction;
     if (!(std::isfinite(f.mu0) && f.mu0 >= 0.))
@@ -454,10 +469,12 @@ namespace rockdda::analytical
     if (options.wedge)
       {
         validate(options.plane2, "plane 2");
-        const Eigen::Vector3d n1 = plane_normal(options.plane1.dip_deg,
-                                                options.plane1.dip_direction_deg);
-        const Eigen::Vector3d n2 = plane_normal(options.plane2.dip_deg,
-                                                options.plane2.dip_direction_deg);
+        const Eigen::Vector3d n1
+          = plane_normal(options.plane1.dip_deg,
+                         options.plane1.dip_direction_deg);
+        const Eigen::Vector3d n2
+          = plane_normal(options.plane2.dip_deg,
+                         options.plane2.dip_direction_deg);
         const double s = n1.cross(n2).norm();
         if (s < 1e-6)
           throw InputError(
@@ -482,13 +499,13 @@ namespace rockdda::analytical
 
 
   ContactGeometry::ContactGeometry(const Sliding3dOptions &options)
-    : n_planes_(options.wedge ? 2 : 1)
+      : n_planes_(options.wedge ? 2 : 1)
   {
     validate(options);
-    normals[0] = plane_normal(options.plane1.dip_deg,
-                              options.plane1.dip_direction_deg);
-    normals[1] = plane_normal(options.plane2.dip_deg,
-                              options.plane2.dip_direction_deg);
+    normals[0]
+      = plane_normal(options.plane1.dip_deg, options.plane1.dip_direction_deg);
+    normals[1]
+      = plane_normal(options.plane2.dip_deg, options.plane2.dip_direction_deg);
     unit_intersection = Eigen::Vector3d::Zero();
     if (n_planes_ == 2)
       {
@@ -504,8 +521,7 @@ namespace rockdda::analytical
   bool
   ContactGeometry::is_active(const SlidingMode mode, const unsigned int i)
   {
-    return mode == SlidingMode::wedge
-           || (i == 0 && mode == SlidingMode::plane1)
+    return mode == SlidingMode::wedge || (i == 0 && mode == SlidingMode::plane1)
            || (i == 1 && mode == SlidingMode::plane2);
   }
 
@@ -515,15 +531,16 @@ namespace rockdda::analytical
   ContactGeometry::select_mode(const Eigen::Vector3d     &r,
                                const std::array<bool, 2> &touching) const
   {
-    const bool t1 = touching[0], t2 = n_planes_ == 2 && touching[1];
+    const bool   t1 = touching[0], t2 = n_planes_ == 2 && touching[1];
     const double rn1 = r.dot(normals[0]), rn2 = r.dot(normals[1]);
     if (t1 && t2)
       {
         // r = a n1 + b n2 + c I: (r x n2).I = a |n1 x n2|,
         // (r x n1).I = -b |n1 x n2|.
-        const double a = r.cross(normals[1]).dot(unit_intersection) / sin_normals;
-        const double b =
-          -r.cross(normals[0]).dot(unit_intersection) / sin_normals;
+        const double a
+          = r.cross(normals[1]).dot(unit_intersection) / sin_normals;
+        const double b
+          = -r.cross(normals[0]).dot(unit_intersection) / sin_normals;
         if (a <= 0. && b <= 0.)
           return SlidingMode::wedge;
         if (b > 0. && rn1 <= 0.)
@@ -542,7 +559,8 @@ namespace rockdda::analytical
 
 
   ContactForces
-  ContactGeometry::forces(const Eigen::Vector3d &r, const SlidingMode mode) const
+  ContactGeometry::forces(const Eigen::Vector3d &r,
+                          const SlidingMode      mode) const
   {
     ContactForces f;
     f.mode = mode;
@@ -562,10 +580,11 @@ namespace rockdda::analytical
           {
             // Eqs. 4.8-4.9 divided by |n1 x n2| (true reactions) and Eq. 4.7.
             const Eigen::Vector3d &I = unit_intersection;
-            f.normal[0] =
-              std::max(0., -r.cross(normals[1]).dot(I) / sin_normals);
-            f.normal[1] = std::max(0., r.cross(normals[0]).dot(I) / sin_normals);
-            f.driving   = r.dot(I) * I;
+            f.normal[0]
+              = std::max(0., -r.cross(normals[1]).dot(I) / sin_normals);
+            f.normal[1]
+              = std::max(0., r.cross(normals[0]).dot(I) / sin_normals);
+            f.driving = r.dot(I) * I;
             break;
           }
         default:
@@ -611,20 +630,20 @@ namespace rockdda::analytical
   is_stuck(const Sliding3dOptions &options, const Eigen::Vector3d &resultant_g)
   {
     const ContactGeometry geometry(options);
-    const SlidingMode     mode =
-      geometry.select_mode(resultant_g, {{true, options.wedge}});
+    const SlidingMode     mode
+      = geometry.select_mode(resultant_g, {{true, options.wedge}});
     return holds_at_rest(geometry.forces(resultant_g, mode),
                          options.plane1.friction.static_coefficient(),
-                         options.wedge ?
-                           options.plane2.friction.static_coefficient() :
-                           0.);
+                         options.wedge
+                           ? options.plane2.friction.static_coefficient()
+                           : 0.);
   }
 
 
 
   Sliding3dResult
   slide_3d(const std::function<Eigen::Vector3d(double)> &resultant_g,
-           const Sliding3dOptions                        &options)
+           const Sliding3dOptions                       &options)
   {
     validate(options);
     Integrator      integrator(resultant_g, options);
@@ -639,14 +658,14 @@ namespace rockdda::analytical
     record(0., SlidingMode::rest);
 
     const double dt = options.time_step;
-    const auto   n_steps =
-      static_cast<unsigned long>(std::ceil(options.duration / dt - 1e-9));
+    const auto   n_steps
+      = static_cast<unsigned long>(std::ceil(options.duration / dt - 1e-9));
     double      next_output = options.output_interval;
     SlidingMode previous    = SlidingMode::rest;
     for (unsigned long i = 1; i <= n_steps; ++i)
       {
-        const double t_a = (i - 1) * dt;
-        const double t_b = (i == n_steps) ? options.duration : i * dt;
+        const double      t_a  = (i - 1) * dt;
+        const double      t_b  = (i == n_steps) ? options.duration : i * dt;
         const SlidingMode mode = integrator.advance(t_a, t_b);
         if (mode != previous)
           ++result.n_mode_changes;

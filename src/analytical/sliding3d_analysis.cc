@@ -14,6 +14,8 @@
 
 #include <deal.II/base/function_parser.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <limits>
 
@@ -219,7 +221,7 @@ namespace rockdda::analytical
               const double a = record.at(t);
               return Eigen::Vector3d(a * sx, a * sy, -1.);
             };
-            description = motion.description + ", azimuth " +
+            input_text = motion.description + ", azimuth " +
                           std::to_string(azimuth) + " deg";
           }
         else
@@ -251,14 +253,14 @@ namespace rockdda::analytical
                                      parser->value(dealii::Point<1>(), 1),
                                      parser->value(dealii::Point<1>(), 2));
             };
-            description = "r(t) = [" + expr + "] g";
+            input_text = "r(t) = [" + expr + "] g";
           }
       }
 
       void
       run(io::RunContext &context) override
       {
-        context.log.line("resultant acceleration: " + description);
+        context.log.line("resultant acceleration: " + input_text);
         io::ProgressBar       progress("sliding3d", options.duration);
         const Sliding3dResult r = slide_3d(resultant, options);
         progress.finish();
@@ -304,7 +306,7 @@ namespace rockdda::analytical
       Sliding3dOptions                             options;
       seismic::GroundMotionInput                   motion;
       std::function<Eigen::Vector3d(const double)> resultant;
-      std::string                                  description;
+      std::string                                  input_text;
     };
 
 

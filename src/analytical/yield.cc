@@ -129,8 +129,10 @@ namespace rockdda::analytical
         const double phi = dip_deg + std::atan(k_g) / degree;
         if (!(phi >= 0. && phi < 90.))
           throw InputError("no friction angle in [0, 90) deg makes k = "
-                           + std::to_string(k_g) + " g critical on a plane"
-                           " dipping " + std::to_string(dip_deg) + " deg");
+                           + std::to_string(k_g)
+                           + " g critical on a plane"
+                             " dipping "
+                           + std::to_string(dip_deg) + " deg");
         return phi;
       }
     auto excess = [&](const double phi) {
@@ -167,8 +169,8 @@ namespace rockdda::analytical
     options.plane2.dip_deg           = dip2;
     options.plane2.dip_direction_deg = dipdir2;
     validate(options);
-    const Eigen::Vector3d r = k_g * horizontal(azimuth_deg)
-                              - Eigen::Vector3d(0., 0., 1.);
+    const Eigen::Vector3d r
+      = k_g * horizontal(azimuth_deg) - Eigen::Vector3d(0., 0., 1.);
     auto holds = [&](const double phi) {
       Sliding3dOptions o = options;
       o.plane1.friction  = FrictionLaw::coulomb_deg(phi);
@@ -178,9 +180,10 @@ namespace rockdda::analytical
     if (holds(0.))
       return 0.;
     if (!holds(max_phi))
-      throw InputError("no friction angle in [0, 90) deg holds the wedge at k = "
-                       + std::to_string(k_g) + " g (azimuth "
-                       + std::to_string(azimuth_deg) + " deg)");
+      throw InputError(
+        "no friction angle in [0, 90) deg holds the wedge at k = "
+        + std::to_string(k_g) + " g (azimuth " + std::to_string(azimuth_deg)
+        + " deg)");
     return bisect(0., max_phi, 0., holds);
   }
 } // namespace rockdda::analytical

@@ -91,8 +91,8 @@ namespace rockdda::io
         std::smatch       m;
         std::string       msg  = file + ":" + std::to_string(line) + ": ";
         const std::regex  pat(
-          "entry value <(.*)> for the entry named <(.*)> does not match the "
-          "given pattern <(.*)>");
+          "entry value <?(.*?)>? for the entry named <?(.*?)>? does not "
+          "match the given pattern:? <?(.*?)>?$");
         if (std::regex_search(text, m, pat))
           msg += "value '" + m[1].str() + "' for key '" + m[2].str() +
                  "' in section " + section_at(file, line) +

@@ -119,11 +119,11 @@ namespace rockdda::analytical
    * or if the settings are out of range.
    */
   std::vector<SegmentFit>
-  back_analyse_friction_angles(
-    const DisplacementHistory  &measured,
-    const std::vector<double>  &boundaries,
-    const ForwardModel         &forward,
-    const BackAnalysisSettings &settings = BackAnalysisSettings());
+  back_analyse_friction_angles(const DisplacementHistory  &measured,
+                               const std::vector<double>  &boundaries,
+                               const ForwardModel         &forward,
+                               const BackAnalysisSettings &settings
+                               = BackAnalysisSettings());
 
   /// Result of fit_steady_state_friction().
   struct SteadyStateFrictionFit

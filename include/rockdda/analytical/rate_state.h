@@ -67,7 +67,8 @@ namespace rockdda::analytical
 
   /**
    * Aging law, thesis Eq. 2.2: d theta/dt = 1 - |V| theta / Dc (s/s, i.e.
-   * dimensionless); the slip rate enters as a magnitude so that reversals heal too.
+   * dimensionless); the slip rate enters as a magnitude so that reversals heal
+   * too.
    */
   double
   aging_law_rate(const RateStateParameters &p,

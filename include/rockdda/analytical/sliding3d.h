@@ -100,7 +100,7 @@ namespace rockdda::analytical
    */
   Sliding3dResult
   slide_3d(const std::function<Eigen::Vector3d(double)> &resultant_g,
-           const Sliding3dOptions                        &options);
+           const Sliding3dOptions                       &options);
 
   /// Unit normal of a plane (Eq. 4.1): x east, y north, z up; dip direction
   /// clockwise from north; the normal points up (n_z = cos(dip) >= 0).
@@ -177,7 +177,7 @@ namespace rockdda::analytical
      * otherwise. With one touching plane: contact if r.n <= 0.
      */
     SlidingMode
-    select_mode(const Eigen::Vector3d      &r,
+    select_mode(const Eigen::Vector3d     &r,
                 const std::array<bool, 2> &touching) const;
 
     /// Driving and normal forces of @p r in @p mode (normal forces clipped at
@@ -207,7 +207,9 @@ namespace rockdda::analytical
    * forces): true if |m| <= mu1 N1 + mu2 N2 and the mode is not lift-off.
    */
   bool
-  holds_at_rest(const ContactForces &forces, const double mu1, const double mu2);
+  holds_at_rest(const ContactForces &forces,
+                const double         mu1,
+                const double         mu2);
 
   /**
    * Whether a block at rest on all planes of @p options (static friction

@@ -30,7 +30,7 @@ namespace rockdda::analytical
   {
   public:
     explicit OdeError(const std::string &message)
-      : std::runtime_error(message)
+        : std::runtime_error(message)
     {}
   };
 
@@ -82,8 +82,9 @@ namespace rockdda::analytical
   {
   public:
     /// Right-hand side: fill ydot (already sized) with f(t, y).
-    using RightHandSide = std::function<
-      void(const double t, const std::vector<double> &y, std::vector<double> &ydot)>;
+    using RightHandSide = std::function<void(const double               t,
+                                             const std::vector<double> &y,
+                                             std::vector<double>       &ydot)>;
     /// Jacobian df/dy, row-major: jacobian[i * n + j] = d f_i / d y_j
     /// (already sized n*n and zeroed).
     using Jacobian = std::function<void(const double               t,
@@ -106,7 +107,8 @@ namespace rockdda::analytical
 
     StiffOdeSolver(const StiffOdeSolver &) = delete;
     StiffOdeSolver &
-    operator=(const StiffOdeSolver &) = delete;
+    operator=(const StiffOdeSolver &)
+      = delete;
 
     /**
      * Advance the solution to time @p t_out (> current time) and return y at
