@@ -74,8 +74,19 @@ main(int argc, char **argv)
 {
   const std::string out_dir = argc > 1 ? argv[1] : ".";
   const std::string data    = ROCKDDA_SHARED_DATA;
-  const std::vector<double> dts = {
-    1e-5, 3e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1};
+  const std::vector<double> dts = {1e-5,
+                                   2e-5,
+                                   5e-5,
+                                   1e-4,
+                                   2e-4,
+                                   5e-4,
+                                   1e-3,
+                                   2e-3,
+                                   5e-3,
+                                   1e-2,
+                                   2e-2,
+                                   5e-2,
+                                   1e-1};
   const std::vector<analytical::NewmarkOptions::EventLocation> methods = {
     analytical::NewmarkOptions::EventLocation::within_step,
     analytical::NewmarkOptions::EventLocation::at_samples};
