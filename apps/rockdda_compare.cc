@@ -86,8 +86,8 @@ main(int argc, char **argv)
       const double err = std::abs(it->second - ref);
       const bool   ok  = err <= tol && std::isfinite(it->second);
       std::cout << (ok ? "ok   " : "FAIL ") << name << " = " << it->second
-                << " (reference " << ref << ", |diff| " << err
-                << ", tolerance " << tol << ")\n";
+                << " (reference " << ref << ", |diff| " << err << ", tolerance "
+                << tol << ")\n";
       failures += !ok;
     }
   if (checked == 0)

@@ -47,9 +47,9 @@ namespace
   const char *
   method_name(const analytical::NewmarkOptions::EventLocation e)
   {
-    return e == analytical::NewmarkOptions::EventLocation::within_step ?
-             "within-step" :
-             "at-samples";
+    return e == analytical::NewmarkOptions::EventLocation::within_step
+             ? "within-step"
+             : "at-samples";
   }
 
   /// A record sampled at @p dt from @p source (linear interpolation).
@@ -59,8 +59,8 @@ namespace
     seismic::Record r;
     r.name = source.name;
     r.dt   = dt;
-    const auto n =
-      static_cast<std::size_t>(std::floor(source.duration() / dt + 1e-9)) + 1;
+    const auto n
+      = static_cast<std::size_t>(std::floor(source.duration() / dt + 1e-9)) + 1;
     for (std::size_t i = 0; i < n; ++i)
       r.acceleration.push_back(source.at(i * dt));
     return r;
@@ -72,24 +72,24 @@ namespace
 int
 main(int argc, char **argv)
 {
-  const std::string out_dir = argc > 1 ? argv[1] : ".";
-  const std::string data    = ROCKDDA_SHARED_DATA;
-  const std::vector<double> dts = {1e-5,
-                                   2e-5,
-                                   5e-5,
-                                   1e-4,
-                                   2e-4,
-                                   5e-4,
-                                   1e-3,
-                                   2e-3,
-                                   5e-3,
-                                   1e-2,
-                                   2e-2,
-                                   5e-2,
-                                   1e-1};
-  const std::vector<analytical::NewmarkOptions::EventLocation> methods = {
-    analytical::NewmarkOptions::EventLocation::within_step,
-    analytical::NewmarkOptions::EventLocation::at_samples};
+  const std::string         out_dir = argc > 1 ? argv[1] : ".";
+  const std::string         data    = ROCKDDA_SHARED_DATA;
+  const std::vector<double> dts     = {1e-5,
+                                       2e-5,
+                                       5e-5,
+                                       1e-4,
+                                       2e-4,
+                                       5e-4,
+                                       1e-3,
+                                       2e-3,
+                                       5e-3,
+                                       1e-2,
+                                       2e-2,
+                                       5e-2,
+                                       1e-1};
+  const std::vector<analytical::NewmarkOptions::EventLocation> methods
+    = {analytical::NewmarkOptions::EventLocation::within_step,
+       analytical::NewmarkOptions::EventLocation::at_samples};
 
   std::ostringstream csv;
   csv << "case,method,dt_s,relative_error,wall_time_s,steps\n";
@@ -97,14 +97,14 @@ main(int argc, char **argv)
   // Harmonic: a = 0.5 g sin(2 pi t), ky = 0.2 g, 10 s (10 cycles).
   {
     const double A = 0.5, omega = 2. * M_PI, ky = 0.2, T = 10.;
-    const double exact =
-      9.80665 * analytical::harmonic_sliding_displacement(A, omega, ky, T);
+    const double exact
+      = 9.80665 * analytical::harmonic_sliding_displacement(A, omega, ky, T);
     for (const auto method : methods)
       for (const double dt : dts)
         {
           seismic::Record rec;
-          rec.name = "harmonic";
-          rec.dt   = dt;
+          rec.name     = "harmonic";
+          rec.dt       = dt;
           const auto n = static_cast<std::size_t>(std::llround(T / dt)) + 1;
           for (std::size_t i = 0; i < n; ++i)
             rec.acceleration.push_back(A * std::sin(omega * i * dt));
@@ -113,12 +113,12 @@ main(int argc, char **argv)
           o.event_location  = method;
           o.output_interval = T; // keep the history small
           analytical::NewmarkResult r;
-          const double t = median_time(dt < 1e-4 ? 3 : 7, [&]() {
+          const double              t = median_time(dt < 1e-4 ? 3 : 7, [&]() {
             r = analytical::newmark_sliding(rec, o);
           });
           const double err = std::abs(r.final_displacement - exact) / exact;
-          csv << "harmonic," << method_name(method) << "," << dt << ","
-              << err << "," << t << "," << r.n_steps << "\n";
+          csv << "harmonic," << method_name(method) << "," << dt << "," << err
+              << "," << t << "," << r.n_steps << "\n";
           std::cout << "harmonic " << method_name(method) << " dt " << dt
                     << " error " << err << " time " << t << " s\n";
         }
@@ -141,12 +141,12 @@ main(int argc, char **argv)
     for (const auto method : methods)
       for (const double dt : dts)
         {
-          const seismic::Record input = dt > rec.dt ? resample(rec, dt) : rec;
+          const seismic::Record input   = dt > rec.dt ? resample(rec, dt) : rec;
           analytical::NewmarkOptions oo = o;
-          oo.time_step                 = dt > rec.dt ? 0. : dt;
-          oo.event_location            = method;
+          oo.time_step                  = dt > rec.dt ? 0. : dt;
+          oo.event_location             = method;
           analytical::NewmarkResult r;
-          const double t = median_time(dt < 1e-4 ? 3 : 7, [&]() {
+          const double              t = median_time(dt < 1e-4 ? 3 : 7, [&]() {
             r = analytical::newmark_sliding(input, oo);
           });
           const double err = std::abs(r.final_displacement - ref) / ref;
@@ -160,9 +160,9 @@ main(int argc, char **argv)
 
   // Throughput of the whole 90-case SLAMMER suite (both polarities).
   {
-    std::ifstream             in(data +
-                     "/ground-motions/slammer/rigid_newmark_reference.csv");
-    std::string               line;
+    std::ifstream in(data
+                     + "/ground-motions/slammer/rigid_newmark_reference.csv");
+    std::string   line;
     std::getline(in, line);
     struct Case
     {
@@ -202,8 +202,8 @@ main(int argc, char **argv)
     analytical::NewmarkOptions o;
     o.event_location  = analytical::NewmarkOptions::EventLocation::at_samples;
     o.output_interval = 1e9;
-    double sink       = 0.;
-    const double t = median_time(7, [&]() {
+    double             sink = 0.;
+    const double       t    = median_time(7, [&]() {
       for (const auto &c : cases)
         for (const double sign : {1., -1.})
           {
@@ -218,8 +218,9 @@ main(int argc, char **argv)
           << cases.size() << "," << 2 * cases.size() << "," << t << ","
           << cases.size() / t << "," << 2 * cases.size() / t << "\n";
     io::OutputDirectory(out_dir).write("suite.csv", suite.str());
-    std::cout << "SLAMMER suite: " << cases.size() << " cases (x2 polarities) in "
-              << t << " s (median of 7) = " << cases.size() / t
+    std::cout << "SLAMMER suite: " << cases.size()
+              << " cases (x2 polarities) in " << t
+              << " s (median of 7) = " << cases.size() / t
               << " cases/s; checksum " << sink << "\n";
   }
   return 0;

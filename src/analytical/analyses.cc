@@ -12,6 +12,8 @@ namespace rockdda::analytical
     list.push_back(internal::make_newmark_analysis());
     list.push_back(internal::make_sliding3d_analysis());
     list.push_back(internal::make_yield_analysis());
+    list.push_back(internal::make_rate_state_analysis());
+    list.push_back(internal::make_back_analysis());
     return list;
   }
 

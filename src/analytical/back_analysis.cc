@@ -59,11 +59,10 @@ namespace rockdda::analytical
     const double sin_a = std::sin(alpha);
     const double cos_a = std::cos(alpha);
 
-    return [record, sin_a, cos_a, time_step, gravity](
-             const double        phi_deg,
-             const SlidingState &start,
-             const double        t_begin,
-             const double        t_end) {
+    return [record, sin_a, cos_a, time_step, gravity](const double phi_deg,
+                                                      const SlidingState &start,
+                                                      const double t_begin,
+                                                      const double t_end) {
       const double mu = std::tan(phi_deg * M_PI / 180.);
       // Downslope acceleration of a sliding block (m/s^2), Coulomb friction.
       const auto acceleration = [&](const double t) {
@@ -131,14 +130,14 @@ namespace rockdda::analytical
         "back_analyse_friction_angles: empty forward model");
     // Measured history.
     if (measured.time.size() != measured.displacement.size())
-      throw InputError("back_analysis: the measured history has " +
-                       std::to_string(measured.time.size()) + " times but " +
-                       std::to_string(measured.displacement.size()) +
-                       " displacements; expected equal sizes");
+      throw InputError("back_analysis: the measured history has "
+                       + std::to_string(measured.time.size()) + " times but "
+                       + std::to_string(measured.displacement.size())
+                       + " displacements; expected equal sizes");
     if (measured.time.size() < 2)
-      throw InputError("back_analysis: the measured history has " +
-                       std::to_string(measured.time.size()) +
-                       " samples; expected at least 2");
+      throw InputError("back_analysis: the measured history has "
+                       + std::to_string(measured.time.size())
+                       + " samples; expected at least 2");
     for (std::size_t i = 0; i < measured.time.size(); ++i)
       {
         require(std::isfinite(measured.time[i]),
@@ -146,23 +145,23 @@ namespace rockdda::analytical
                 measured.time[i],
                 "a finite number (s)");
         require(std::isfinite(measured.displacement[i]),
-                "back_analysis.measured.displacement[" + std::to_string(i) +
-                  "]",
+                "back_analysis.measured.displacement[" + std::to_string(i)
+                  + "]",
                 measured.displacement[i],
                 "a finite number (m)");
         if (i > 0)
           require(measured.time[i] > measured.time[i - 1],
                   "back_analysis.measured.time[" + std::to_string(i) + "]",
                   measured.time[i],
-                  "strictly increasing sample times (> " +
-                    std::to_string(measured.time[i - 1]) + " s)");
+                  "strictly increasing sample times (> "
+                    + std::to_string(measured.time[i - 1]) + " s)");
       }
     // Segments.
     if (boundaries.size() < 2)
-      throw InputError("back_analysis.segments: " +
-                       std::to_string(boundaries.size()) +
-                       " boundaries given; expected at least 2 (one "
-                       "segment)");
+      throw InputError("back_analysis.segments: "
+                       + std::to_string(boundaries.size())
+                       + " boundaries given; expected at least 2 (one "
+                         "segment)");
     for (std::size_t i = 0; i < boundaries.size(); ++i)
       {
         require(std::isfinite(boundaries[i]),
@@ -173,28 +172,27 @@ namespace rockdda::analytical
           require(boundaries[i] > boundaries[i - 1],
                   "back_analysis.segments[" + std::to_string(i) + "]",
                   boundaries[i],
-                  "strictly increasing segment boundaries (> " +
-                    std::to_string(boundaries[i - 1]) + " s)");
+                  "strictly increasing segment boundaries (> "
+                    + std::to_string(boundaries[i - 1]) + " s)");
       }
     require(boundaries.front() >= measured.time.front(),
             "back_analysis.segments[0]",
             boundaries.front(),
-            ">= the first measured time " +
-              std::to_string(measured.time.front()) + " s");
+            ">= the first measured time "
+              + std::to_string(measured.time.front()) + " s");
     require(boundaries.back() <= measured.time.back(),
-            "back_analysis.segments[" + std::to_string(boundaries.size() - 1) +
-              "]",
+            "back_analysis.segments[" + std::to_string(boundaries.size() - 1)
+              + "]",
             boundaries.back(),
-            "<= the last measured time " +
-              std::to_string(measured.time.back()) +
-              " s (the measured history is shorter than the segments)");
+            "<= the last measured time " + std::to_string(measured.time.back())
+              + " s (the measured history is shorter than the segments)");
     // Settings.
     require(settings.phi_lower_deg >= 0. && settings.phi_lower_deg < 90.,
             "back_analysis.phi_lower",
             settings.phi_lower_deg,
             "0 <= phi_lower < 90 (degrees)");
-    require(settings.phi_upper_deg > settings.phi_lower_deg &&
-              settings.phi_upper_deg < 90.,
+    require(settings.phi_upper_deg > settings.phi_lower_deg
+              && settings.phi_upper_deg < 90.,
             "back_analysis.phi_upper",
             settings.phi_upper_deg,
             "phi_lower < phi_upper < 90 (degrees)");
@@ -218,8 +216,8 @@ namespace rockdda::analytical
         fit.t_end                   = boundaries[k + 1];
         fit.measured_displacement   = interpolate(measured, fit.t_end);
         const double start_measured = interpolate(measured, fit.t_begin);
-        fit.average_velocity =
-          (fit.measured_displacement - start_measured) / (fit.t_end - fit.t_begin);
+        fit.average_velocity = (fit.measured_displacement - start_measured)
+                               / (fit.t_end - fit.t_begin);
         fit.moved = fit.measured_displacement > start_measured;
 
         const auto displacement = [&](const double phi) {
@@ -269,12 +267,12 @@ namespace rockdda::analytical
                             const double               v0)
   {
     if (velocity.size() != mu.size())
-      throw InputError("friction fit: " + std::to_string(velocity.size()) +
-                       " velocities but " + std::to_string(mu.size()) +
-                       " friction coefficients; expected equal sizes");
+      throw InputError("friction fit: " + std::to_string(velocity.size())
+                       + " velocities but " + std::to_string(mu.size())
+                       + " friction coefficients; expected equal sizes");
     if (velocity.size() < 3)
-      throw InputError("friction fit: " + std::to_string(velocity.size()) +
-                       " data points; expected at least 3");
+      throw InputError("friction fit: " + std::to_string(velocity.size())
+                       + " data points; expected at least 3");
     require(v0 > 0., "friction_fit.v0", v0, "v0 > 0 (m/s)");
     const std::size_t   n = velocity.size();
     std::vector<double> x(n);
@@ -319,9 +317,8 @@ namespace rockdda::analytical
       }
     const double s2              = ssr / (n - 2);
     fit.a_minus_b_standard_error = std::sqrt(s2 / sxx);
-    fit.mu0_standard_error =
-      std::sqrt(s2 * (1. / n + x_mean * x_mean / sxx));
-    fit.r_squared = (syy > 0.) ? std::max(0., 1. - ssr / syy) : 1.;
+    fit.mu0_standard_error = std::sqrt(s2 * (1. / n + x_mean * x_mean / sxx));
+    fit.r_squared          = (syy > 0.) ? std::max(0., 1. - ssr / syy) : 1.;
     return fit;
   }
 } // namespace rockdda::analytical

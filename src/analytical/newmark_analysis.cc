@@ -101,7 +101,8 @@ namespace rockdda::analytical
                     "-",
                     "'within step': sliding starts where the interpolated "
                     "input crosses ky and stops where the relative velocity "
-                    "returns to zero inside the step (exact for the linearly interpolated "
+                    "returns to zero inside the step (exact for the linearly "
+                    "interpolated "
                     "record); 'at "
                     "samples': both at step ends, as SLAMMER (less accurate in "
                     "general; "
@@ -122,23 +123,22 @@ namespace rockdda::analytical
       {
         motion.parse_parameters(prm, prm_file);
         prm.enter_subsection("Newmark");
-        options.direction = prm.get("Sliding direction") == "downslope" ?
-                              NewmarkOptions::Direction::downslope :
-                              NewmarkOptions::Direction::two_way;
+        options.direction       = prm.get("Sliding direction") == "downslope"
+                                    ? NewmarkOptions::Direction::downslope
+                                    : NewmarkOptions::Direction::two_way;
         const std::string model = prm.get("Yield model");
-        options.yield_model =
-          model == "constant" ? NewmarkOptions::YieldModel::constant :
-          model == "table"    ? NewmarkOptions::YieldModel::table :
-                                NewmarkOptions::YieldModel::plane;
+        options.yield_model
+          = model == "constant" ? NewmarkOptions::YieldModel::constant
+            : model == "table"  ? NewmarkOptions::YieldModel::table
+                                : NewmarkOptions::YieldModel::plane;
         options.ky              = prm.get_double("Yield acceleration");
         options.dip_deg         = prm.get_double("Plane dip");
         options.time_step       = prm.get_double("Integration time step");
         options.output_interval = prm.get_double("Output interval");
-        options.event_location =
-          prm.get("Event location") == "within step" ?
-            NewmarkOptions::EventLocation::within_step :
-            NewmarkOptions::EventLocation::at_samples;
-        const double phi        = prm.get_double("Friction angle");
+        options.event_location  = prm.get("Event location") == "within step"
+                                    ? NewmarkOptions::EventLocation::within_step
+                                    : NewmarkOptions::EventLocation::at_samples;
+        const double      phi   = prm.get_double("Friction angle");
         const std::string table = prm.get("Yield table file");
         prm.leave_subsection();
 
@@ -149,15 +149,15 @@ namespace rockdda::analytical
                         "Newmark/Plane dip",
                         options.dip_deg,
                         "0 <= dip < 90 deg");
-            options.friction =
-              parse_friction(prm, prm_file, phi, "Newmark/Friction angle");
+            options.friction
+              = parse_friction(prm, prm_file, phi, "Newmark/Friction angle");
           }
         if (options.yield_model == NewmarkOptions::YieldModel::table)
           {
             if (table.empty())
-              throw InputError(prm_file +
-                               ": key 'Newmark/Yield table file' is empty "
-                               "but 'Yield model' is table");
+              throw InputError(prm_file
+                               + ": key 'Newmark/Yield table file' is empty "
+                                 "but 'Yield model' is table");
             const auto columns = io::read_columns(
               io::resolve_path(table, prm_file, "Newmark/Yield table file"),
               2,
@@ -165,14 +165,7 @@ namespace rockdda::analytical
             options.table_displacement = columns[0];
             options.table_ky           = columns[1];
           }
-        try
-          {
-            validate(options);
-          }
-        catch (const InputError &e)
-          {
-            throw InputError(prm_file + ": " + e.what());
-          }
+        io::with_parameter_file(prm_file, [&]() { validate(options); });
       }
 
       void
@@ -204,34 +197,32 @@ namespace rockdda::analytical
                                 r.sliding_duration,
                                 "s");
             context.summary.add("steps" + s, r.n_steps, "-");
-            context.log.line("polarity " + label + ": final displacement " +
-                             io::format_number(100. * r.final_displacement,
-                                               6) +
-                             " cm after " + std::to_string(r.n_slip_events) +
-                             " slip events");
+            context.log.line("polarity " + label + ": final displacement "
+                             + io::format_number(100. * r.final_displacement, 6)
+                             + " cm after " + std::to_string(r.n_slip_events)
+                             + " slip events");
           }
 
         // Harmonic input with constant ky, downslope only: the exact
         // displacement is known in closed form (doc/theory/newmark-harmonic).
-        if (motion.harmonic_omega > 0. && runs.size() == 1 &&
-            runs[0].second > 0. && motion.harmonic_amplitude > options.ky &&
-            options.yield_model == NewmarkOptions::YieldModel::constant &&
-            options.direction == NewmarkOptions::Direction::downslope)
+        if (motion.harmonic_omega > 0. && runs.size() == 1
+            && runs[0].second > 0. && motion.harmonic_amplitude > options.ky
+            && options.yield_model == NewmarkOptions::YieldModel::constant
+            && options.direction == NewmarkOptions::Direction::downslope)
           {
-            const double exact =
-              options.g *
-              harmonic_sliding_displacement(motion.harmonic_amplitude,
-                                            motion.harmonic_omega,
-                                            options.ky,
-                                            motion.record.duration());
-            const double error =
-              std::abs(results[0].final_displacement - exact) / exact;
+            const double exact
+              = options.g
+                * harmonic_sliding_displacement(motion.harmonic_amplitude,
+                                                motion.harmonic_omega,
+                                                options.ky,
+                                                motion.record.duration());
+            const double error
+              = std::abs(results[0].final_displacement - exact) / exact;
             context.summary.add("exact_displacement", exact, "m");
             context.summary.add("relative_error", error, "-");
-            context.log.line("closed-form displacement " +
-                             io::format_number(exact, 8) +
-                             " m, relative error " +
-                             io::format_number(error, 3));
+            context.log.line(
+              "closed-form displacement " + io::format_number(exact, 8)
+              + " m, relative error " + io::format_number(error, 3));
           }
 
         table.add_column("time", "s");

@@ -51,6 +51,7 @@ namespace rockdda::analytical
     {
       return std::log(std::abs(v) / (2. * p.v0)) + state_term(p, theta) / p.a;
     }
+
   } // namespace
 
 
@@ -76,8 +77,8 @@ namespace rockdda::analytical
       throw std::domain_error(
         "friction_coefficient: Eq. 2.1 needs slip rate V > 0 and state "
         "theta > 0; use regularized_friction_coefficient at V <= 0");
-    return p.mu0 + p.a * std::log(v / p.v0) +
-           p.b * std::log(theta * p.v0 / p.dc);
+    return p.mu0 + p.a * std::log(v / p.v0)
+           + p.b * std::log(theta * p.v0 / p.dc);
   }
 
 
@@ -122,9 +123,8 @@ namespace rockdda::analytical
     const double log_x = log_asinh_argument(p, v, theta);
     // asinh(x) = ln(2x) + 1/(4x^2) + O(x^-4): for ln x > 20 the correction is
     // below 1e-18 and exp(log_x) might overflow, so use the logarithm.
-    const double magnitude = (log_x > 20.) ?
-                               p.a * (log_x + std::log(2.)) :
-                               p.a * std::asinh(std::exp(log_x));
+    const double magnitude = (log_x > 20.) ? p.a * (log_x + std::log(2.))
+                                           : p.a * std::asinh(std::exp(log_x));
     return v > 0. ? magnitude : -magnitude;
   }
 
@@ -140,8 +140,8 @@ namespace rockdda::analytical
     if (v == 0.)
       {
         // d/dV A asinh(V/(2V0) e^{Psi/A}) at 0 = A/(2V0) e^{Psi/A}.
-        const double log_value =
-          std::log(p.a / (2. * p.v0)) + state_term(p, theta) / p.a;
+        const double log_value
+          = std::log(p.a / (2. * p.v0)) + state_term(p, theta) / p.a;
         dmu_dv        = std::exp(std::min(log_value, 690.));
         dmu_dln_theta = 0.;
         return;
@@ -163,8 +163,8 @@ namespace rockdda::analytical
         // logarithms so that a tiny |V| cannot overflow A/|V|.
         const double x = std::exp(log_x);
         const double s = std::sqrt(1. + x * x);
-        const double log_value =
-          std::log(p.a / (2. * p.v0)) + state_term(p, theta) / p.a;
+        const double log_value
+          = std::log(p.a / (2. * p.v0)) + state_term(p, theta) / p.a;
         dmu_dv        = std::exp(std::min(log_value, 690.)) / s;
         dmu_dln_theta = sign * p.b * x / s;
       }
@@ -192,10 +192,7 @@ namespace rockdda::analytical
     require(v1 > 0., "velocity_step.v1", v1, "v1 > 0 (m/s)");
     require(v2 > 0., "velocity_step.v2", v2, "v2 > 0 (m/s)");
     require(duration > 0., "velocity_step.duration", duration, "> 0 (s)");
-    require(n_outputs > 0,
-            "velocity_step.n_outputs",
-            n_outputs,
-            "at least 1");
+    require(n_outputs > 0, "velocity_step.n_outputs", n_outputs, "at least 1");
 
     // Unknown: theta (s). d theta/dt = 1 - V2 theta/Dc (Eq. 2.2), which is
     // linear with Jacobian -V2/Dc.
@@ -208,9 +205,9 @@ namespace rockdda::analytical
       {steady_state_theta(p, v1)},
       0.,
       settings,
-      [&p, v2](const double, const std::vector<double> &, std::vector<double> &j) {
-        j[0] = -v2 / p.dc;
-      });
+      [&p, v2](const double,
+               const std::vector<double> &,
+               std::vector<double> &j) { j[0] = -v2 / p.dc; });
 
     RateStateHistory history;
     for (const double t : output_times(duration, n_outputs))
@@ -261,17 +258,14 @@ namespace rockdda::analytical
   {
     p.validate();
     require(duration > 0., "spring_slider.duration", duration, "> 0 (s)");
-    require(n_outputs > 0,
-            "spring_slider.n_outputs",
-            n_outputs,
-            "at least 1");
+    require(n_outputs > 0, "spring_slider.n_outputs", n_outputs, "at least 1");
     const RateStateParameters &f   = p.friction;
     const double               vlp = p.load_point_velocity;
     const double               k   = p.stiffness;
     const double               eta = p.radiation_damping;
     const double v_init = p.initial_velocity > 0. ? p.initial_velocity : vlp;
-    const double theta_init =
-      p.initial_theta > 0. ? p.initial_theta : steady_state_theta(f, vlp);
+    const double theta_init
+      = p.initial_theta > 0. ? p.initial_theta : steady_state_theta(f, vlp);
 
     RateStateHistory history;
     if (p.mass == 0.)
@@ -281,12 +275,11 @@ namespace rockdda::analytical
           [&f, vlp, k, eta](const double,
                             const std::vector<double> &y,
                             std::vector<double>       &ydot) {
-            const double v          = std::exp(y[1]);
-            const double dln_theta  = std::exp(-y[2]) - v / f.dc;
-            ydot[0]                 = v;
-            ydot[1]                 = (k * (vlp - v) - f.b * dln_theta) /
-                      (f.a + eta * v);
-            ydot[2]                 = dln_theta;
+            const double v         = std::exp(y[1]);
+            const double dln_theta = std::exp(-y[2]) - v / f.dc;
+            ydot[0]                = v;
+            ydot[1] = (k * (vlp - v) - f.b * dln_theta) / (f.a + eta * v);
+            ydot[2] = dln_theta;
           },
           {0., std::log(v_init), std::log(theta_init)},
           0.,
@@ -308,16 +301,16 @@ namespace rockdda::analytical
         // With inertia; unknowns y = (delta, V, ln theta); tau0 balances the
         // initial friction and damping.
         const double m = p.mass;
-        const double tau0 =
-          regularized_friction_coefficient(f, v_init, theta_init) +
-          eta * v_init;
+        const double tau0
+          = regularized_friction_coefficient(f, v_init, theta_init)
+            + eta * v_init;
         StiffOdeSolver solver(
           [&f, vlp, k, eta, m, tau0](const double               t,
                                      const std::vector<double> &y,
                                      std::vector<double>       &ydot) {
             const double theta = std::exp(y[2]);
-            const double mu    = regularized_friction_coefficient(f, y[1], theta);
-            ydot[0]            = y[1];
+            const double mu = regularized_friction_coefficient(f, y[1], theta);
+            ydot[0]         = y[1];
             ydot[1] = (tau0 + k * (vlp * t - y[0]) - mu - eta * y[1]) / m;
             ydot[2] = std::exp(-y[2]) - std::abs(y[1]) / f.dc;
           },
@@ -367,6 +360,10 @@ namespace rockdda::analytical
             "sliding_block.initial_velocity",
             initial_velocity,
             "a finite number (m/s)");
+    require(velocity_scale >= 0.,
+            "sliding_block.velocity_scale",
+            velocity_scale,
+            ">= 0 (m/s; 0 = automatic)");
     require(std::isfinite(initial_theta),
             "sliding_block.initial_theta",
             initial_theta,
@@ -396,8 +393,8 @@ namespace rockdda::analytical
     const double               sin_a = std::sin(alpha);
     const double               cos_a = std::cos(alpha);
     const double               g     = p.gravity;
-    const double               theta_init =
-      p.initial_theta > 0. ? p.initial_theta : f.dc / f.v0;
+    const double               theta_init
+      = p.initial_theta > 0. ? p.initial_theta : f.dc / f.v0;
 
     // Normal force per unit mass over g, cos a - k sin a; must stay > 0.
     const auto normal = [&record, sin_a, cos_a](const double t) {
@@ -417,48 +414,92 @@ namespace rockdda::analytical
     if (ode_settings.max_step == 0. && !record.acceleration.empty())
       ode_settings.max_step = record.dt;
 
-    // Unknowns y = (delta, V, ln theta).
+    // Unknowns y = (delta, w, ln theta) with V = V_s sinh(w): w is linear in
+    // V for |V| << V_s and ~ ln(2V/V_s) for |V| >> V_s, so that the error
+    // control is relative in V over the tens of decades V spans (creep,
+    // stick, slip) and mu_reg is nearly linear in w for the Newton
+    // iterations.
+    // V_s = V* = 2 V0 exp(-Psi/A) at the initial state unless given: then
+    // w = mu/A exactly while theta keeps its initial value.
+    const double vs
+      = p.velocity_scale > 0.
+          ? p.velocity_scale
+          : std::clamp(2. * f.v0 * std::exp(-state_term(f, theta_init) / f.a),
+                       1e-280,
+                       f.v0);
+    // Initial w. A block released at V = 0 reaches force balance within
+    // ~V*/g (< 1e-30 s for usual parameters), far below any resolvable time
+    // step; so V = 0 is replaced by min(V_balance, 1e-6 V0), V_balance being
+    // the slip rate at which mu_reg equals the driving ratio (the creep rate
+    // in a stick phase). Computed in logarithms.
+    double initial_w = std::asinh(p.initial_velocity / vs);
+    if (p.initial_velocity == 0.)
+      {
+        const double mu_balance = (sin_a + record.at(0.) * cos_a) / normal(0.);
+        const double y          = std::abs(mu_balance) / f.a;
+        if (y > 0.)
+          {
+            // ln(V_balance/V_s) = ln sinh(y) + ln(V*) - ln(V_s)
+            const double ln_ratio
+              = y - std::log(2.) + std::log(-std::expm1(-2. * y))
+                + std::log(2. * f.v0) - state_term(f, theta_init) / f.a
+                - std::log(vs);
+            const double ln_ratio_cap = std::log(1e-6 * f.v0 / vs);
+            const double l            = std::min(ln_ratio, ln_ratio_cap);
+            const double w
+              = l > 30. ? l + std::log(2.) : std::asinh(std::exp(l));
+            initial_w = mu_balance < 0. ? -w : w;
+          }
+      }
+
     StiffOdeSolver solver(
-      [&f, &record, &normal, g, sin_a, cos_a](const double               t,
-                                               const std::vector<double> &y,
-                                               std::vector<double> &ydot) {
-        const double kh    = record.at(t);
+      [&f, &record, &normal, g, sin_a, cos_a, vs](const double               t,
+                                                  const std::vector<double> &y,
+                                                  std::vector<double> &ydot) {
+        const double v     = vs * std::sinh(y[1]);
         const double theta = std::exp(y[2]);
-        const double mu    = regularized_friction_coefficient(f, y[1], theta);
-        ydot[0]            = y[1];
-        ydot[1]            = g * ((sin_a + kh * cos_a) - mu * normal(t));
-        ydot[2]            = std::exp(-y[2]) - std::abs(y[1]) / f.dc;
+        const double mu    = regularized_friction_coefficient(f, v, theta);
+        ydot[0]            = v;
+        ydot[1] = g * ((sin_a + record.at(t) * cos_a) - mu * normal(t))
+                  / (vs * std::cosh(y[1]));
+        ydot[2] = std::exp(-y[2]) - std::abs(v) / f.dc;
       },
-      {0., p.initial_velocity, std::log(theta_init)},
+      {0., initial_w, std::log(theta_init)},
       0.,
       ode_settings,
-      [&f, &normal, g](const double               t,
-                       const std::vector<double> &y,
-                       std::vector<double>       &j) {
-        double dmu_dv = 0., dmu_dln_theta = 0.;
-        regularized_friction_derivatives(
-          f, y[1], std::exp(y[2]), dmu_dv, dmu_dln_theta);
-        const double n = normal(t);
-        j[0 * 3 + 1]   = 1.;
-        j[1 * 3 + 1]   = -g * n * dmu_dv;
-        j[1 * 3 + 2]   = -g * n * dmu_dln_theta;
-        j[2 * 3 + 1] = -(y[1] > 0. ? 1. : (y[1] < 0. ? -1. : 0.)) / f.dc;
-        j[2 * 3 + 2] = -std::exp(-y[2]);
+      [&f, &record, &normal, g, sin_a, cos_a, vs](const double               t,
+                                                  const std::vector<double> &y,
+                                                  std::vector<double> &j) {
+        const double v      = vs * std::sinh(y[1]);
+        const double s      = vs * std::cosh(y[1]); // dV/dw
+        const double theta  = std::exp(y[2]);
+        const double n      = normal(t);
+        const double mu     = regularized_friction_coefficient(f, v, theta);
+        const double force  = g * ((sin_a + record.at(t) * cos_a) - mu * n);
+        double       dmu_dv = 0., dmu_dln_theta = 0.;
+        regularized_friction_derivatives(f, v, theta, dmu_dv, dmu_dln_theta);
+        const double sgn = v > 0. ? 1. : (v < 0. ? -1. : 0.);
+        j[0 * 3 + 1]     = s;
+        j[1 * 3 + 1]     = -g * n * dmu_dv - force * v / (s * s);
+        j[1 * 3 + 2]     = -g * n * dmu_dln_theta / s;
+        j[2 * 3 + 1]     = -sgn * s / f.dc;
+        j[2 * 3 + 2]     = -std::exp(-y[2]);
       });
 
     RateStateHistory history;
-    const auto       n_intervals =
-      static_cast<unsigned long>(std::ceil(duration / output_interval - 1e-9));
+    const auto       n_intervals = static_cast<unsigned long>(
+      std::ceil(duration / output_interval - 1e-9));
     for (unsigned long i = 0; i <= n_intervals; ++i)
       {
-        const double t = std::min(i * output_interval, duration);
-        const std::vector<double> &y     = solver.advance(t);
-        const double               theta = std::exp(y[2]);
+        const double               t = std::min(i * output_interval, duration);
+        const std::vector<double> &y = solver.advance(t);
         history.time.push_back(t);
         history.displacement.push_back(y[0]);
-        history.velocity.push_back(y[1]);
+        const double v     = vs * std::sinh(y[1]);
+        const double theta = std::exp(y[2]);
+        history.velocity.push_back(v);
         history.theta.push_back(theta);
-        history.mu.push_back(regularized_friction_coefficient(f, y[1], theta));
+        history.mu.push_back(regularized_friction_coefficient(f, v, theta));
       }
     return history;
   }

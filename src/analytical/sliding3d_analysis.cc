@@ -135,33 +135,17 @@ namespace rockdda::analytical
                       "Sliding 3d/" + name + "/Dip",
                       p.dip_deg,
                       "0 <= dip <= 90 deg");
-          io::require(p.dip_direction_deg >= 0. &&
-                        p.dip_direction_deg <= 360.,
+          io::require(p.dip_direction_deg >= 0. && p.dip_direction_deg <= 360.,
                       prm_file,
                       "Sliding 3d/" + name + "/Dip direction",
                       p.dip_direction_deg,
                       "0 <= dip direction <= 360 deg");
         }
       prm.leave_subsection();
-      options.plane1.friction =
-        parse_friction(prm, prm_file, phi[0], "Sliding 3d/Plane 1/Friction angle");
-      options.plane2.friction =
-        parse_friction(prm, prm_file, phi[1], "Sliding 3d/Plane 2/Friction angle");
-    }
-
-    /// Re-throw a module's InputError with the parameter file's name.
-    template <typename F>
-    void
-    with_file(const std::string &prm_file, F &&f)
-    {
-      try
-        {
-          f();
-        }
-      catch (const InputError &e)
-        {
-          throw InputError(prm_file + ": " + e.what());
-        }
+      options.plane1.friction = parse_friction(
+        prm, prm_file, phi[0], "Sliding 3d/Plane 1/Friction angle");
+      options.plane2.friction = parse_friction(
+        prm, prm_file, phi[1], "Sliding 3d/Plane 2/Friction angle");
     }
 
     /// The "sliding3d" analysis.
@@ -197,32 +181,33 @@ namespace rockdda::analytical
         options.duration        = prm.get_double("Duration");
         options.output_interval = prm.get_double("Output interval");
         const bool from_record = prm.get("Resultant source") == "ground motion";
-        const double azimuth   = prm.get_double("Ground motion azimuth");
-        const std::string expr = prm.get("Resultant acceleration");
+        const double      azimuth = prm.get_double("Ground motion azimuth");
+        const std::string expr    = prm.get("Resultant acceleration");
         prm.leave_subsection();
-        with_file(prm_file, [&]() { validate(options); });
+        io::with_parameter_file(prm_file, [&]() { validate(options); });
 
         if (from_record)
           {
             motion.parse_parameters(prm, prm_file);
             if (motion.polarity == seismic::GroundMotionInput::Polarity::both)
-              throw InputError(prm_file +
-                               ": key 'Ground motion/Polarity' = both is not "
-                               "supported by sliding3d; valid: normal or "
-                               "inverted");
-            const double sign =
-              motion.polarity == seismic::GroundMotionInput::Polarity::inverted ?
-                -1. :
-                1.;
-            const double sx = sign * std::sin(azimuth * M_PI / 180.);
-            const double sy = sign * std::cos(azimuth * M_PI / 180.);
+              throw InputError(prm_file
+                               + ": key 'Ground motion/Polarity' = both is not "
+                                 "supported by sliding3d; valid: normal or "
+                                 "inverted");
+            const double sign
+              = motion.polarity
+                    == seismic::GroundMotionInput::Polarity::inverted
+                  ? -1.
+                  : 1.;
+            const double          sx = sign * std::sin(azimuth * M_PI / 180.);
+            const double          sy = sign * std::cos(azimuth * M_PI / 180.);
             const seismic::Record record = motion.record;
-            resultant = [record, sx, sy](const double t) {
+            resultant                    = [record, sx, sy](const double t) {
               const double a = record.at(t);
               return Eigen::Vector3d(a * sx, a * sy, -1.);
             };
-            input_text = motion.description + ", azimuth " +
-                          std::to_string(azimuth) + " deg";
+            input_text = motion.description + ", azimuth "
+                         + std::to_string(azimuth) + " deg";
           }
         else
           {
@@ -240,12 +225,12 @@ namespace rockdda::analytical
               }
             catch (const std::exception &e)
               {
-                throw InputError(prm_file +
-                                 ": key 'Sliding 3d/Resultant acceleration' = '" +
-                                 expr +
-                                 "' is not valid; valid: three expressions of "
-                                 "t separated by ';' (e.g. '0.5*sin(10*t); 0; "
-                                 "-1')");
+                throw InputError(
+                  prm_file + ": key 'Sliding 3d/Resultant acceleration' = '"
+                  + expr
+                  + "' is not valid; valid: three expressions of "
+                    "t separated by ';' (e.g. '0.5*sin(10*t); 0; "
+                    "-1')");
               }
             resultant = [parser](const double t) {
               parser->set_time(t);
@@ -288,10 +273,10 @@ namespace rockdda::analytical
         context.summary.add("final_displacement_x", d[0], "m");
         context.summary.add("final_displacement_y", d[1], "m");
         context.summary.add("final_displacement_z", d[2], "m");
-        const double trend =
-          std::fmod(std::atan2(d[0], d[1]) * 180. / M_PI + 360., 360.);
-        const double plunge =
-          d.norm() > 0. ? -std::asin(d[2] / d.norm()) * 180. / M_PI : 0.;
+        const double trend
+          = std::fmod(std::atan2(d[0], d[1]) * 180. / M_PI + 360., 360.);
+        const double plunge
+          = d.norm() > 0. ? -std::asin(d[2] / d.norm()) * 180. / M_PI : 0.;
         context.summary.add("displacement_trend", trend, "deg");
         context.summary.add("displacement_plunge", plunge, "deg");
         context.summary.add("max_speed", r.max_speed, "m/s");
@@ -382,22 +367,19 @@ namespace rockdda::analytical
         azimuth  = prm.get_double("Load azimuth");
         critical = prm.get_double("Critical acceleration");
         prm.leave_subsection();
-        io::require(weight > 0.,
-                    prm_file,
-                    "Yield/Block weight",
-                    weight,
-                    "weight > 0 N");
+        io::require(
+          weight > 0., prm_file, "Yield/Block weight", weight, "weight > 0 N");
         options.time_step = options.duration = 1.;
-        with_file(prm_file, [&]() { validate(options); });
+        io::with_parameter_file(prm_file, [&]() { validate(options); });
         if (options.wedge && azimuth < 0.)
           {
-            const Eigen::Vector3d i =
-              plane_normal(options.plane1.dip_deg,
-                           options.plane1.dip_direction_deg)
-                .cross(plane_normal(options.plane2.dip_deg,
-                                    options.plane2.dip_direction_deg));
-            azimuth = std::fmod(std::atan2(i[0], i[1]) * 180. / M_PI + 360.,
-                                360.);
+            const Eigen::Vector3d i
+              = plane_normal(options.plane1.dip_deg,
+                             options.plane1.dip_direction_deg)
+                  .cross(plane_normal(options.plane2.dip_deg,
+                                      options.plane2.dip_direction_deg));
+            azimuth
+              = std::fmod(std::atan2(i[0], i[1]) * 180. / M_PI + 360., 360.);
             // The downward-plunging sense of the intersection line.
             if (i[2] > 0.)
               azimuth = std::fmod(azimuth + 180., 360.);
@@ -407,8 +389,8 @@ namespace rockdda::analytical
       void
       run(io::RunContext &context) override
       {
-        const double phi1 =
-          std::atan(options.plane1.friction.mu0) * 180. / M_PI;
+        const double phi1
+          = std::atan(options.plane1.friction.mu0) * 180. / M_PI;
         double ky = 0., phi_critical = 0.;
         if (!options.wedge)
           {

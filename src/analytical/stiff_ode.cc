@@ -63,8 +63,8 @@ namespace rockdda::analytical
           std::free(s);
         }
       std::ostringstream message;
-      message << "CVODE: " << call << " failed with " << name << " at t = "
-              << t_internal << " s";
+      message << "CVODE: " << call << " failed with " << name
+              << " at t = " << t_internal << " s";
       if (!last_message.empty())
         message << " (" << last_message << ")";
       if (n_nonfinite > 0)
@@ -175,8 +175,8 @@ namespace rockdda::analytical
                   void       *user_data)
     {
       Impl *self         = static_cast<Impl *>(user_data);
-      self->last_message = std::string(function ? function : "") + ": " +
-                           std::string(msg ? msg : "");
+      self->last_message = std::string(function ? function : "") + ": "
+                           + std::string(msg ? msg : "");
     }
 
     /// Re-throw a pending callback exception, if any.
@@ -199,7 +199,7 @@ namespace rockdda::analytical
                                  const double               t0,
                                  const StiffOdeSettings    &settings,
                                  Jacobian                   jacobian)
-    : impl(std::make_unique<Impl>())
+      : impl(std::make_unique<Impl>())
   {
     if (!rhs)
       throw std::invalid_argument("StiffOdeSolver: empty right-hand side");
@@ -207,15 +207,14 @@ namespace rockdda::analytical
       throw std::invalid_argument("StiffOdeSolver: empty initial state");
     for (const double v : y0)
       if (!std::isfinite(v))
-        throw std::invalid_argument(
-          "StiffOdeSolver: non-finite initial state");
+        throw std::invalid_argument("StiffOdeSolver: non-finite initial state");
     if (!std::isfinite(t0))
       throw std::invalid_argument("StiffOdeSolver: non-finite initial time");
     if (!(settings.relative_tolerance > 0.))
       throw std::invalid_argument(
         "StiffOdeSolver: relative_tolerance must be > 0");
-    if (settings.absolute_tolerances.empty() &&
-        !(settings.absolute_tolerance > 0.))
+    if (settings.absolute_tolerances.empty()
+        && !(settings.absolute_tolerance > 0.))
       throw std::invalid_argument(
         "StiffOdeSolver: absolute_tolerance must be > 0");
     if (!settings.absolute_tolerances.empty())
@@ -324,8 +323,7 @@ namespace rockdda::analytical
     while (d.t_internal < t_out)
       {
         double    t_return = d.t_internal;
-        const int flag =
-          CVode(d.cvode_mem, t_out, d.y, &t_return, CV_ONE_STEP);
+        const int flag = CVode(d.cvode_mem, t_out, d.y, &t_return, CV_ONE_STEP);
         d.rethrow_pending();
         d.check(flag, "CVode");
         d.t_internal = t_return;

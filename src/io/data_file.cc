@@ -44,28 +44,28 @@ namespace rockdda::io
                 used = 0;
               }
             if (used != token.size() || !std::isfinite(v))
-              throw InputError(file_name + ":" + std::to_string(line_no) +
-                               ": '" + token + "' is not a finite number");
+              throw InputError(file_name + ":" + std::to_string(line_no) + ": '"
+                               + token + "' is not a finite number");
             values.push_back(v);
           }
         if (columns.empty())
           {
             if (values.size() < min_columns || values.size() > max_columns)
-              throw InputError(
-                file_name + ":" + std::to_string(line_no) + ": found " +
-                std::to_string(values.size()) + " values; expected " +
-                (min_columns == max_columns ?
-                   std::to_string(min_columns) :
-                   std::to_string(min_columns) + " to " +
-                     std::to_string(max_columns)) +
-                " per line");
+              throw InputError(file_name + ":" + std::to_string(line_no)
+                               + ": found " + std::to_string(values.size())
+                               + " values; expected "
+                               + (min_columns == max_columns
+                                    ? std::to_string(min_columns)
+                                    : std::to_string(min_columns) + " to "
+                                        + std::to_string(max_columns))
+                               + " per line");
             columns.resize(values.size());
           }
         else if (values.size() != columns.size())
-          throw InputError(file_name + ":" + std::to_string(line_no) +
-                           ": found " + std::to_string(values.size()) +
-                           " values; every line must have " +
-                           std::to_string(columns.size()));
+          throw InputError(file_name + ":" + std::to_string(line_no)
+                           + ": found " + std::to_string(values.size())
+                           + " values; every line must have "
+                           + std::to_string(columns.size()));
         for (std::size_t c = 0; c < values.size(); ++c)
           columns[c].push_back(values[c]);
       }

@@ -13,19 +13,20 @@ namespace rockdda::io
 {
   namespace
   {
-    const char *usage_text =
-      "Usage: rockdda [options] FILE.prm\n"
-      "\n"
-      "Runs the analysis that FILE.prm describes (key 'Analysis type') and\n"
-      "writes parameters.prm, statistics.csv, summary.csv and log.txt into\n"
-      "its output directory.\n"
-      "\n"
-      "Options:\n"
-      "  --validate          check FILE.prm and its input files; write nothing\n"
-      "  --print-parameters  print every key with default, valid values, SI\n"
-      "                      unit and help (Markdown), then exit\n"
-      "  --quiet             do not echo the log to stdout\n"
-      "  --help              this text\n";
+    const char *usage_text
+      = "Usage: rockdda [options] FILE.prm\n"
+        "\n"
+        "Runs the analysis that FILE.prm describes (key 'Analysis type') and\n"
+        "writes parameters.prm, statistics.csv, summary.csv and log.txt into\n"
+        "its output directory.\n"
+        "\n"
+        "Options:\n"
+        "  --validate          check FILE.prm and its input files; write "
+        "nothing\n"
+        "  --print-parameters  print every key with default, valid values, SI\n"
+        "                      unit and help (Markdown), then exit\n"
+        "  --quiet             do not echo the log to stdout\n"
+        "  --help              this text\n";
 
     std::string
     default_output(const std::string &prm_file)
@@ -40,28 +41,28 @@ namespace rockdda::io
   declare_all_parameters(dealii::ParameterHandler                     &prm,
                          const std::vector<std::unique_ptr<Analysis>> &analyses)
   {
-      std::string names, help;
-      for (const auto &a : analyses)
-        {
-          names += (names.empty() ? "" : "|") + a->name();
-          help += " '" + a->name() + "': " + a->description() + ".";
-        }
-      declare(prm,
-              "Analysis type",
-              analyses.front()->name(),
-              dealii::Patterns::Selection(names),
-              "-",
-              "What to compute." + help);
-      declare(prm,
-              "Output directory",
-              "",
-              dealii::Patterns::Anything(),
-              "-",
-              "Folder for the results, relative to the working directory. "
-              "Empty: 'output-NAME' for parameter file NAME.prm.");
-      seismic::GroundMotionInput::declare_parameters(prm);
-      for (const auto &a : analyses)
-        a->declare_parameters(prm);
+    std::string names, help;
+    for (const auto &a : analyses)
+      {
+        names += (names.empty() ? "" : "|") + a->name();
+        help += " '" + a->name() + "': " + a->description() + ".";
+      }
+    declare(prm,
+            "Analysis type",
+            analyses.front()->name(),
+            dealii::Patterns::Selection(names),
+            "-",
+            "What to compute." + help);
+    declare(prm,
+            "Output directory",
+            "",
+            dealii::Patterns::Anything(),
+            "-",
+            "Folder for the results, relative to the working directory. "
+            "Empty: 'output-NAME' for parameter file NAME.prm.");
+    seismic::GroundMotionInput::declare_parameters(prm);
+    for (const auto &a : analyses)
+      a->declare_parameters(prm);
   }
 
 
@@ -172,8 +173,8 @@ namespace rockdda::io
         summary.add("wall_time", seconds, "s");
         output.write("summary.csv", summary.csv());
         log.line("summary:\n" + summary.text());
-        log.line("results in " +
-                 std::filesystem::absolute(output.path()).string() + "/");
+        log.line("results in "
+                 + std::filesystem::absolute(output.path()).string() + "/");
         output.write("log.txt", log.text());
       }
     catch (const InputError &e)

@@ -11,13 +11,13 @@
 namespace rockdda::io
 {
   OutputDirectory::OutputDirectory(const std::string &path)
-    : folder(path.empty() ? std::string(".") : path)
+      : folder(path.empty() ? std::string(".") : path)
   {
     std::error_code ec;
     std::filesystem::create_directories(folder, ec);
     if (ec)
-      throw InputError("Output directory '" + folder +
-                       "': cannot create it (" + ec.message() + ")");
+      throw InputError("Output directory '" + folder + "': cannot create it ("
+                       + ec.message() + ")");
   }
 
 
@@ -35,8 +35,8 @@ namespace rockdda::io
                          const std::string &content) const
   {
     const std::string target = file(name);
-    const std::string tmp =
-      target + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+    const std::string tmp
+      = target + ".tmp." + std::to_string(static_cast<long>(::getpid()));
     {
       std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
       out << content;
@@ -52,8 +52,8 @@ namespace rockdda::io
     if (ec)
       {
         std::remove(tmp.c_str());
-        throw std::runtime_error("cannot rename " + tmp + " to " + target +
-                                 ": " + ec.message());
+        throw std::runtime_error("cannot rename " + tmp + " to " + target + ": "
+                                 + ec.message());
       }
   }
 

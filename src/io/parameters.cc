@@ -3,7 +3,6 @@
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
-
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
@@ -22,7 +21,7 @@ namespace rockdda::io
       std::ostringstream s;
       exc.print_info(s);
       std::string text = s.str();
-      text = std::regex_replace(text, std::regex("\\s+"), " ");
+      text             = std::regex_replace(text, std::regex("\\s+"), " ");
       while (!text.empty() && text.back() == ' ')
         text.pop_back();
       if (!text.empty() && text.front() == ' ')
@@ -77,9 +76,9 @@ namespace rockdda::io
     std::ifstream in(file);
     if (!in)
       throw InputError(file + ": cannot read the parameter file");
-    const std::string hint =
-      " (run 'rockdda --print-parameters' for every section, key and valid "
-      "value)";
+    const std::string hint
+      = " (run 'rockdda --print-parameters' for every section, key and valid "
+        "value)";
     try
       {
         prm.parse_input(in, file, "", false);
@@ -89,14 +88,14 @@ namespace rockdda::io
         const std::string text = exception_text(exc);
         const int         line = line_of(text);
         std::smatch       m;
-        std::string       msg  = file + ":" + std::to_string(line) + ": ";
+        std::string       msg = file + ":" + std::to_string(line) + ": ";
         const std::regex  pat(
           "entry value <?(.*?)>? for the entry named <?(.*?)>? does not "
-          "match the given pattern:? <?(.*?)>?$");
+           "match the given pattern:? <?(.*?)>?$");
         if (std::regex_search(text, m, pat))
-          msg += "value '" + m[1].str() + "' for key '" + m[2].str() +
-                 "' in section " + section_at(file, line) +
-                 " is not valid; valid values: " + m[3].str();
+          msg += "value '" + m[1].str() + "' for key '" + m[2].str()
+                 + "' in section " + section_at(file, line)
+                 + " is not valid; valid values: " + m[3].str();
         else
           msg += text;
         throw InputError(msg);
@@ -105,12 +104,12 @@ namespace rockdda::io
       {
         const std::string text = exception_text(exc);
         const int         line = line_of(text);
-        std::string msg = text;
-        const auto  pos = msg.find(">: ");
+        std::string       msg  = text;
+        const auto        pos  = msg.find(">: ");
         if (pos != std::string::npos)
           msg = msg.substr(pos + 3);
-        throw InputError(file + ":" + std::to_string(line) + ": in section " +
-                         section_at(file, line) + ": " + msg + hint);
+        throw InputError(file + ":" + std::to_string(line) + ": in section "
+                         + section_at(file, line) + ": " + msg + hint);
       }
     catch (const dealii::ParameterHandler::ExcNoSubsection &exc)
       {
@@ -120,9 +119,9 @@ namespace rockdda::io
         std::regex_search(text,
                           m,
                           std::regex("no such subsection to be entered: (.*)"));
-        throw InputError(file + ":" + std::to_string(line) +
-                         ": unknown section '" + m[1].str() + "' inside " +
-                         section_at(file, line) + hint);
+        throw InputError(file + ":" + std::to_string(line)
+                         + ": unknown section '" + m[1].str() + "' inside "
+                         + section_at(file, line) + hint);
       }
     catch (const dealii::ExceptionBase &exc)
       {
@@ -151,17 +150,18 @@ namespace rockdda::io
                const std::string &key)
   {
     std::string      result;
-    const std::regex var("\\$\\{([A-Za-z_][A-Za-z0-9_]*)\\}|\\$([A-Za-z_][A-Za-z0-9_]*)");
-    auto             begin = std::sregex_iterator(path.begin(), path.end(), var);
-    std::size_t      last  = 0;
+    const std::regex var(
+      "\\$\\{([A-Za-z_][A-Za-z0-9_]*)\\}|\\$([A-Za-z_][A-Za-z0-9_]*)");
+    auto        begin = std::sregex_iterator(path.begin(), path.end(), var);
+    std::size_t last  = 0;
     for (auto it = begin; it != std::sregex_iterator(); ++it)
       {
-        const auto &m    = *it;
-        const auto  name = m[1].matched ? m[1].str() : m[2].str();
+        const auto &m     = *it;
+        const auto  name  = m[1].matched ? m[1].str() : m[2].str();
         const char *value = std::getenv(name.c_str());
         if (value == nullptr)
-          throw InputError(prm_file + ": key '" + key + "' uses $" + name +
-                           ", which is not set in the environment");
+          throw InputError(prm_file + ": key '" + key + "' uses $" + name
+                           + ", which is not set in the environment");
         result += path.substr(last, m.position() - last) + value;
         last = m.position() + m.length();
       }
@@ -200,10 +200,11 @@ namespace rockdda::io
     {
       std::string out;
       for (std::size_t i = 0; i < name.size(); ++i)
-        if (name[i] == '_' && i + 2 < name.size() + 0 &&
-            std::isxdigit(name[i + 1]) && std::isxdigit(name[i + 2]))
+        if (name[i] == '_' && i + 2 < name.size() + 0
+            && std::isxdigit(name[i + 1]) && std::isxdigit(name[i + 2]))
           {
-            out += static_cast<char>(std::stoi(name.substr(i + 1, 2), nullptr, 16));
+            out += static_cast<char>(
+              std::stoi(name.substr(i + 1, 2), nullptr, 16));
             i += 2;
           }
         else
@@ -219,8 +220,8 @@ namespace rockdda::io
       bool header = false;
       for (const auto &[name, node] : tree)
         {
-          if (node.get_child_optional("value") &&
-              node.get_child_optional("pattern_description"))
+          if (node.get_child_optional("value")
+              && node.get_child_optional("pattern_description"))
             {
               if (!header)
                 {
@@ -243,23 +244,22 @@ namespace rockdda::io
               auto esc = [](std::string s) {
                 std::string r;
                 for (char c : s)
-                  r += (c == '|') ? std::string("\\|") :
-                                    (c == '\n' ? std::string(" ") :
-                                                 std::string(1, c));
+                  r += (c == '|')
+                         ? std::string("\\|")
+                         : (c == '\n' ? std::string(" ") : std::string(1, c));
                 return r;
               };
-              out << "| `" << esc(demangle(name))
-                  << "` | `" << esc(node.get<std::string>("default_value"))
-                  << "` | " << esc(node.get<std::string>("pattern_description"))
-                  << " | " << esc(unit) << " | " << esc(doc) << " |\n";
+              out << "| `" << esc(demangle(name)) << "` | `"
+                  << esc(node.get<std::string>("default_value")) << "` | "
+                  << esc(node.get<std::string>("pattern_description")) << " | "
+                  << esc(unit) << " | " << esc(doc) << " |\n";
             }
         }
       for (const auto &[name, node] : tree)
-        if (!(node.get_child_optional("value") &&
-              node.get_child_optional("pattern_description")))
+        if (!(node.get_child_optional("value")
+              && node.get_child_optional("pattern_description")))
           print_section(node,
-                        (path.empty() ? "" : path + " / ") +
-                          demangle(name),
+                        (path.empty() ? "" : path + " / ") + demangle(name),
                         out);
     }
   } // namespace
@@ -271,11 +271,10 @@ namespace rockdda::io
                             std::ostream                   &out)
   {
     std::stringstream json;
-    prm.print_parameters(
-      json,
-      static_cast<dealii::ParameterHandler::OutputStyle>(
-        dealii::ParameterHandler::JSON |
-        dealii::ParameterHandler::KeepDeclarationOrder));
+    prm.print_parameters(json,
+                         static_cast<dealii::ParameterHandler::OutputStyle>(
+                           dealii::ParameterHandler::JSON
+                           | dealii::ParameterHandler::KeepDeclarationOrder));
     boost::property_tree::ptree tree;
     boost::property_tree::read_json(json, tree);
     out << "# rockdda parameter reference\n\n"

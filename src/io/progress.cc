@@ -6,11 +6,11 @@
 namespace rockdda::io
 {
   ProgressBar::ProgressBar(const std::string &label, const double end_time)
-    : label(label)
-    , end_time(end_time)
-    , enabled(::isatty(STDERR_FILENO) == 1)
-    , start(std::chrono::steady_clock::now())
-    , last(start)
+      : label(label)
+      , end_time(end_time)
+      , enabled(::isatty(STDERR_FILENO) == 1)
+      , start(std::chrono::steady_clock::now())
+      , last(start)
   {}
 
 

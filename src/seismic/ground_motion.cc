@@ -104,27 +104,17 @@ namespace rockdda::seismic
     prm.enter_subsection("Ground motion");
     const std::string source = prm.get("Source");
     const double      dt     = prm.get_double("Time step");
-    io::require(dt > 0.,
-                prm_file,
-                "Ground motion/Time step",
-                dt,
-                "dt > 0 s");
+    io::require(dt > 0., prm_file, "Ground motion/Time step", dt, "dt > 0 s");
     std::ostringstream d;
     if (source == "harmonic")
       {
         const double a = prm.get_double("Harmonic amplitude");
         const double f = prm.get_double("Harmonic frequency");
         const double T = prm.get_double("Duration");
-        io::require(f > 0.,
-                    prm_file,
-                    "Ground motion/Harmonic frequency",
-                    f,
-                    "f > 0 Hz");
-        io::require(T > 0.,
-                    prm_file,
-                    "Ground motion/Duration",
-                    T,
-                    "duration > 0 s");
+        io::require(
+          f > 0., prm_file, "Ground motion/Harmonic frequency", f, "f > 0 Hz");
+        io::require(
+          T > 0., prm_file, "Ground motion/Duration", T, "duration > 0 s");
         io::require(T / dt < 1e9,
                     prm_file,
                     "Ground motion/Time step",
@@ -134,7 +124,7 @@ namespace rockdda::seismic
         harmonic_omega     = 2. * M_PI * f;
         record.name        = "harmonic";
         record.dt          = dt;
-        const auto n = static_cast<std::size_t>(std::llround(T / dt)) + 1;
+        const auto n       = static_cast<std::size_t>(std::llround(T / dt)) + 1;
         record.acceleration.resize(n);
         for (std::size_t i = 0; i < n; ++i)
           record.acceleration[i] = a * std::sin(harmonic_omega * i * dt);
@@ -145,11 +135,11 @@ namespace rockdda::seismic
       {
         const std::string name = prm.get("Record file");
         if (name.empty())
-          throw InputError(prm_file +
-                           ": key 'Ground motion/Record file' is empty; give "
-                           "a record file (or set Source = harmonic)");
-        const std::string file =
-          io::resolve_path(name, prm_file, "Ground motion/Record file");
+          throw InputError(prm_file
+                           + ": key 'Ground motion/Record file' is empty; give "
+                             "a record file (or set Source = harmonic)");
+        const std::string file
+          = io::resolve_path(name, prm_file, "Ground motion/Record file");
         const double to_g = prm.get("Units") == "g" ? 1. : 1. / 9.80665;
         record            = read_record(file, dt, to_g);
         d << record.name << " (" << record.acceleration.size()
@@ -161,11 +151,8 @@ namespace rockdda::seismic
     if (scaling == "target PGA")
       {
         const double pga = prm.get_double("Target PGA");
-        io::require(pga > 0.,
-                    prm_file,
-                    "Ground motion/Target PGA",
-                    pga,
-                    "PGA > 0 g");
+        io::require(
+          pga > 0., prm_file, "Ground motion/Target PGA", pga, "PGA > 0 g");
         scale_to_pga(record, pga);
         d << ", scaled to PGA " << pga << " g";
         harmonic_amplitude = record.peak();
@@ -178,9 +165,9 @@ namespace rockdda::seismic
         d << ", scaled by " << f;
       }
     const std::string p = prm.get("Polarity");
-    polarity = p == "normal"   ? Polarity::normal :
-               p == "inverted" ? Polarity::inverted :
-                                 Polarity::both;
+    polarity            = p == "normal"     ? Polarity::normal
+                          : p == "inverted" ? Polarity::inverted
+                                            : Polarity::both;
     d << ", polarity " << p;
     description = d.str();
     prm.leave_subsection();

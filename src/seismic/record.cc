@@ -32,12 +32,12 @@ namespace rockdda::seismic
   {
     if (acceleration.empty() || t < 0.)
       return 0.;
-    const double       x = t / dt;
+    const double      x = t / dt;
     const std::size_t i = static_cast<std::size_t>(std::floor(x));
     if (i + 1 >= acceleration.size())
-      return (i + 1 == acceleration.size() && x - i < 1e-9) ?
-               acceleration.back() :
-               0.;
+      return (i + 1 == acceleration.size() && x - i < 1e-9)
+               ? acceleration.back()
+               : 0.;
     const double w = x - i;
     return (1. - w) * acceleration[i] + w * acceleration[i + 1];
   }
@@ -49,7 +49,7 @@ namespace rockdda::seismic
   {
     const auto columns = io::read_columns(file_name, 1, 2);
     Record     record;
-    record.name = std::filesystem::path(file_name).filename().string();
+    record.name         = std::filesystem::path(file_name).filename().string();
     record.acceleration = columns.back();
     for (double &a : record.acceleration)
       a *= to_g;
@@ -59,24 +59,24 @@ namespace rockdda::seismic
     if (columns.size() == 2)
       {
         const auto &times = columns[0];
-        record.dt = (times.back() - times.front()) / (times.size() - 1);
+        record.dt         = (times.back() - times.front()) / (times.size() - 1);
         if (!(record.dt > 0.))
-          throw InputError(file_name +
-                           ": the time column must increase (dt > 0 s)");
+          throw InputError(file_name
+                           + ": the time column must increase (dt > 0 s)");
         for (std::size_t i = 1; i < times.size(); ++i)
           if (std::abs(times[i] - times[i - 1] - record.dt) > 1e-6 * record.dt)
-            throw InputError(file_name +
-                             ": the time column is not uniform near sample " +
-                             std::to_string(i + 1) +
-                             " (resample the record to a constant dt)");
+            throw InputError(file_name
+                             + ": the time column is not uniform near sample "
+                             + std::to_string(i + 1)
+                             + " (resample the record to a constant dt)");
       }
     else
       {
         if (!(dt > 0.) || !std::isfinite(dt))
-          throw InputError(file_name +
-                           ": a one-column record needs a time step dt > 0 s "
-                           "(given " +
-                           std::to_string(dt) + " s)");
+          throw InputError(file_name
+                           + ": a one-column record needs a time step dt > 0 s "
+                             "(given "
+                           + std::to_string(dt) + " s)");
         record.dt = dt;
       }
     return record;
@@ -98,8 +98,8 @@ namespace rockdda::seismic
   {
     const double p = record.peak();
     if (!(p > 0.))
-      throw InputError(record.name +
-                       ": cannot scale a record whose peak is zero");
+      throw InputError(record.name
+                       + ": cannot scale a record whose peak is zero");
     scale(record, target_pga / p);
   }
 } // namespace rockdda::seismic

@@ -28,9 +28,9 @@ namespace
   fs::path
   scratch(const std::string &name)
   {
-    const fs::path p = fs::temp_directory_path() /
-                       ("rockdda-test-" + name + "-" +
-                        std::to_string(::getpid()));
+    const fs::path p
+      = fs::temp_directory_path()
+        / ("rockdda-test-" + name + "-" + std::to_string(::getpid()));
     fs::remove_all(p);
     fs::create_directories(p);
     return p;
@@ -62,12 +62,8 @@ namespace
   declare_toy(dealii::ParameterHandler &prm)
   {
     prm.enter_subsection("Block");
-    rockdda::io::declare(prm,
-                         "Dip",
-                         "10",
-                         dealii::Patterns::Double(0., 90.),
-                         "deg",
-                         "Dip.");
+    rockdda::io::declare(
+      prm, "Dip", "10", dealii::Patterns::Double(0., 90.), "deg", "Dip.");
     prm.leave_subsection();
   }
 } // namespace
@@ -76,7 +72,7 @@ namespace
 
 TEST(Output, AtomicWriteLeavesNoTemporaryFile)
 {
-  const auto                      dir = scratch("atomic");
+  const auto                         dir = scratch("atomic");
   const rockdda::io::OutputDirectory out((dir / "a" / "b").string());
   out.write("x.csv", "1\n");
   out.write("x.csv", "2\n");
@@ -119,8 +115,9 @@ TEST(DataFile, MalformedNumberNamesTheLine)
               rockdda::io::read_columns((dir / "ragged.txt").string(), 1, 2);
             }).find("ragged.txt:2"),
             std::string::npos);
-  EXPECT_NE(error_of([&]() { rockdda::io::read_columns("/no/such", 1, 1); })
-              .find("/no/such"),
+  EXPECT_NE(error_of([&]() {
+              rockdda::io::read_columns("/no/such", 1, 1);
+            }).find("/no/such"),
             std::string::npos);
 }
 
@@ -131,8 +128,10 @@ TEST(Record, ReadsBothLayoutsAndInterpolates)
   const auto dir = scratch("record");
   write_file(dir / "one.txt", "0\n1\n-1\n");
   write_file(dir / "two.txt", "0.0 0\n0.5 1\n1.0 -1\n");
-  const auto one = rockdda::seismic::read_record((dir / "one.txt").string(), 0.5);
-  const auto two = rockdda::seismic::read_record((dir / "two.txt").string(), 99.);
+  const auto one
+    = rockdda::seismic::read_record((dir / "one.txt").string(), 0.5);
+  const auto two
+    = rockdda::seismic::read_record((dir / "two.txt").string(), 99.);
   EXPECT_DOUBLE_EQ(one.dt, 0.5);
   EXPECT_DOUBLE_EQ(two.dt, 0.5);
   EXPECT_DOUBLE_EQ(one.at(0.25), 0.5);
@@ -151,7 +150,8 @@ TEST(Record, ReadsBothLayoutsAndInterpolates)
 TEST(Parameters, UnknownKeyNamesFileLineAndSection)
 {
   const auto dir = scratch("prm");
-  write_file(dir / "a.prm", "subsection Block\n  set Dip = 10\n  set Dpi = 3\nend\n");
+  write_file(dir / "a.prm",
+             "subsection Block\n  set Dip = 10\n  set Dpi = 3\nend\n");
   dealii::ParameterHandler prm;
   declare_toy(prm);
   const std::string msg = error_of([&]() {
@@ -202,13 +202,20 @@ TEST(Parameters, UnknownSectionAndMissingFile)
 TEST(Parameters, ResolvePathExpandsVariablesRelativeToFile)
 {
   ::setenv("ROCKDDA_TEST_DIR", "/data/x", 1);
-  EXPECT_EQ(rockdda::io::resolve_path("$ROCKDDA_TEST_DIR/r.txt", "/a/b.prm", "k"),
+  EXPECT_EQ(rockdda::io::resolve_path("$ROCKDDA_TEST_DIR/r.txt",
+                                      "/a/b.prm",
+                                      "k"),
             "/data/x/r.txt");
-  EXPECT_EQ(rockdda::io::resolve_path("${ROCKDDA_TEST_DIR}/r.txt", "/a/b.prm", "k"),
+  EXPECT_EQ(rockdda::io::resolve_path("${ROCKDDA_TEST_DIR}/r.txt",
+                                      "/a/b.prm",
+                                      "k"),
             "/data/x/r.txt");
-  EXPECT_EQ(rockdda::io::resolve_path("../r.txt", "/a/b/c.prm", "k"), "/a/r.txt");
+  EXPECT_EQ(rockdda::io::resolve_path("../r.txt", "/a/b/c.prm", "k"),
+            "/a/r.txt");
   EXPECT_NE(error_of([]() {
-              rockdda::io::resolve_path("$ROCKDDA_UNSET_VARIABLE/x", "p.prm", "Key");
+              rockdda::io::resolve_path("$ROCKDDA_UNSET_VARIABLE/x",
+                                        "p.prm",
+                                        "Key");
             }).find("ROCKDDA_UNSET_VARIABLE"),
             std::string::npos);
 }
@@ -228,7 +235,8 @@ TEST(Parameters, EveryKeyDocumentsItsUnit)
   std::istringstream lines(out.str());
   std::string        line;
   unsigned int       n_keys = 0;
-  const std::regex   row("^\\| `([^`]+)` \\| `[^`]*` \\| (.+) \\| (.+) \\| (.+) \\|$");
+  const std::regex   row(
+    "^\\| `([^`]+)` \\| `[^`]*` \\| (.+) \\| (.+) \\| (.+) \\|$");
   while (std::getline(lines, line))
     if (line.rfind("| `", 0) == 0)
       {

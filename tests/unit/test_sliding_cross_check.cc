@@ -25,21 +25,22 @@ TEST(CrossCheck, Fig42aThreeDimensionalEqualsNewmark)
   o3.time_step                = 1e-3; // the thesis's step
   o3.duration                 = T;
   o3.output_interval          = T;
-  const auto r3 = analytical::slide_3d(
+  const auto r3               = analytical::slide_3d(
     [](const double t) {
       return Eigen::Vector3d(0.5 * std::sin(10. * t), 0., -1.);
     },
     o3);
   // Project on the down-dip unit vector (cos a sin b, cos a cos b, -sin a).
-  const double a = alpha * M_PI / 180.;
+  const double          a = alpha * M_PI / 180.;
   const Eigen::Vector3d down_dip(std::cos(a), 0., -std::sin(a));
-  const double d3 = r3.final_displacement.dot(down_dip);
+  const double          d3 = r3.final_displacement.dot(down_dip);
 
   // 1D Newmark, plane model: the horizontal inertial acceleration 0.5 sin(10 t)
   // g acts toward the dip direction (+x), so it is the downslope input.
   seismic::Record rec;
   rec.dt = 1e-3;
-  for (std::size_t i = 0; i <= static_cast<std::size_t>(std::llround(T / rec.dt));
+  for (std::size_t i = 0;
+       i <= static_cast<std::size_t>(std::llround(T / rec.dt));
        ++i)
     rec.acceleration.push_back(0.5 * std::sin(10. * i * rec.dt));
   analytical::NewmarkOptions o1;

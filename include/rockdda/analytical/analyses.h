@@ -28,6 +28,10 @@ namespace rockdda::analytical
     make_sliding3d_analysis();
     std::unique_ptr<io::Analysis>
     make_yield_analysis();
+    std::unique_ptr<io::Analysis>
+    make_rate_state_analysis();
+    std::unique_ptr<io::Analysis>
+    make_back_analysis();
   } // namespace internal
 
   /// Declare the shared "Friction" section (once; later calls do nothing).

@@ -204,8 +204,14 @@ namespace rockdda::analytical
    * positive downslope). Per unit mass, with V the downslope slip rate:
    *   dV/dt = g [ (sin a + k cos a) - mu_reg(V, theta) (cos a - k sin a) ],
    *   d ln theta/dt = 1/theta - |V|/Dc,  d delta/dt = V,
-   * unknowns (delta, V, ln theta). The regularised law is used because Eq.
-   * 2.1 diverges at V = 0; the block may slide upslope (mu_reg is odd in V).
+   * The regularised law is used because Eq. 2.1 diverges at V = 0; the
+   * block may slide upslope (mu_reg is odd in V). The unknowns are
+   * (delta, w, ln theta) with V = V_s sinh(w): w behaves like V near 0 and
+   * like ln V for |V| >> V_s, so the error control is relative in V over the
+   * tens of decades between creep and slip, and mu_reg is nearly linear in
+   * w (easy Newton iterations). A realistic A (>~ 1e-3) is expected: as
+   * A -> 0 the law tends to a discontinuous Coulomb law and stick phases
+   * become prohibitively stiff (continuous sliding still works).
    */
   struct SlidingBlockParameters
   {
@@ -215,10 +221,17 @@ namespace rockdda::analytical
     double dip_deg = 30.;
     /// Gravitational acceleration (m/s^2), > 0.
     double gravity = 9.80665;
-    /// Initial downslope slip rate (m/s).
+    /// Initial downslope slip rate (m/s). 0 (released at rest) is replaced
+    /// by min(V_balance, 1e-6 V0), V_balance being the slip rate at which
+    /// mu_reg balances the driving force: the transient from exactly 0 to
+    /// balance lasts ~V*/g, far below any resolvable time step.
     double initial_velocity = 0.;
     /// Initial state (s); <= 0 means Dc/V0 (mu = mu0 at V = V0).
     double initial_theta = 0.;
+    /// Velocity scale V_s of the unknown w = asinh(V/V_s) (m/s), >= 0;
+    /// 0 = automatic: V* = 2 V0 exp(-Psi/A) at the initial state (clamped to
+    /// [1e-280, V0]), for which w = mu_reg/A at fixed theta.
+    double velocity_scale = 0.;
 
     /// Throw InputError naming the key and valid range for bad values.
     void
@@ -230,8 +243,9 @@ namespace rockdda::analytical
    * every @p output_interval (s) (the last sample is at @p duration).
    * @p record is the horizontal acceleration k(t) (g, + downslope); an empty
    * record means gravity only. If settings.max_step is 0 it is set to the
-   * record's dt so that no input sample is stepped over. Default tolerances:
-   * rtol = 1e-8, atol = 1e-12 (m, m/s, -). Throws std::domain_error if the
+   * record's dt so that no input sample is stepped over. Tolerances apply to
+   * (delta (m), w (-), ln theta (-)); an atol of 1e-8 on w and ln theta and
+   * rtol = 1e-8 are typical. Throws std::domain_error if the
    * normal force vanishes (cos a - k sin a <= 0: the block lifts off).
    */
   RateStateHistory

@@ -60,11 +60,13 @@ namespace rockdda::io
      */
     virtual void
     parse_parameters(dealii::ParameterHandler &prm,
-                     const std::string        &parameter_file) = 0;
+                     const std::string        &parameter_file)
+      = 0;
 
     /// Run the analysis.
     virtual void
-    run(RunContext &context) = 0;
+    run(RunContext &context)
+      = 0;
   };
 
   /// Every analysis type the driver knows.
@@ -76,8 +78,9 @@ namespace rockdda::io
    * sections, and each analysis's own sections.
    */
   void
-  declare_all_parameters(dealii::ParameterHandler                     &prm,
-                         const std::vector<std::unique_ptr<Analysis>> &analyses);
+  declare_all_parameters(
+    dealii::ParameterHandler                     &prm,
+    const std::vector<std::unique_ptr<Analysis>> &analyses);
 
   /**
    * The driver: rockdda [--validate] [--print-parameters] [FILE.prm].

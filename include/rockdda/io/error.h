@@ -20,7 +20,7 @@ namespace rockdda
   {
   public:
     explicit InputError(const std::string &message)
-      : std::runtime_error(message)
+        : std::runtime_error(message)
     {}
   };
 } // namespace rockdda

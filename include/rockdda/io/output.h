@@ -43,8 +43,8 @@ namespace rockdda::io
   };
 
   /**
-   * A table of numbers whose every column carries a name and an SI unit, written
-   * as CSV with a header "name_unit" per column (e.g. "time_s").
+   * A table of numbers whose every column carries a name and an SI unit,
+   * written as CSV with a header "name_unit" per column (e.g. "time_s").
    */
   class Table
   {
@@ -83,7 +83,9 @@ namespace rockdda::io
   public:
     /// Record a scalar result.
     void
-    add(const std::string &quantity, const double value, const std::string &unit);
+    add(const std::string &quantity,
+        const double       value,
+        const std::string &unit);
 
     /// Record a text result (written in the unit column's place as text).
     void
@@ -113,7 +115,7 @@ namespace rockdda::io
   {
   public:
     explicit Log(const bool echo = true)
-      : echo(echo)
+        : echo(echo)
     {}
 
     /// Append a line (a newline is added).

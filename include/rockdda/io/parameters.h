@@ -6,6 +6,8 @@
 #ifndef ROCKDDA_IO_PARAMETERS_H
 #define ROCKDDA_IO_PARAMETERS_H
 
+#include <rockdda/io/error.h>
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <ostream>
@@ -29,12 +31,12 @@ namespace rockdda::io
    * in --print-parameters and doc/parameters.md.
    */
   void
-  declare(dealii::ParameterHandler     &prm,
-          const std::string            &key,
-          const std::string            &default_value,
+  declare(dealii::ParameterHandler            &prm,
+          const std::string                   &key,
+          const std::string                   &default_value,
           const dealii::Patterns::PatternBase &pattern,
-          const std::string            &unit,
-          const std::string            &help);
+          const std::string                   &unit,
+          const std::string                   &help);
 
   /**
    * Resolve a file name given in parameter file @p prm_file: $VAR and ${VAR}
@@ -60,12 +62,34 @@ namespace rockdda::io
           const std::string &range);
 
   /**
+   * Run @p f; an InputError it throws (from a module that does not know the
+   * parameter file) is re-thrown with @p prm_file in front of its message.
+   */
+  template <typename F>
+  void
+  with_parameter_file(const std::string &prm_file, F &&f);
+
+  /**
    * Write the reference of every declared parameter as Markdown: section,
    * key, default, valid values, SI unit and help text.
    */
   void
   print_parameter_reference(const dealii::ParameterHandler &prm,
                             std::ostream                   &out);
+
+  template <typename F>
+  void
+  with_parameter_file(const std::string &prm_file, F &&f)
+  {
+    try
+      {
+        f();
+      }
+    catch (const InputError &e)
+      {
+        throw InputError(prm_file + ": " + e.what());
+      }
+  }
 } // namespace rockdda::io
 
 #endif
