@@ -44,9 +44,13 @@ case "$mode" in
   run)
     out="$here/output-default"
     (cd "$here" && "$build/rockdda" parameter-files/default.prm)
+    /usr/bin/python3 "$here/scripts/plot_statistics.py" "$out" \
+      acceleration_normal_g velocity_normal_m_s displacement_normal_m \
+      displacement_inverted_m
     echo
     echo "Results of the default scene are in $out/"
-    echo "  statistics.csv (time histories), summary.csv (key results), log.txt, parameters.prm"
+    echo "  statistics.csv (time histories), statistics.png (plot), summary.csv (key results),"
+    echo "  log.txt, parameters.prm. Plot any run with scripts/plot_statistics.py OUTPUT_DIR"
     ;;
   test)
     ctest --test-dir "$build" -LE long --output-on-failure --parallel "$jobs"
