@@ -11,21 +11,6 @@ namespace rockdda::analytical
 {
   namespace
   {
-    /// Throw InputError "<key> = <value> is out of range; expected <range>".
-    void
-    require(const bool         ok,
-            const std::string &key,
-            const double       value,
-            const std::string &range)
-    {
-      if (ok && std::isfinite(value))
-        return;
-      std::ostringstream message;
-      message << key << " = " << value << " is out of range; expected "
-              << range;
-      throw InputError(message.str());
-    }
-
     /// Linear interpolation of the measured history at @p t (inside it).
     double
     interpolate(const DisplacementHistory &h, const double t)
@@ -49,12 +34,18 @@ namespace rockdda::analytical
                               const double           time_step,
                               const double           gravity)
   {
-    require(dip_deg >= 0. && dip_deg < 90.,
-            "back_analysis.dip",
-            dip_deg,
-            "0 <= dip < 90 (degrees)");
-    require(time_step > 0., "back_analysis.time_step", time_step, "> 0 (s)");
-    require(gravity > 0., "back_analysis.gravity", gravity, "> 0 (m/s^2)");
+    require_in_range(dip_deg >= 0. && dip_deg < 90.,
+                     "back_analysis.dip",
+                     dip_deg,
+                     "0 <= dip < 90 (degrees)");
+    require_in_range(time_step > 0.,
+                     "back_analysis.time_step",
+                     time_step,
+                     "> 0 (s)");
+    require_in_range(gravity > 0.,
+                     "back_analysis.gravity",
+                     gravity,
+                     "> 0 (m/s^2)");
     const double alpha = dip_deg * M_PI / 180.;
     const double sin_a = std::sin(alpha);
     const double cos_a = std::cos(alpha);
@@ -140,21 +131,23 @@ namespace rockdda::analytical
                        + " samples; expected at least 2");
     for (std::size_t i = 0; i < measured.time.size(); ++i)
       {
-        require(std::isfinite(measured.time[i]),
-                "back_analysis.measured.time[" + std::to_string(i) + "]",
-                measured.time[i],
-                "a finite number (s)");
-        require(std::isfinite(measured.displacement[i]),
-                "back_analysis.measured.displacement[" + std::to_string(i)
-                  + "]",
-                measured.displacement[i],
-                "a finite number (m)");
+        require_in_range(std::isfinite(measured.time[i]),
+                         "back_analysis.measured.time[" + std::to_string(i)
+                           + "]",
+                         measured.time[i],
+                         "a finite number (s)");
+        require_in_range(std::isfinite(measured.displacement[i]),
+                         "back_analysis.measured.displacement["
+                           + std::to_string(i) + "]",
+                         measured.displacement[i],
+                         "a finite number (m)");
         if (i > 0)
-          require(measured.time[i] > measured.time[i - 1],
-                  "back_analysis.measured.time[" + std::to_string(i) + "]",
-                  measured.time[i],
-                  "strictly increasing sample times (> "
-                    + std::to_string(measured.time[i - 1]) + " s)");
+          require_in_range(measured.time[i] > measured.time[i - 1],
+                           "back_analysis.measured.time[" + std::to_string(i)
+                             + "]",
+                           measured.time[i],
+                           "strictly increasing sample times (> "
+                             + std::to_string(measured.time[i - 1]) + " s)");
       }
     // Segments.
     if (boundaries.size() < 2)
@@ -164,46 +157,47 @@ namespace rockdda::analytical
                          "segment)");
     for (std::size_t i = 0; i < boundaries.size(); ++i)
       {
-        require(std::isfinite(boundaries[i]),
-                "back_analysis.segments[" + std::to_string(i) + "]",
-                boundaries[i],
-                "a finite time (s)");
+        require_in_range(std::isfinite(boundaries[i]),
+                         "back_analysis.segments[" + std::to_string(i) + "]",
+                         boundaries[i],
+                         "a finite time (s)");
         if (i > 0)
-          require(boundaries[i] > boundaries[i - 1],
-                  "back_analysis.segments[" + std::to_string(i) + "]",
-                  boundaries[i],
-                  "strictly increasing segment boundaries (> "
-                    + std::to_string(boundaries[i - 1]) + " s)");
+          require_in_range(boundaries[i] > boundaries[i - 1],
+                           "back_analysis.segments[" + std::to_string(i) + "]",
+                           boundaries[i],
+                           "strictly increasing segment boundaries (> "
+                             + std::to_string(boundaries[i - 1]) + " s)");
       }
-    require(boundaries.front() >= measured.time.front(),
-            "back_analysis.segments[0]",
-            boundaries.front(),
-            ">= the first measured time "
-              + std::to_string(measured.time.front()) + " s");
-    require(boundaries.back() <= measured.time.back(),
-            "back_analysis.segments[" + std::to_string(boundaries.size() - 1)
-              + "]",
-            boundaries.back(),
-            "<= the last measured time " + std::to_string(measured.time.back())
-              + " s (the measured history is shorter than the segments)");
+    require_in_range(boundaries.front() >= measured.time.front(),
+                     "back_analysis.segments[0]",
+                     boundaries.front(),
+                     ">= the first measured time "
+                       + std::to_string(measured.time.front()) + " s");
+    require_in_range(
+      boundaries.back() <= measured.time.back(),
+      "back_analysis.segments[" + std::to_string(boundaries.size() - 1) + "]",
+      boundaries.back(),
+      "<= the last measured time " + std::to_string(measured.time.back())
+        + " s (the measured history is shorter than the segments)");
     // Settings.
-    require(settings.phi_lower_deg >= 0. && settings.phi_lower_deg < 90.,
-            "back_analysis.phi_lower",
-            settings.phi_lower_deg,
-            "0 <= phi_lower < 90 (degrees)");
-    require(settings.phi_upper_deg > settings.phi_lower_deg
-              && settings.phi_upper_deg < 90.,
-            "back_analysis.phi_upper",
-            settings.phi_upper_deg,
-            "phi_lower < phi_upper < 90 (degrees)");
-    require(settings.tolerance_deg > 0.,
-            "back_analysis.tolerance",
-            settings.tolerance_deg,
-            "> 0 (degrees)");
-    require(std::isfinite(settings.initial_velocity),
-            "back_analysis.initial_velocity",
-            settings.initial_velocity,
-            "a finite number (m/s)");
+    require_in_range(settings.phi_lower_deg >= 0.
+                       && settings.phi_lower_deg < 90.,
+                     "back_analysis.phi_lower",
+                     settings.phi_lower_deg,
+                     "0 <= phi_lower < 90 (degrees)");
+    require_in_range(settings.phi_upper_deg > settings.phi_lower_deg
+                       && settings.phi_upper_deg < 90.,
+                     "back_analysis.phi_upper",
+                     settings.phi_upper_deg,
+                     "phi_lower < phi_upper < 90 (degrees)");
+    require_in_range(settings.tolerance_deg > 0.,
+                     "back_analysis.tolerance",
+                     settings.tolerance_deg,
+                     "> 0 (degrees)");
+    require_in_range(std::isfinite(settings.initial_velocity),
+                     "back_analysis.initial_velocity",
+                     settings.initial_velocity,
+                     "a finite number (m/s)");
 
     std::vector<SegmentFit> fits;
     SlidingState            state;
@@ -273,20 +267,20 @@ namespace rockdda::analytical
     if (velocity.size() < 3)
       throw InputError("friction fit: " + std::to_string(velocity.size())
                        + " data points; expected at least 3");
-    require(v0 > 0., "friction_fit.v0", v0, "v0 > 0 (m/s)");
+    require_in_range(v0 > 0., "friction_fit.v0", v0, "v0 > 0 (m/s)");
     const std::size_t   n = velocity.size();
     std::vector<double> x(n);
     double              x_mean = 0., y_mean = 0.;
     for (std::size_t i = 0; i < n; ++i)
       {
-        require(velocity[i] > 0.,
-                "friction_fit.velocity[" + std::to_string(i) + "]",
-                velocity[i],
-                "V > 0 (m/s)");
-        require(std::isfinite(mu[i]),
-                "friction_fit.mu[" + std::to_string(i) + "]",
-                mu[i],
-                "a finite number");
+        require_in_range(velocity[i] > 0.,
+                         "friction_fit.velocity[" + std::to_string(i) + "]",
+                         velocity[i],
+                         "V > 0 (m/s)");
+        require_in_range(std::isfinite(mu[i]),
+                         "friction_fit.mu[" + std::to_string(i) + "]",
+                         mu[i],
+                         "a finite number");
         x[i] = std::log(velocity[i] / v0);
         x_mean += x[i];
         y_mean += mu[i];

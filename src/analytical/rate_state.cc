@@ -10,21 +10,6 @@ namespace rockdda::analytical
 {
   namespace
   {
-    /// Throw InputError "<key> = <value> is out of range; expected <range>".
-    void
-    require(const bool         ok,
-            const std::string &key,
-            const double       value,
-            const std::string &range)
-    {
-      if (ok && std::isfinite(value))
-        return;
-      std::ostringstream message;
-      message << key << " = " << value << " is out of range; expected "
-              << range;
-      throw InputError(message.str());
-    }
-
     /// Equally spaced output times 0, T/n, ..., T.
     std::vector<double>
     output_times(const double duration, const unsigned int n_outputs)
@@ -59,11 +44,14 @@ namespace rockdda::analytical
   void
   RateStateParameters::validate() const
   {
-    require(std::isfinite(mu0), "rate_state.mu0", mu0, "a finite number");
-    require(a > 0., "rate_state.a", a, "a > 0");
-    require(b >= 0., "rate_state.b", b, "b >= 0");
-    require(v0 > 0., "rate_state.v0", v0, "v0 > 0 (m/s)");
-    require(dc > 0., "rate_state.dc", dc, "dc > 0 (m)");
+    require_in_range(std::isfinite(mu0),
+                     "rate_state.mu0",
+                     mu0,
+                     "a finite number");
+    require_in_range(a > 0., "rate_state.a", a, "a > 0");
+    require_in_range(b >= 0., "rate_state.b", b, "b >= 0");
+    require_in_range(v0 > 0., "rate_state.v0", v0, "v0 > 0 (m/s)");
+    require_in_range(dc > 0., "rate_state.dc", dc, "dc > 0 (m)");
   }
 
 
@@ -189,10 +177,16 @@ namespace rockdda::analytical
                 const StiffOdeSettings    &settings)
   {
     p.validate();
-    require(v1 > 0., "velocity_step.v1", v1, "v1 > 0 (m/s)");
-    require(v2 > 0., "velocity_step.v2", v2, "v2 > 0 (m/s)");
-    require(duration > 0., "velocity_step.duration", duration, "> 0 (s)");
-    require(n_outputs > 0, "velocity_step.n_outputs", n_outputs, "at least 1");
+    require_in_range(v1 > 0., "velocity_step.v1", v1, "v1 > 0 (m/s)");
+    require_in_range(v2 > 0., "velocity_step.v2", v2, "v2 > 0 (m/s)");
+    require_in_range(duration > 0.,
+                     "velocity_step.duration",
+                     duration,
+                     "> 0 (s)");
+    require_in_range(n_outputs > 0,
+                     "velocity_step.n_outputs",
+                     n_outputs,
+                     "at least 1");
 
     // Unknown: theta (s). d theta/dt = 1 - V2 theta/Dc (Eq. 2.2), which is
     // linear with Jacobian -V2/Dc.
@@ -228,24 +222,28 @@ namespace rockdda::analytical
   SpringSliderParameters::validate() const
   {
     friction.validate();
-    require(load_point_velocity > 0.,
-            "spring_slider.load_point_velocity",
-            load_point_velocity,
-            "> 0 (m/s)");
-    require(stiffness > 0., "spring_slider.stiffness", stiffness, "> 0 (1/m)");
-    require(radiation_damping >= 0.,
-            "spring_slider.radiation_damping",
-            radiation_damping,
-            ">= 0 (s/m)");
-    require(mass >= 0., "spring_slider.mass", mass, ">= 0 (s^2/m)");
-    require(std::isfinite(initial_velocity),
-            "spring_slider.initial_velocity",
-            initial_velocity,
-            "a finite number (m/s; <= 0 means the load-point velocity)");
-    require(std::isfinite(initial_theta),
-            "spring_slider.initial_theta",
-            initial_theta,
-            "a finite number (s; <= 0 means steady state)");
+    require_in_range(load_point_velocity > 0.,
+                     "spring_slider.load_point_velocity",
+                     load_point_velocity,
+                     "> 0 (m/s)");
+    require_in_range(stiffness > 0.,
+                     "spring_slider.stiffness",
+                     stiffness,
+                     "> 0 (1/m)");
+    require_in_range(radiation_damping >= 0.,
+                     "spring_slider.radiation_damping",
+                     radiation_damping,
+                     ">= 0 (s/m)");
+    require_in_range(mass >= 0., "spring_slider.mass", mass, ">= 0 (s^2/m)");
+    require_in_range(
+      std::isfinite(initial_velocity),
+      "spring_slider.initial_velocity",
+      initial_velocity,
+      "a finite number (m/s; <= 0 means the load-point velocity)");
+    require_in_range(std::isfinite(initial_theta),
+                     "spring_slider.initial_theta",
+                     initial_theta,
+                     "a finite number (s; <= 0 means steady state)");
   }
 
 
@@ -257,8 +255,14 @@ namespace rockdda::analytical
                 const StiffOdeSettings       &settings)
   {
     p.validate();
-    require(duration > 0., "spring_slider.duration", duration, "> 0 (s)");
-    require(n_outputs > 0, "spring_slider.n_outputs", n_outputs, "at least 1");
+    require_in_range(duration > 0.,
+                     "spring_slider.duration",
+                     duration,
+                     "> 0 (s)");
+    require_in_range(n_outputs > 0,
+                     "spring_slider.n_outputs",
+                     n_outputs,
+                     "at least 1");
     const RateStateParameters &f   = p.friction;
     const double               vlp = p.load_point_velocity;
     const double               k   = p.stiffness;
@@ -351,23 +355,26 @@ namespace rockdda::analytical
   SlidingBlockParameters::validate() const
   {
     friction.validate();
-    require(dip_deg >= 0. && dip_deg < 90.,
-            "sliding_block.dip",
-            dip_deg,
-            "0 <= dip < 90 (degrees)");
-    require(gravity > 0., "sliding_block.gravity", gravity, "> 0 (m/s^2)");
-    require(std::isfinite(initial_velocity),
-            "sliding_block.initial_velocity",
-            initial_velocity,
-            "a finite number (m/s)");
-    require(velocity_scale >= 0.,
-            "sliding_block.velocity_scale",
-            velocity_scale,
-            ">= 0 (m/s; 0 = automatic)");
-    require(std::isfinite(initial_theta),
-            "sliding_block.initial_theta",
-            initial_theta,
-            "a finite number (s; <= 0 means Dc/V0)");
+    require_in_range(dip_deg >= 0. && dip_deg < 90.,
+                     "sliding_block.dip",
+                     dip_deg,
+                     "0 <= dip < 90 (degrees)");
+    require_in_range(gravity > 0.,
+                     "sliding_block.gravity",
+                     gravity,
+                     "> 0 (m/s^2)");
+    require_in_range(std::isfinite(initial_velocity),
+                     "sliding_block.initial_velocity",
+                     initial_velocity,
+                     "a finite number (m/s)");
+    require_in_range(velocity_scale >= 0.,
+                     "sliding_block.velocity_scale",
+                     velocity_scale,
+                     ">= 0 (m/s; 0 = automatic)");
+    require_in_range(std::isfinite(initial_theta),
+                     "sliding_block.initial_theta",
+                     initial_theta,
+                     "a finite number (s; <= 0 means Dc/V0)");
   }
 
 
@@ -380,13 +387,16 @@ namespace rockdda::analytical
                 const StiffOdeSettings       &settings)
   {
     p.validate();
-    require(duration > 0., "sliding_block.duration", duration, "> 0 (s)");
-    require(output_interval > 0.,
-            "sliding_block.output_interval",
-            output_interval,
-            "> 0 (s)");
+    require_in_range(duration > 0.,
+                     "sliding_block.duration",
+                     duration,
+                     "> 0 (s)");
+    require_in_range(output_interval > 0.,
+                     "sliding_block.output_interval",
+                     output_interval,
+                     "> 0 (s)");
     if (!record.acceleration.empty())
-      require(record.dt > 0., "record.dt", record.dt, "> 0 (s)");
+      require_in_range(record.dt > 0., "record.dt", record.dt, "> 0 (s)");
 
     const RateStateParameters &f     = p.friction;
     const double               alpha = p.dip_deg * M_PI / 180.;

@@ -181,13 +181,8 @@ namespace rockdda::io
           const double       value,
           const std::string &range)
   {
-    if (!ok)
-      {
-        std::ostringstream s;
-        s << prm_file << ": key '" << key << "' = " << value
-          << " is out of range; valid: " << range;
-        throw InputError(s.str());
-      }
+    with_parameter_file(prm_file,
+                        [&]() { require_in_range(ok, key, value, range); });
   }
 
 

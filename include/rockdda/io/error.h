@@ -5,6 +5,8 @@
 #ifndef ROCKDDA_IO_ERROR_H
 #define ROCKDDA_IO_ERROR_H
 
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -23,6 +25,24 @@ namespace rockdda
         : std::runtime_error(message)
     {}
   };
+
+  /**
+   * Throw an InputError "KEY = VALUE is out of range; valid: RANGE" unless
+   * @p ok holds and @p value is finite.
+   */
+  inline void
+  require_in_range(const bool         ok,
+                   const std::string &key,
+                   const double       value,
+                   const std::string &range)
+  {
+    if (ok && std::isfinite(value))
+      return;
+    std::ostringstream message;
+    message << "key '" << key << "' = " << value
+            << " is out of range; valid: " << range;
+    throw InputError(message.str());
+  }
 } // namespace rockdda
 
 #endif
