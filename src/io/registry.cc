@@ -1,5 +1,8 @@
 #include <rockdda/analytical/analyses.h>
+#include <rockdda/dda/analyses.h>
 #include <rockdda/io/analysis.h>
+#include <rockdda/structure/analyses.h>
+#include <rockdda/thermal/analyses.h>
 
 namespace rockdda::io
 {
@@ -8,6 +11,12 @@ namespace rockdda::io
   {
     std::vector<std::unique_ptr<Analysis>> list;
     for (auto &a : analytical::make_analyses())
+      list.push_back(std::move(a));
+    for (auto &a : thermal::make_analyses())
+      list.push_back(std::move(a));
+    for (auto &a : dda::make_analyses())
+      list.push_back(std::move(a));
+    for (auto &a : structure::make_analyses())
       list.push_back(std::move(a));
     return list;
   }

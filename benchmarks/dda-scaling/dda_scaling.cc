@@ -1,0 +1,308 @@
+/**
+ * @file
+ * Benchmark of the 2D DDA engine (issue 3): per-step wall time and
+ * block-steps per second for brick walls of about 100, 1,000 and 10,000
+ * blocks, static and dynamic, with each linear solver; and the accuracy
+ * against cost of the incline and Newmark cases while sweeping the penalty
+ * and the time step.
+ *
+ *   dda_scaling scaling [max_blocks] > scaling.csv
+ *   dda_scaling accuracy > accuracy.csv
+ */
+#include <rockdda/analytical/newmark.h>
+#include <rockdda/dda/engine.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+using namespace rockdda;
+using namespace rockdda::dda;
+using geometry::Point;
+using geometry::Polygon;
+
+namespace
+{
+  constexpr double g_earth = 9.80665;
+
+  Polygon
+  rectangle(double x0, double y0, double w, double h)
+  {
+    Polygon p;
+    p.vertices = {Point(x0, y0),
+                  Point(x0 + w, y0),
+                  Point(x0 + w, y0 + h),
+                  Point(x0, y0 + h)};
+    return p;
+  }
+
+  Polygon
+  rotated(const Polygon &p, double angle)
+  {
+    Polygon r = p;
+    for (auto &v : r.vertices)
+      v = Point(std::cos(angle) * v.x() - std::sin(angle) * v.y(),
+                std::sin(angle) * v.x() + std::cos(angle) * v.y());
+    return r;
+  }
+
+  void
+  add_block(BlockSystem &s, const Polygon &p, bool fixed = false)
+  {
+    Block b;
+    b.id       = static_cast<int>(s.blocks.size());
+    b.polygon  = p;
+    b.material = 0;
+    s.blocks.push_back(b);
+    if (fixed)
+      for (const auto &v : p.vertices)
+        {
+          FixedPoint f;
+          f.block = b.id;
+          f.point = v;
+          s.fixed_points.push_back(f);
+        }
+  }
+
+  BlockSystem
+  base_scene(double phi)
+  {
+    BlockSystem s;
+    s.materials.push_back({2700., 1e10, 0.25, false});
+    JointMaterial j;
+    j.friction_deg = phi;
+    s.joints.push_back(j);
+    return s;
+  }
+
+  /// Running-bond brick wall (bricks 2 m x 1 m) of rows x columns on a
+  /// fixed base.
+  BlockSystem
+  brick_wall(int rows, int columns)
+  {
+    BlockSystem s = base_scene(35.);
+    add_block(s, rectangle(-2., -1., 2. * columns + 5., 1.), true);
+    // Odd rows start and end with a half brick, so the wall has straight
+    // ends.
+    for (int r = 0; r < rows; ++r)
+      if (r % 2 == 0)
+        for (int c = 0; c < columns; ++c)
+          add_block(s, rectangle(2. * c, r * 1., 2., 1.));
+      else
+        {
+          add_block(s, rectangle(0., r * 1., 1., 1.));
+          for (int c = 0; c < columns - 1; ++c)
+            add_block(s, rectangle(2. * c + 1., r * 1., 2., 1.));
+          add_block(s, rectangle(2. * columns - 1., r * 1., 1., 1.));
+        }
+    return s;
+  }
+
+  double
+  seconds_since(std::chrono::steady_clock::time_point t0)
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+      .count();
+  }
+
+  void
+  scaling(int max_blocks)
+  {
+    std::printf("blocks,mode,solver,ms_per_step,block_steps_per_s,"
+                "iterations_per_step,contacts\n");
+    const int sizes[][2] = {{10, 10}, {25, 40}, {80, 125}};
+    for (const auto &sz : sizes)
+      {
+        const int rows = sz[0], columns = sz[1];
+        if (rows * columns > max_blocks)
+          continue;
+        for (double dynamic : {0., 1.})
+          for (SolverType solver : {SolverType::direct, SolverType::iterative})
+            {
+              const int n
+                = static_cast<int>(brick_wall(rows, columns).blocks.size());
+              // The simplicial LDL^T takes seconds per step at 10,000
+              // blocks; it is measured up to about 1,000.
+              if (solver == SolverType::direct && n > 5000)
+                continue;
+              const int           steps = n > 5000 ? 10 : n > 500 ? 40 : 200;
+              std::vector<double> times;
+              double              iterations = 0.;
+              std::size_t         contacts   = 0;
+              for (int repeat = 0; repeat < 3; ++repeat)
+                {
+                  Controls c;
+                  c.time_step          = 1e-3;
+                  c.dynamic            = dynamic;
+                  c.law.normal_penalty = 1e11;
+                  c.solver.type        = solver;
+                  DdaSystem dda(brick_wall(rows, columns), c);
+                  for (int k = 0; k < 3; ++k)
+                    dda.step();
+                  const auto t0 = std::chrono::steady_clock::now();
+                  unsigned   it = 0;
+                  for (int k = 0; k < steps; ++k)
+                    it += dda.step().iterations;
+                  times.push_back(seconds_since(t0) / steps);
+                  iterations = double(it) / steps;
+                  contacts   = dda.contacts().size();
+                }
+              std::sort(times.begin(), times.end());
+              const double t = times[1];
+              std::printf("%d,%s,%s,%.4f,%.0f,%.2f,%zu\n",
+                          n,
+                          dynamic > 0. ? "dynamic" : "static",
+                          solver == SolverType::direct ? "direct" : "iterative",
+                          1e3 * t,
+                          n / t,
+                          iterations,
+                          contacts);
+              std::fflush(stdout);
+            }
+      }
+  }
+
+  /// One case: rows x columns wall, dynamic control, solver name
+  /// (automatic, direct, iterative), timed steps; prints ms per step.
+  void
+  single(int rows, int columns, double dynamic, const std::string &name,
+         int steps)
+  {
+    Controls c;
+    c.time_step          = 1e-3;
+    c.dynamic            = dynamic;
+    c.law.normal_penalty = 1e11;
+    c.solver.type        = name == "direct"    ? SolverType::direct
+                           : name == "iterative" ? SolverType::iterative
+                                                 : SolverType::automatic;
+    DdaSystem dda(brick_wall(rows, columns), c);
+    for (int k = 0; k < 3; ++k)
+      dda.step();
+    const auto t0 = std::chrono::steady_clock::now();
+    unsigned   it = 0, solver_it = 0;
+    for (int k = 0; k < steps; ++k)
+      {
+        const StepReport r = dda.step();
+        it += r.iterations;
+        solver_it += r.solver_iterations;
+      }
+    const double t = seconds_since(t0) / steps;
+    std::printf("%zu blocks: %.3f ms/step, %.0f block-steps/s, %.2f "
+                "open-close it./step, %.1f solver it./step\n",
+                dda.system().blocks.size(),
+                1e3 * t,
+                dda.system().blocks.size() / t,
+                double(it) / steps,
+                double(solver_it) / steps);
+  }
+
+  void
+  accuracy()
+  {
+    std::printf("case,penalty_N_per_m,dt_s,relative_error,wall_s,steps\n");
+    // Incline: 30 deg, friction 20 deg, 1 s.
+    const double alpha = M_PI / 6.;
+    for (double dt : {1e-2, 1e-3, 1e-4})
+      for (double p : {1e8, 1e9, 1e10, 1e11, 1e12})
+        {
+          BlockSystem s = base_scene(20.);
+          add_block(s, rotated(rectangle(-5., -1., 10., 1.), -alpha), true);
+          add_block(s, rotated(rectangle(-0.5, 0., 1., 1.), -alpha));
+          Controls c;
+          c.time_step          = dt;
+          c.law.normal_penalty = p;
+          const auto t0        = std::chrono::steady_clock::now();
+          DdaSystem  dda(s, c);
+          dda.run_until(1.);
+          const double wall = seconds_since(t0);
+          const double d    = dda.centroid_displacement(1).dot(
+            Point(std::cos(alpha), -std::sin(alpha)));
+          const double exact
+            = 0.5 * g_earth
+              * (std::sin(alpha)
+                 - std::cos(alpha) * std::tan(20. * M_PI / 180.));
+          std::printf("incline,%.0e,%.0e,%.3e,%.4f,%lu\n",
+                      p,
+                      dt,
+                      std::abs(d - exact) / exact,
+                      wall,
+                      dda.n_steps);
+        }
+    // Newmark: 20 deg plane, friction 30 deg, 0.5 g sin(2 pi t), 2 s.
+    for (auto mode :
+         {SeismicInput::Mode::inertial, SeismicInput::Mode::displacement})
+      for (double dt : {1e-2, 1e-3, 1e-4})
+        for (double p : {1e8, 1e9, 1e10, 1e11, 1e12})
+          {
+            const double a = 20. * M_PI / 180., A = 0.5, w = 2. * M_PI;
+            BlockSystem  s = base_scene(30.);
+            add_block(s, rotated(rectangle(-5., -1., 10., 1.), a), true);
+            add_block(s, rotated(rectangle(-0.5, 0., 1., 1.), a));
+            s.seismic.mode      = mode;
+            s.seismic.record.dt = 1e-3;
+            for (int k = 0; k <= 2001; ++k)
+              s.seismic.record.acceleration.push_back(A
+                                                      * std::sin(w * k * 1e-3));
+            Controls c;
+            c.time_step          = dt;
+            c.law.normal_penalty = p;
+            const auto t0        = std::chrono::steady_clock::now();
+            try
+              {
+                DdaSystem dda(s, c);
+                dda.run_until(2.);
+                const double wall = seconds_since(t0);
+                const Point  down(-std::cos(a), -std::sin(a));
+                const double d = (dda.centroid_displacement(1)
+                                  - dda.centroid_displacement(0))
+                                   .dot(down);
+                const double exact
+                  = g_earth * (std::cos(a) + std::tan(M_PI / 6.) * std::sin(a))
+                    * analytical::harmonic_sliding_displacement(
+                      A, w, std::tan(M_PI / 6. - a), 2.);
+                std::printf("newmark-%s,%.0e,%.0e,%.3e,%.4f,%lu\n",
+                            mode == SeismicInput::Mode::inertial
+                              ? "inertial"
+                              : "displacement",
+                            p,
+                            dt,
+                            std::abs(d - exact) / exact,
+                            wall,
+                            dda.n_steps);
+              }
+            catch (const DdaFailure &e)
+              {
+                std::printf("newmark,%.0e,%.0e,nan,nan,0\n", p, dt);
+              }
+            std::fflush(stdout);
+          }
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  const std::string what = argc > 1 ? argv[1] : "scaling";
+  if (what == "scaling")
+    scaling(argc > 2 ? std::atoi(argv[2]) : 20000);
+  else if (what == "accuracy")
+    accuracy();
+  else if (what == "single" && argc > 6)
+    single(std::atoi(argv[2]),
+           std::atoi(argv[3]),
+           std::atof(argv[4]),
+           argv[5],
+           std::atoi(argv[6]));
+  else
+    {
+      std::fprintf(stderr,
+                   "usage: dda_scaling scaling [max_blocks] | accuracy | single "
+                   "rows columns dynamic solver steps\n");
+      return 2;
+    }
+  return 0;
+}

@@ -1,0 +1,182 @@
+/**
+ * @file
+ * Heat convergence benchmark: L2 error of manufactured solutions against
+ * cell size (FE_Q 1..3), time step (Crank-Nicolson, backward Euler) and
+ * ARKODE tolerance, with wall times. Writes space.csv and time.csv into the
+ * folder given as argument. See README.md.
+ */
+#include <rockdda/thermal/heat_solver.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <string>
+
+using namespace rockdda::thermal;
+
+namespace
+{
+  using F = std::function<double(double, double, double)>;
+
+  HeatParameters
+  manufactured(const unsigned int degree,
+               const double       h,
+               const double       dt,
+               const TimeStepper  stepper,
+               F                  exact,
+               F                  dtdx,
+               F                  dtdy,
+               F                  source)
+  {
+    HeatParameters p;
+    Material       unit;
+    unit.conductivity = unit.density = unit.heat_capacity = 1.;
+    p.materials                                           = {unit};
+    Block b;
+    b.name             = "unit square";
+    b.vertices         = {{{0., 0.}}, {{1., 0.}}, {{1., 1.}}, {{0., 1.}}};
+    b.edge_tags        = {"dirichlet", "robin", "flux", "dirichlet"};
+    p.blocks           = {b};
+    p.degree           = degree;
+    p.coarse_cell_size = h;
+    p.time_step        = dt;
+    p.stepper          = stepper;
+    BoundaryCondition d, r, f;
+    d.tag                       = "dirichlet";
+    d.type                      = BoundaryCondition::Type::temperature;
+    d.value                     = exact;
+    d.uniform                   = false;
+    r.tag                       = "robin";
+    r.type                      = BoundaryCondition::Type::convective;
+    r.heat_transfer_coefficient = 2.;
+    r.value                     = [=](double x, double y, double t) {
+      return exact(x, y, t) + dtdx(x, y, t) / 2.;
+    };
+    r.uniform             = false;
+    f.tag                 = "flux";
+    f.type                = BoundaryCondition::Type::flux;
+    f.value               = dtdy;
+    f.uniform             = false;
+    p.boundary_conditions = {d, r, f};
+    p.initial_field       = [=](double x, double y) { return exact(x, y, 0.); };
+    p.source              = source;
+    return p;
+  }
+
+  double
+  seconds_since(const std::chrono::steady_clock::time_point &t0)
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+      .count();
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  const std::string folder = argc > 1 ? argv[1] : ".";
+
+  // Space: T = (1 + t) sin(2x + 0.3) cos(1.5y), linear in t (no time
+  // error with the theta scheme), to t = 0.5 with CN, dt = 0.1.
+  {
+    const double a = 2., b = 1.5;
+    F            exact = [=](double x, double y, double t) {
+      return (1. + t) * std::sin(a * x + 0.3) * std::cos(b * y);
+    };
+    F dx = [=](double x, double y, double t) {
+      return (1. + t) * a * std::cos(a * x + 0.3) * std::cos(b * y);
+    };
+    F dy = [=](double x, double y, double t) {
+      return -(1. + t) * b * std::sin(a * x + 0.3) * std::sin(b * y);
+    };
+    F source = [=](double x, double y, double t) {
+      return std::sin(a * x + 0.3) * std::cos(b * y)
+             * (1. + (a * a + b * b) * (1. + t));
+    };
+    std::ofstream out(folder + "/space.csv");
+    out << "degree,h_m,cells,dofs,l2_error,wall_time_s\n";
+    for (unsigned int p = 1; p <= 3; ++p)
+      for (unsigned int level = 0; level < 6; ++level)
+        {
+          const double h  = 0.5 / (1 << level);
+          const auto   t0 = std::chrono::steady_clock::now();
+          HeatSolver   solver(manufactured(
+            p, h, 0.1, TimeStepper::crank_nicolson, exact, dx, dy, source));
+          solver.advance_to(0.5);
+          const double e    = solver.l2_error(exact);
+          const double wall = seconds_since(t0);
+          const auto   st   = solver.statistics();
+          out << p << ',' << h << ',' << st.n_cells << ',' << st.n_dofs << ','
+              << e << ',' << wall << '\n';
+          std::printf("space p=%u h=%.5f dofs=%u error=%.3e wall=%.3f s\n",
+                      p,
+                      h,
+                      st.n_dofs,
+                      e,
+                      wall);
+        }
+  }
+
+  // Time: T = (1 + x^2 + xy + y^2/2)(1 + sin 2t) is in Q2 at every time,
+  // so Q2 has no space error; to t = 1.
+  {
+    auto P
+      = [](double x, double y) { return 1. + x * x + x * y + 0.5 * y * y; };
+    F exact = [=](double x, double y, double t) {
+      return P(x, y) * (1. + std::sin(2. * t));
+    };
+    F dx = [=](double x, double y, double t) {
+      return (2. * x + y) * (1. + std::sin(2. * t));
+    };
+    F dy = [=](double x, double y, double t) {
+      return (x + y) * (1. + std::sin(2. * t));
+    };
+    F source = [=](double x, double y, double t) {
+      return P(x, y) * 2. * std::cos(2. * t) - 3. * (1. + std::sin(2. * t));
+    };
+    std::ofstream out(folder + "/time.csv");
+    out << "stepper,dt_s,tolerance,steps,l2_error,wall_time_s\n";
+    for (const auto stepper :
+         {TimeStepper::crank_nicolson, TimeStepper::backward_euler})
+      for (unsigned int level = 0; level < 8; ++level)
+        {
+          const double dt = 0.25 / (1 << level);
+          const auto   t0 = std::chrono::steady_clock::now();
+          HeatSolver   solver(
+            manufactured(2, 0.25, dt, stepper, exact, dx, dy, source));
+          solver.advance_to(1.);
+          const double e    = solver.l2_error(exact);
+          const double wall = seconds_since(t0);
+          const char  *name
+            = stepper == TimeStepper::crank_nicolson ? "CN" : "BE";
+          out << name << ',' << dt << ",0," << solver.statistics().n_steps
+              << ',' << e << ',' << wall << '\n';
+          std::printf(
+            "time %s dt=%.5f error=%.3e wall=%.4f s\n", name, dt, e, wall);
+        }
+    for (unsigned int level = 0; level < 7; ++level)
+      {
+        const double   tol = std::pow(10., -2. - level);
+        const auto     t0  = std::chrono::steady_clock::now();
+        HeatParameters p   = manufactured(
+          2, 0.25, 0.01, TimeStepper::arkode, exact, dx, dy, source);
+        p.arkode_relative_tolerance = tol;
+        p.arkode_absolute_tolerance = tol;
+        HeatSolver solver(p);
+        solver.advance_to(1.);
+        const double e     = solver.l2_error(exact);
+        const double wall  = seconds_since(t0);
+        const auto   steps = solver.statistics().n_steps;
+        out << "ARKODE," << 1. / steps << ',' << tol << ',' << steps << ',' << e
+            << ',' << wall << '\n';
+        std::printf("time ARKODE tol=%.0e steps=%lu error=%.3e wall=%.4f s\n",
+                    tol,
+                    steps,
+                    e,
+                    wall);
+      }
+  }
+  return 0;
+}

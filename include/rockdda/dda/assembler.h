@@ -1,0 +1,113 @@
+/**
+ * @file
+ * Assembly of the 2D DDA equations K D = F from 6x6 block submatrices by
+ * minimising the total potential energy (Shi 1988): elastic strain energy,
+ * initial stress, inertia (constant-acceleration scheme), body forces,
+ * point loads, fixed points and contact springs.
+ */
+#ifndef ROCKDDA_DDA_ASSEMBLER_H
+#define ROCKDDA_DDA_ASSEMBLER_H
+
+#include <rockdda/dda/block_matrices.h>
+#include <rockdda/dda/block_system.h>
+#include <rockdda/dda/contact_law.h>
+#include <rockdda/dda/contact_set.h>
+#include <rockdda/dda/linear_solver.h>
+
+#include <vector>
+
+namespace rockdda::dda
+{
+  /// What one step's assembly needs besides the scene.
+  struct StepParameters
+  {
+    /// Step length (s).
+    double dt = 1e-3;
+    /// Dynamic control in [0, 1]: the carried-over velocity is scaled by it.
+    double dynamic = 1.;
+    /// Body acceleration during the step (m/s^2): gravity and seismic
+    /// inertial load.
+    geometry::Point body_acceleration = geometry::Point::Zero();
+    /// Fixed-point spring stiffness (N/m).
+    double fixed_penalty = 1e12;
+    /// Target positions of the fixed points at the end of the step (m).
+    std::vector<geometry::Point> fixed_targets;
+    ContactLaw                   law;
+    /// Gaps and shear displacements below this are round-off (m).
+    double gap_tolerance = 0.;
+    /// See ContactKinematics::reversal_tolerance (m).
+    double reversal_tolerance = 0.;
+  };
+
+  /**
+   * Builds the block matrix and right-hand side. prepare_step() computes
+   * the state-independent part (per-block matrices, loads, contact
+   * kinematics) and the pattern; assemble() adds the contact springs and
+   * friction forces for the current states, filling values in place.
+   */
+  class Assembler
+  {
+  public:
+    /// Compute the parts that do not depend on the contact states.
+    void
+    prepare_step(const BlockSystem          &system,
+                 const std::vector<Contact> &contacts,
+                 const StepParameters       &parameters,
+                 BlockSparseMatrix          &matrix);
+
+    /// Assemble K and F for the current contact states.
+    void
+    assemble(const std::vector<Contact> &contacts,
+             BlockSparseMatrix          &matrix,
+             Eigen::VectorXd            &rhs) const;
+
+    /// Recompute the shear kinematics of contact @p index after its shear
+    /// reference changed (a contact that locks during the iteration).
+    void
+    set_shear_reference(const BlockSystem &system,
+                        const int          index,
+                        const Contact     &contact);
+
+    /// Kinematics of each contact (same order as the contacts).
+    const std::vector<ContactKinematics> &
+    kinematics() const
+    {
+      return contact_kinematics;
+    }
+
+    /// Moments of each block at the start of the step.
+    const std::vector<BlockMoments> &
+    moments() const
+    {
+      return block_moments_;
+    }
+
+    /// Mass matrix of each block at the start of the step.
+    const std::vector<Matrix6> &
+    masses() const
+    {
+      return mass;
+    }
+
+    /// Kinematics of a contact at the current geometry, with its shear
+    /// reference @p xi_ref.
+    static ContactKinematics
+    contact_kinematics_of(const BlockSystem               &system,
+                          const std::vector<BlockMoments> &moments,
+                          const ContactCandidate          &candidate,
+                          const double                     xi_ref,
+                          const double                     tolerance);
+
+  private:
+    StepParameters                 params;
+    std::vector<Matrix6>           base_matrix, mass;
+    std::vector<Vector6>           base_rhs;
+    std::vector<BlockMoments>      block_moments_;
+    std::vector<ContactKinematics> contact_kinematics;
+    /// Pair index of each contact (-1 for a contact within one block).
+    std::vector<int>           contact_pair;
+    std::vector<JointMaterial> joints;
+  };
+} // namespace rockdda::dda
+
+#endif

@@ -1,0 +1,30 @@
+/**
+ * @file
+ * The DDA block file: a simple text description of a scene (materials,
+ * joints, blocks, fixed, load and measurement points, initial velocities).
+ * The format is documented in doc/block-file-format-dda.md.
+ */
+#ifndef ROCKDDA_DDA_BLOCK_FILE_H
+#define ROCKDDA_DDA_BLOCK_FILE_H
+
+#include <rockdda/dda/block_system.h>
+
+#include <string>
+
+namespace rockdda::dda
+{
+  /**
+   * Read a block file into a scene (gravity and seismic input are left at
+   * their defaults). Throws InputError naming the file and line for an
+   * unknown keyword, a malformed number, a duplicate or unknown id, or a
+   * block with fewer than 3 vertices.
+   */
+  BlockSystem
+  read_block_file(const std::string &file_name);
+
+  /// Parse block-file text; @p name is used in messages.
+  BlockSystem
+  parse_block_text(const std::string &text, const std::string &name);
+} // namespace rockdda::dda
+
+#endif

@@ -1,0 +1,176 @@
+/**
+ * @file
+ * Plain data of a 2D DDA block system: blocks, materials, joints, fixed,
+ * load and measurement points, body acceleration and seismic input. All
+ * quantities are SI per unit thickness (m, kg/m^3, Pa, N/m, s).
+ */
+#ifndef ROCKDDA_DDA_BLOCK_SYSTEM_H
+#define ROCKDDA_DDA_BLOCK_SYSTEM_H
+
+#include <rockdda/geometry/polygon.h>
+#include <rockdda/seismic/record.h>
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace rockdda::dda
+{
+  /// The 6 unknowns of a block (u0, v0, r0, eps_x, eps_y, gamma_xy).
+  using Vector6 = Eigen::Matrix<double, 6, 1>;
+  /// A 6x6 block submatrix.
+  using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+  /// Elastic block material.
+  struct BlockMaterial
+  {
+    /// Density (kg/m^3), > 0.
+    double density = 2700.;
+    /// Young's modulus (Pa), > 0.
+    double young = 1e10;
+    /// Poisson's ratio (-), in [0, 0.5).
+    double poisson = 0.25;
+    /// Plane strain (true) or plane stress (false).
+    bool plane_strain = false;
+  };
+
+  /// Mohr-Coulomb strength of a joint (contact) material.
+  struct JointMaterial
+  {
+    /// Friction angle (deg), in [0, 90).
+    double friction_deg = 30.;
+    /// Cohesion (Pa), >= 0.
+    double cohesion = 0.;
+    /// Tensile strength (Pa), >= 0.
+    double tensile = 0.;
+  };
+
+  /// One block: a simple polygon with its state.
+  struct Block
+  {
+    /// Identifier from the input (used in messages).
+    int id = 0;
+    /// Current geometry (m), counter-clockwise.
+    geometry::Polygon polygon;
+    /// Index into BlockSystem::materials; -1 = none (rejected by validate).
+    int material = -1;
+    /// Index into BlockSystem::joints (joint material of the block's faces).
+    int joint = 0;
+    /// Velocity of the 6 unknowns (m/s, rad/s, 1/s).
+    Vector6 velocity = Vector6::Zero();
+    /// Accumulated stress (sigma_x, sigma_y, tau_xy) (Pa), tension positive.
+    Eigen::Vector3d stress = Eigen::Vector3d::Zero();
+    /// Accumulated strain (eps_x, eps_y, gamma_xy) (-).
+    Eigen::Vector3d strain = Eigen::Vector3d::Zero();
+    /// Centroid at t = 0 (m); displacement = centroid now - this.
+    geometry::Point initial_centroid = geometry::Point::Zero();
+    /// Cumulative rotation (rad).
+    double rotation = 0.;
+  };
+
+  /// A point of a block held to a target position by a stiff spring.
+  struct FixedPoint
+  {
+    /// Block index.
+    int block = 0;
+    /// Current position of the material point (m).
+    geometry::Point point = geometry::Point::Zero();
+    /// Position at t = 0 (m); the target is this plus the prescribed
+    /// displacement (ground displacement in displacement mode).
+    geometry::Point anchor = geometry::Point::Zero();
+    /// Whether the seismic displacement moves this point's target.
+    bool moves_with_ground = true;
+  };
+
+  /// A constant point force on a block (N per m thickness).
+  struct LoadPoint
+  {
+    int             block = 0;
+    geometry::Point point = geometry::Point::Zero();
+    geometry::Point force = geometry::Point::Zero();
+  };
+
+  /// A material point of a block whose motion and stress are reported.
+  struct MeasurementPoint
+  {
+    int             block   = 0;
+    geometry::Point point   = geometry::Point::Zero();
+    geometry::Point initial = geometry::Point::Zero();
+  };
+
+  /**
+   * Horizontal seismic input. The record is the horizontal ground
+   * acceleration (g, positive towards +x). Inertial mode: every block is
+   * loaded by -a(t) g (the system is analysed in the frame of the ground
+   * and the fixed points stay put). Displacement mode: the fixed points
+   * follow the ground displacement u(t), the exact double integral of the
+   * piecewise-linear record from rest (Kamai & Hatzor 2008).
+   */
+  struct SeismicInput
+  {
+    enum class Mode
+    {
+      none,
+      inertial,
+      displacement
+    };
+    Mode            mode = Mode::none;
+    seismic::Record record;
+    /// Gravitational acceleration used to convert g to m/s^2.
+    double g = 9.80665;
+  };
+
+  /// The whole scene: plain data handed to DdaSystem.
+  struct BlockSystem
+  {
+    std::vector<BlockMaterial>    materials;
+    std::vector<JointMaterial>    joints;
+    std::vector<Block>            blocks;
+    std::vector<FixedPoint>       fixed_points;
+    std::vector<LoadPoint>        load_points;
+    std::vector<MeasurementPoint> measurement_points;
+    /// Constant body acceleration (m/s^2), e.g. (0, -9.80665).
+    geometry::Point gravity = geometry::Point(0., -9.80665);
+    SeismicInput    seismic;
+  };
+
+  /**
+   * Check a scene and prepare it: clockwise polygons are reversed (a
+   * warning per block is appended to @p warnings), initial centroids are
+   * set. Throws InputError naming the block id for fewer than 3 vertices,
+   * zero area, a self-intersecting polygon, a missing or invalid material,
+   * zero density, blocks overlapping at t = 0 (by more than
+   * @p overlap_tolerance m), and points outside their block.
+   */
+  void
+  validate_and_prepare(BlockSystem              &system,
+                       std::vector<std::string> &warnings,
+                       const double              overlap_tolerance);
+
+  /**
+   * The ground displacement and velocity of a seismic record, integrated
+   * exactly for a piecewise-linear acceleration from rest at t = 0.
+   */
+  class GroundMotionIntegral
+  {
+  public:
+    GroundMotionIntegral() = default;
+    /// Integrate @p record (g) with @p g (m/s^2).
+    GroundMotionIntegral(const seismic::Record &record, const double g);
+    /// Acceleration (m/s^2) at t; 0 outside the record.
+    double
+    acceleration(const double t) const;
+    /// Displacement (m) at t; after the record the ground moves on at the
+    /// final velocity.
+    double
+    displacement(const double t) const;
+
+  private:
+    double              dt = 0.;
+    std::vector<double> a, v, u;
+  };
+
+} // namespace rockdda::dda
+
+#endif

@@ -1,0 +1,88 @@
+/**
+ * @file
+ * Persistent contact states of 2D DDA (open, sliding, locked) and their
+ * transfer from one time step to the next.
+ */
+#ifndef ROCKDDA_DDA_CONTACT_SET_H
+#define ROCKDDA_DDA_CONTACT_SET_H
+
+#include <rockdda/dda/contact_detection.h>
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace rockdda::dda
+{
+  /// State of a contact.
+  enum class ContactState : int
+  {
+    open    = 0,
+    sliding = 1,
+    locked  = 2
+  };
+
+  /**
+   * One contact during a step: the geometric record plus its state. The
+   * shear reference xi_ref is the edge parameter of the point of the edge
+   * that the vertex was locked to; the shear displacement is measured from
+   * it. normal_force (N/m, compression positive) and slide_direction (+1
+   * along the edge, -1 against) come from the latest solve.
+   */
+  struct Contact
+  {
+    ContactCandidate geometry;
+    ContactState     state           = ContactState::open;
+    ContactState     state_at_start  = ContactState::open;
+    double           xi_ref          = 0.;
+    double           normal_force    = 0.;
+    double           shear_force     = 0.;
+    int              slide_direction = 0;
+    /// Cohesion and tensile strength are lost once the contact has slid or
+    /// opened.
+    bool broken = false;
+    /// Joint material index.
+    int joint = 0;
+  };
+
+  /**
+   * The states that persist between steps, keyed by (block i, vertex k,
+   * block j, edge e). A contact found again keeps its state, shear reference
+   * and normal force; a vertex that passes onto the neighbouring edge of the
+   * same block keeps its state with the reference moved to its current
+   * projection.
+   */
+  class ContactSet
+  {
+  public:
+    /**
+     * Turn this step's candidates into contacts, with the states transferred
+     * from the previous step. New contacts start locked if their gap is
+     * below @p closed_gap (m), open otherwise.
+     */
+    std::vector<Contact>
+    transfer(const std::vector<ContactCandidate> &candidates,
+             const double                         closed_gap) const;
+
+    /// Store the states at the end of an accepted step.
+    void
+    store(const std::vector<Contact> &contacts);
+
+    /// Number of stored contacts.
+    std::size_t
+    size() const
+    {
+      return stored.size();
+    }
+
+  private:
+    static std::uint64_t
+    key(int i, int k, int j, int e);
+    static std::uint64_t
+                                               vertex_key(int i, int k, int j);
+    std::unordered_map<std::uint64_t, Contact> stored;
+    std::unordered_map<std::uint64_t, Contact> by_vertex;
+  };
+} // namespace rockdda::dda
+
+#endif

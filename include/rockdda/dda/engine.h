@@ -1,0 +1,214 @@
+/**
+ * @file
+ * DdaSystem: runs 2D DDA time steps (contact detection, open-close
+ * iteration, adaptive time step, update) on a BlockSystem and exposes the
+ * state.
+ */
+#ifndef ROCKDDA_DDA_ENGINE_H
+#define ROCKDDA_DDA_ENGINE_H
+
+#include <rockdda/dda/assembler.h>
+#include <rockdda/dda/block_system.h>
+#include <rockdda/dda/contact_set.h>
+#include <rockdda/dda/linear_solver.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rockdda::dda
+{
+  /// Numerical controls of a DDA run.
+  struct Controls
+  {
+    /// Maximum (and initial) time step (s), > 0.
+    double time_step = 1e-3;
+    /// Smallest time step before the run stops (s); 0 = 1e-6 * time_step.
+    double min_time_step = 0.;
+    /// Dynamic control parameter in [0, 1] (0 static, 1 fully dynamic).
+    double dynamic = 1.;
+    /// Open-close iterations before the step is cut.
+    unsigned int max_iterations = 6;
+    /// Largest vertex displacement per step, as a fraction of the domain
+    /// size (the larger side of the bounding box of all blocks).
+    double max_displacement_ratio = 0.01;
+    /// The allowed vertex displacement per step is also at most this
+    /// fraction of the median block size (keeps the contact search local
+    /// in large domains of small blocks).
+    double max_displacement_block_ratio = 0.05;
+    /// Contact search distance = search_factor * the allowed vertex
+    /// displacement per step.
+    double search_factor = 2.5;
+    /// Contact springs.
+    ContactLaw law;
+    /// Fixed-point spring stiffness (N/m); 0 = 10 * the normal penalty.
+    double fixed_penalty = 0.;
+    /// Linear solver.
+    SolverOptions solver;
+    /// Factor by which the time step grows back after a step that
+    /// converged without a cut in at most max(2, max_iterations / 2)
+    /// iterations (>= 1).
+    double growth = 1.3;
+    /// Factor by which a step is cut (> 1).
+    double cut_factor = 3.;
+    /// Stop (DdaFailure) after this many steps in one run_until() call;
+    /// 0 = 100 * (duration / time_step) + 1000.
+    unsigned long max_steps = 0;
+  };
+
+  /// What one accepted step did.
+  struct StepReport
+  {
+    /// Time at the end of the step (s) and its length (s).
+    double time = 0., dt = 0.;
+    /// Open-close iterations of the accepted attempt, and cuts before it.
+    unsigned int iterations = 0, cuts = 0;
+    /// Contacts per state at the end of the step.
+    unsigned int n_open = 0, n_sliding = 0, n_locked = 0;
+    /// Largest vertex displacement in the step (m).
+    double max_displacement = 0.;
+    /// Linear solver iterations (CG) summed over the step.
+    unsigned long solver_iterations = 0;
+  };
+
+  /// A run that cannot continue (the message is the diagnosis).
+  class DdaFailure : public std::runtime_error
+  {
+  public:
+    explicit DdaFailure(const std::string &message)
+        : std::runtime_error(message)
+    {}
+  };
+
+  /**
+   * The 2D DDA engine. Owns the scene (validated on construction) and the
+   * persistent contact states, and advances them step by step.
+   */
+  class DdaSystem
+  {
+  public:
+    /// Validate @p scene (throws InputError naming the block) and set up.
+    DdaSystem(BlockSystem scene, const Controls &controls);
+
+    /**
+     * Advance one accepted step. Cuts the step when the open-close
+     * iteration does not converge, a vertex moves too far, the solver fails
+     * or the result is not finite; throws DdaFailure with a diagnosis when
+     * the step would fall below the minimum time step.
+     */
+    StepReport
+    step();
+
+    /**
+     * Settle the scene under gravity before t = 0: @p steps static steps
+     * (dynamic control 0, no seismic input, time not advanced), then zero
+     * the velocities and take the settled state as the reference for
+     * displacements. A scene that starts with uncompressed contact springs
+     * otherwise drops onto them at t = 0 and, for small time steps (little
+     * numerical damping of the contact vibration), keeps bouncing.
+     */
+    void
+    settle(const unsigned int steps);
+
+    /// Advance until @p end_time (s); the last step is shortened to end
+    /// there. Returns the report of the last step.
+    StepReport
+    run_until(const double end_time);
+
+    const BlockSystem &
+    system() const
+    {
+      return scene;
+    }
+    const std::vector<Contact> &
+    contacts() const
+    {
+      return current_contacts;
+    }
+    double
+    time() const
+    {
+      return t;
+    }
+    double
+    time_step() const
+    {
+      return dt;
+    }
+    double
+    domain_size() const
+    {
+      return domain;
+    }
+    /// Allowed vertex displacement per step (m).
+    double
+    allowed_displacement() const
+    {
+      return allowed_step;
+    }
+    const std::vector<std::string> &
+    warnings() const
+    {
+      return warning_list;
+    }
+    /// Solver used in the last step.
+    SolverType
+    solver_type() const
+    {
+      return solver.type();
+    }
+    const Controls &
+    controls() const
+    {
+      return ctrl;
+    }
+
+    /// Kinetic energy sum 1/2 v^T M v (J/m).
+    double
+    kinetic_energy() const;
+    /// Elastic strain energy of the blocks (J/m).
+    double
+    strain_energy() const;
+    /// Energy stored in closed contact springs (J/m).
+    double
+    contact_energy() const;
+    /// Gravitational potential energy relative to t = 0 (J/m).
+    double
+    potential_energy() const;
+
+    /// Displacement (m) of a block's centroid since t = 0.
+    geometry::Point
+    centroid_displacement(const int block) const;
+
+    /// Number of steps and cuts so far.
+    unsigned long n_steps = 0, n_cuts = 0;
+
+  private:
+    StepReport
+    advance(const double max_length);
+    bool
+    try_step(const double                step,
+             const std::vector<Contact> &start,
+             StepReport                 &report,
+             std::string                &why);
+    void
+    update(const Eigen::VectorXd &d, const double step);
+
+    BlockSystem              scene;
+    Controls                 ctrl;
+    ContactSet               contact_set;
+    std::vector<Contact>     current_contacts;
+    Assembler                assembler;
+    BlockSparseMatrix        matrix;
+    LinearSolver             solver;
+    GroundMotionIntegral     ground;
+    Eigen::VectorXd          last_solution;
+    std::vector<std::string> warning_list;
+    double                   t = 0., dt = 0., domain = 0., gap_tolerance = 0.;
+    double                   dt_min = 0.;
+    /// Allowed vertex displacement per step (m).
+    double allowed_step = 0.;
+  };
+} // namespace rockdda::dda
+
+#endif

@@ -1,0 +1,134 @@
+/**
+ * @file
+ * The linear system of 2D DDA: a symmetric sparse matrix of 6x6 blocks
+ * with a pattern fixed within a step, and its direct (sparse LDL^T) and
+ * iterative (block-Jacobi preconditioned CG) solvers.
+ */
+#ifndef ROCKDDA_DDA_LINEAR_SOLVER_H
+#define ROCKDDA_DDA_LINEAR_SOLVER_H
+
+#include <rockdda/dda/block_system.h>
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace rockdda::dda
+{
+  /**
+   * Symmetric matrix of n x n blocks of size 6: every diagonal block and
+   * the upper block K_ij (i < j) of each coupled pair are stored. The
+   * pattern is set once per step; values are filled in place.
+   */
+  class BlockSparseMatrix
+  {
+  public:
+    /// Set the pattern: @p n blocks and the coupled pairs (i < j, unique).
+    void
+    reinit(const int n, const std::vector<std::pair<int, int>> &pairs);
+
+    /// Set every stored value to zero.
+    void
+    set_zero();
+
+    /// Number of blocks.
+    int
+    n_blocks() const
+    {
+      return static_cast<int>(diag.size());
+    }
+
+    /// y = K x.
+    void
+    vmult(const Eigen::VectorXd &x, Eigen::VectorXd &y) const;
+
+    /// Diagonal blocks.
+    std::vector<Matrix6> diag;
+    /// Upper off-diagonal blocks K_ij, one per pair.
+    std::vector<Matrix6> off;
+    /// The pairs (i < j) of the off-diagonal blocks.
+    std::vector<std::pair<int, int>> pairs;
+  };
+
+  /// Which linear solver to use.
+  enum class SolverType
+  {
+    /// Direct for up to automatic_limit blocks, iterative above (measured
+    /// faster from about 100 blocks, benchmarks/dda-scaling).
+    automatic,
+    /// Sparse LDL^T (Eigen SimplicialLDLT, AMD ordering), pattern analysed
+    /// once per step, factorised per open-close iteration.
+    direct,
+    /// Block-Jacobi preconditioned conjugate gradients, warm-started.
+    iterative
+  };
+
+  /// Options of the linear solver.
+  struct SolverOptions
+  {
+    SolverType type = SolverType::automatic;
+    /// Relative tolerance of CG on the preconditioned residual norm.
+    double tolerance = 1e-10;
+    /// CG iteration limit (0: 10 * number of unknowns, at most 20000).
+    int max_iterations = 0;
+    /// Automatic choice: direct up to this many blocks.
+    int automatic_limit = 60;
+  };
+
+  /**
+   * Solves K x = f for the block matrix. new_pattern() is called when the
+   * pattern changes (each step); solve() may be called many times.
+   */
+  class LinearSolver
+  {
+  public:
+    explicit LinearSolver(const SolverOptions &options = SolverOptions());
+    ~LinearSolver();
+
+    /// Analyse the pattern of @p matrix (symbolic factorisation).
+    void
+    new_pattern(const BlockSparseMatrix &matrix);
+
+    /**
+     * Solve K x = f; @p x holds the starting guess on entry (iterative).
+     * With @p same_matrix the matrix is known to equal the one of the
+     * previous call (only f changed), and its factorisation (direct) or
+     * preconditioner (iterative) is reused. Returns false if the matrix is
+     * not positive definite, CG did not converge, or the result is not
+     * finite.
+     */
+    bool
+    solve(const BlockSparseMatrix &matrix,
+          const Eigen::VectorXd   &f,
+          Eigen::VectorXd         &x,
+          const bool               same_matrix = false);
+
+    /// The solver used for the current pattern (never automatic).
+    SolverType
+    type() const
+    {
+      return current;
+    }
+
+    /// CG iterations of the last solve (0 for direct).
+    int
+    last_iterations() const
+    {
+      return iterations;
+    }
+
+  private:
+    struct Direct;
+    SolverOptions           options;
+    SolverType              current    = SolverType::direct;
+    int                     iterations = 0;
+    bool                    factorised = false;
+    std::unique_ptr<Direct> direct;
+    std::vector<Matrix6>    inverse_diag;
+    Eigen::VectorXd         r, z, p, q;
+  };
+} // namespace rockdda::dda
+
+#endif

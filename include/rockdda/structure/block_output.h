@@ -1,0 +1,51 @@
+/**
+ * @file
+ * Writing and reading the block file of the DDA engine
+ * (doc/block-file-format.md), and VTU files of blocks and tagged edges.
+ */
+#ifndef ROCKDDA_STRUCTURE_BLOCK_OUTPUT_H
+#define ROCKDDA_STRUCTURE_BLOCK_OUTPUT_H
+
+#include <rockdda/structure/block_set.h>
+
+#include <string>
+
+namespace rockdda::structure
+{
+  /// The block file text (format "rockdda-blocks 1", coordinates in m).
+  std::string
+  block_file_text(const BlockSet &blocks);
+
+  /**
+   * The blocks in the scene format of the dda analysis
+   * (doc/block-file-format-dda.md): one material (thesis Table 3-2: 2300
+   * kg/m^3, 15.3 GPa, 0.21) and one joint (30 deg) for every block; the
+   * per-edge tags are only in the rockdda block file.
+   */
+  std::string
+  dda_block_file_text(const BlockSet &blocks);
+
+  /**
+   * Read a block file; throws InputError naming @p file_name and the line
+   * for anything malformed (bad counts, vertex index out of range, unknown
+   * edge kind, a block with fewer than 3 vertices or non-positive area).
+   */
+  BlockSet
+  read_block_file(const std::string &file_name);
+
+  /// Parse block file text (as read_block_file; @p name for messages).
+  BlockSet
+  parse_block_file(const std::string &text, const std::string &name);
+
+  /// VTU (ParaView) of the blocks: polygons with cell data block id, area
+  /// (m^2), width (m) along @p bedding_dip_deg.
+  std::string
+  blocks_vtu(const BlockSet &blocks, const double bedding_dip_deg);
+
+  /// VTU of the block edges as lines with cell data kind (EdgeKind as int),
+  /// set, block id.
+  std::string
+  edges_vtu(const BlockSet &blocks);
+} // namespace rockdda::structure
+
+#endif

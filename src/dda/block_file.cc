@@ -1,0 +1,230 @@
+/**
+ * @file
+ * Reader of the DDA block file (doc/block-file-format-dda.md).
+ */
+#include <rockdda/dda/block_file.h>
+#include <rockdda/io/error.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace rockdda::dda
+{
+  BlockSystem
+  read_block_file(const std::string &file_name)
+  {
+    std::ifstream in(file_name);
+    if (!in)
+      throw InputError("block file '" + file_name + "': cannot open it");
+    std::ostringstream s;
+    s << in.rdbuf();
+    return parse_block_text(s.str(), file_name);
+  }
+
+
+
+  BlockSystem
+  parse_block_text(const std::string &text, const std::string &name)
+  {
+    BlockSystem        system;
+    std::map<int, int> materials, joints, blocks;
+    std::istringstream in(text);
+    std::string        line;
+    int                line_no = 0;
+    struct Pending
+    {
+      int                 line, block;
+      std::string         kind;
+      std::vector<double> values;
+    };
+    std::vector<Pending> pending;
+    std::vector<int>     block_material_id, block_joint_id, block_line;
+    while (std::getline(in, line))
+      {
+        ++line_no;
+        const auto hash = line.find('#');
+        if (hash != std::string::npos)
+          line.erase(hash);
+        std::istringstream tokens(line);
+        std::string        keyword;
+        if (!(tokens >> keyword))
+          continue;
+        const std::string where
+          = "block file '" + name + "', line " + std::to_string(line_no) + ": ";
+        std::vector<std::string> words;
+        for (std::string w; tokens >> w;)
+          words.push_back(w);
+        auto number = [&](std::size_t k) {
+          if (k >= words.size())
+            throw InputError(where + "'" + keyword + "' needs more values");
+          char        *end = nullptr;
+          const double v   = std::strtod(words[k].c_str(), &end);
+          if (end == words[k].c_str() || *end != '\0' || !std::isfinite(v))
+            throw InputError(where + "'" + words[k] + "' is not a number");
+          return v;
+        };
+        auto integer = [&](std::size_t k) {
+          const double v = number(k);
+          if (v != std::floor(v))
+            throw InputError(where + "'" + words[k] + "' is not an integer id");
+          return static_cast<int>(v);
+        };
+        auto expect = [&](std::size_t lo, std::size_t hi, const char *form) {
+          if (words.size() < lo || words.size() > hi)
+            throw InputError(where + "expected '" + form + "'");
+        };
+        if (keyword == "material")
+          {
+            expect(4,
+                   5,
+                   "material ID DENSITY E NU [plane-stress|plane-strain]");
+            const int id = integer(0);
+            if (materials.count(id))
+              throw InputError(where + "material " + std::to_string(id)
+                               + " is defined twice");
+            BlockMaterial m;
+            m.density = number(1);
+            m.young   = number(2);
+            m.poisson = number(3);
+            if (words.size() == 5)
+              {
+                if (words[4] != "plane-stress" && words[4] != "plane-strain")
+                  throw InputError(where + "'" + words[4]
+                                   + "': valid: plane-stress, plane-strain");
+                m.plane_strain = words[4] == "plane-strain";
+              }
+            materials[id] = static_cast<int>(system.materials.size());
+            system.materials.push_back(m);
+          }
+        else if (keyword == "joint")
+          {
+            expect(4, 4, "joint ID FRICTION_DEG COHESION TENSILE");
+            const int id = integer(0);
+            if (joints.count(id))
+              throw InputError(where + "joint " + std::to_string(id)
+                               + " is defined twice");
+            JointMaterial j;
+            j.friction_deg = number(1);
+            j.cohesion     = number(2);
+            j.tensile      = number(3);
+            joints[id]     = static_cast<int>(system.joints.size());
+            system.joints.push_back(j);
+          }
+        else if (keyword == "block")
+          {
+            if (words.size() < 3 + 6 || (words.size() - 3) % 2 != 0)
+              throw InputError(
+                where
+                + "expected 'block ID MATERIAL JOINT x1 y1 x2 y2 x3 y3 ...' "
+                  "(at least 3 vertices)");
+            Block b;
+            b.id = integer(0);
+            if (blocks.count(b.id))
+              throw InputError(where + "block " + std::to_string(b.id)
+                               + " is defined twice");
+            block_material_id.push_back(integer(1));
+            block_joint_id.push_back(integer(2));
+            block_line.push_back(line_no);
+            for (std::size_t k = 3; k + 1 < words.size(); k += 2)
+              b.polygon.vertices.emplace_back(number(k), number(k + 1));
+            blocks[b.id] = static_cast<int>(system.blocks.size());
+            system.blocks.push_back(b);
+          }
+        else if (keyword == "fixed" || keyword == "fixed-block"
+                 || keyword == "load" || keyword == "measure"
+                 || keyword == "velocity")
+          {
+            const std::size_t n = keyword == "fixed-block" ? 1
+                                  : keyword == "load"      ? 5
+                                  : keyword == "velocity"  ? 4
+                                                           : 3;
+            if (words.size() != n)
+              throw InputError(where + "'" + keyword + "' takes "
+                               + std::to_string(n) + " values");
+            Pending p{line_no, integer(0), keyword, {}};
+            for (std::size_t k = 1; k < n; ++k)
+              p.values.push_back(number(k));
+            pending.push_back(p);
+          }
+        else
+          throw InputError(where + "unknown keyword '" + keyword
+                           + "'; valid: material, joint, block, fixed, "
+                             "fixed-block, load, measure, velocity");
+      }
+    if (system.blocks.empty())
+      throw InputError("block file '" + name + "': no blocks");
+    if (system.joints.empty())
+      {
+        system.joints.push_back(JointMaterial());
+        joints[0] = 0;
+      }
+    for (std::size_t b = 0; b < system.blocks.size(); ++b)
+      {
+        const std::string where = "block file '" + name + "', line "
+                                  + std::to_string(block_line[b]) + ": block "
+                                  + std::to_string(system.blocks[b].id);
+        auto m = materials.find(block_material_id[b]);
+        if (m == materials.end())
+          throw InputError(where + ": has no material (material "
+                           + std::to_string(block_material_id[b])
+                           + " is not defined)");
+        system.blocks[b].material = m->second;
+        auto j                    = joints.find(block_joint_id[b]);
+        if (j == joints.end())
+          throw InputError(where + ": joint material "
+                           + std::to_string(block_joint_id[b])
+                           + " is not defined");
+        system.blocks[b].joint = j->second;
+      }
+    for (const auto &p : pending)
+      {
+        auto b = blocks.find(p.block);
+        if (b == blocks.end())
+          throw InputError("block file '" + name + "', line "
+                           + std::to_string(p.line) + ": block "
+                           + std::to_string(p.block) + " is not defined");
+        const int idx = b->second;
+        if (p.kind == "fixed")
+          {
+            FixedPoint f;
+            f.block = idx;
+            f.point = geometry::Point(p.values[0], p.values[1]);
+            system.fixed_points.push_back(f);
+          }
+        else if (p.kind == "fixed-block")
+          for (const auto &v : system.blocks[idx].polygon.vertices)
+            {
+              FixedPoint f;
+              f.block = idx;
+              f.point = v;
+              system.fixed_points.push_back(f);
+            }
+        else if (p.kind == "load")
+          {
+            LoadPoint l;
+            l.block = idx;
+            l.point = geometry::Point(p.values[0], p.values[1]);
+            l.force = geometry::Point(p.values[2], p.values[3]);
+            system.load_points.push_back(l);
+          }
+        else if (p.kind == "measure")
+          {
+            MeasurementPoint m;
+            m.block = idx;
+            m.point = geometry::Point(p.values[0], p.values[1]);
+            system.measurement_points.push_back(m);
+          }
+        else
+          {
+            auto &v = system.blocks[idx].velocity;
+            v[0]    = p.values[0];
+            v[1]    = p.values[1];
+            v[2]    = p.values[2];
+          }
+      }
+    return system;
+  }
+} // namespace rockdda::dda

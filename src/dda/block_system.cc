@@ -1,0 +1,200 @@
+/**
+ * @file
+ * Checks of a DDA scene, and the exact integral of a ground motion record.
+ */
+#include <rockdda/dda/block_matrices.h>
+#include <rockdda/dda/block_system.h>
+#include <rockdda/dda/contact_detection.h>
+#include <rockdda/io/error.h>
+#include <rockdda/io/output.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rockdda::dda
+{
+  namespace
+  {
+    std::string
+    block_name(const Block &b)
+    {
+      return "block " + std::to_string(b.id);
+    }
+
+    double
+    distance_to_boundary(const geometry::Polygon &poly,
+                         const geometry::Point   &p)
+    {
+      double            best = std::numeric_limits<double>::max();
+      const std::size_t n    = poly.vertices.size();
+      for (std::size_t k = 0; k < n; ++k)
+        {
+          const geometry::Point a  = poly.vertices[k];
+          const geometry::Point b  = poly.vertices[(k + 1) % n];
+          const geometry::Point e  = b - a;
+          const double          l2 = e.squaredNorm();
+          double                t  = l2 > 0. ? (p - a).dot(e) / l2 : 0.;
+          t                        = std::clamp(t, 0., 1.);
+          best                     = std::min(best, (a + t * e - p).norm());
+        }
+      return best;
+    }
+  } // namespace
+
+
+
+  void
+  validate_and_prepare(BlockSystem              &system,
+                       std::vector<std::string> &warnings,
+                       const double              overlap_tolerance)
+  {
+    const int n_mat = static_cast<int>(system.materials.size());
+    for (auto &b : system.blocks)
+      {
+        const std::string name = block_name(b);
+        auto             &v    = b.polygon.vertices;
+        if (v.size() < 3)
+          throw InputError(name + ": a block needs at least 3 vertices, it has "
+                           + std::to_string(v.size()));
+        for (const auto &p : v)
+          if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
+            throw InputError(name + ": a vertex coordinate is not finite");
+        if (b.material < 0 || b.material >= n_mat)
+          throw InputError(name + ": has no material (material index "
+                           + std::to_string(b.material) + "; "
+                           + std::to_string(n_mat) + " materials defined)");
+        const BlockMaterial &m = system.materials[b.material];
+        if (!(m.density > 0.) || !std::isfinite(m.density))
+          throw InputError(name + ": its material has density "
+                           + io::format_number(m.density)
+                           + " kg/m^3; valid: density > 0");
+        if (!(m.young > 0.) || !std::isfinite(m.young))
+          throw InputError(name + ": its material has Young's modulus "
+                           + io::format_number(m.young) + " Pa; valid: E > 0");
+        if (!(m.poisson >= 0. && m.poisson < 0.5))
+          throw InputError(name + ": its material has Poisson's ratio "
+                           + io::format_number(m.poisson)
+                           + "; valid: 0 <= nu < 0.5");
+        if (b.joint < 0 || b.joint >= static_cast<int>(system.joints.size()))
+          throw InputError(name + ": has no joint material (index "
+                           + std::to_string(b.joint) + ")");
+        if (b.polygon.self_intersects())
+          throw InputError(name + ": the polygon is self-intersecting");
+        const Eigen::Vector4d box  = b.polygon.bounding_box();
+        const double          size = std::max(box[2] - box[0], box[3] - box[1]);
+        const double          area = b.polygon.signed_area();
+        if (!(std::abs(area) > 1e-12 * size * size))
+          throw InputError(name + ": zero area (degenerate polygon)");
+        if (area < 0.)
+          {
+            std::reverse(v.begin(), v.end());
+            warnings.push_back(name
+                               + ": vertices were clockwise; reversed to "
+                                 "counter-clockwise");
+          }
+        b.initial_centroid = block_moments(b.polygon).centroid;
+      }
+    for (const auto &j : system.joints)
+      if (!(j.friction_deg >= 0. && j.friction_deg < 90.) || !(j.cohesion >= 0.)
+          || !(j.tensile >= 0.))
+        throw InputError(
+          "joint material: friction angle " + io::format_number(j.friction_deg)
+          + " deg, cohesion " + io::format_number(j.cohesion)
+          + " Pa, tensile strength " + io::format_number(j.tensile)
+          + " Pa; valid: 0 <= phi < 90 deg, c >= 0, T >= 0");
+
+    // Overlap at t = 0: a vertex (or the centroid) of one block deeper than
+    // the tolerance inside another.
+    std::vector<geometry::Polygon> polys;
+    polys.reserve(system.blocks.size());
+    for (const auto &b : system.blocks)
+      polys.push_back(b.polygon);
+    for (const auto &[i, j] : candidate_pairs(polys, 0.))
+      for (int pass = 0; pass < 2; ++pass)
+        {
+          const int a = pass == 0 ? i : j, c = pass == 0 ? j : i;
+          std::vector<geometry::Point> probes = polys[a].vertices;
+          probes.push_back(system.blocks[a].initial_centroid);
+          for (const auto &p : probes)
+            if (polys[c].contains(p)
+                && distance_to_boundary(polys[c], p) > overlap_tolerance)
+              throw InputError(
+                block_name(system.blocks[a]) + " overlaps "
+                + block_name(system.blocks[c]) + " at t = 0 (point ("
+                + io::format_number(p.x(), 8) + ", "
+                + io::format_number(p.y(), 8) + ") m lies "
+                + io::format_number(distance_to_boundary(polys[c], p), 4)
+                + " m inside it)");
+        }
+
+    const int n_blocks    = static_cast<int>(system.blocks.size());
+    auto      check_block = [&](const int b, const std::string &what) {
+      if (b < 0 || b >= n_blocks)
+        throw InputError(what + " refers to block index " + std::to_string(b)
+                         + ", but there are " + std::to_string(n_blocks)
+                         + " blocks");
+    };
+    for (auto &f : system.fixed_points)
+      {
+        check_block(f.block, "a fixed point");
+        f.anchor = f.point;
+      }
+    for (const auto &l : system.load_points)
+      check_block(l.block, "a load point");
+    for (auto &m : system.measurement_points)
+      {
+        check_block(m.block, "a measurement point");
+        m.initial = m.point;
+      }
+  }
+
+
+
+  GroundMotionIntegral::GroundMotionIntegral(const seismic::Record &record,
+                                             const double           g)
+      : dt(record.dt)
+  {
+    const std::size_t n = record.acceleration.size();
+    a.resize(n);
+    v.assign(n, 0.);
+    u.assign(n, 0.);
+    for (std::size_t k = 0; k < n; ++k)
+      a[k] = g * record.acceleration[k];
+    for (std::size_t k = 0; k + 1 < n; ++k)
+      {
+        v[k + 1] = v[k] + 0.5 * (a[k] + a[k + 1]) * dt;
+        u[k + 1] = u[k] + v[k] * dt + (2. * a[k] + a[k + 1]) * dt * dt / 6.;
+      }
+  }
+
+
+
+  double
+  GroundMotionIntegral::acceleration(const double t) const
+  {
+    if (a.empty() || t < 0. || dt <= 0.)
+      return 0.;
+    const double      s = t / dt;
+    const std::size_t k = static_cast<std::size_t>(s);
+    if (k + 1 >= a.size())
+      return k + 1 == a.size() && s - k < 1e-9 ? a.back() : 0.;
+    const double f = s - k;
+    return (1. - f) * a[k] + f * a[k + 1];
+  }
+
+
+
+  double
+  GroundMotionIntegral::displacement(const double t) const
+  {
+    if (a.empty() || t <= 0. || dt <= 0.)
+      return 0.;
+    const std::size_t k = static_cast<std::size_t>(t / dt);
+    if (k + 1 >= a.size())
+      return u.back() + v.back() * (t - dt * (a.size() - 1));
+    const double tau = t - k * dt;
+    return u[k] + v[k] * tau + 0.5 * a[k] * tau * tau
+           + (a[k + 1] - a[k]) * tau * tau * tau / (6. * dt);
+  }
+} // namespace rockdda::dda

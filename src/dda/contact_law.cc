@@ -1,0 +1,108 @@
+/**
+ * @file
+ * Mohr-Coulomb contact states of the open-close iteration (Shi 1988,
+ * ch. 4; Shi 1993).
+ */
+#include <rockdda/dda/contact_law.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rockdda::dda
+{
+  double
+  shear_strength(const Contact       &contact,
+                 const double         n,
+                 const double         length,
+                 const JointMaterial &joint)
+  {
+    const double mu = std::tan(joint.friction_deg * M_PI / 180.);
+    return std::max(0., n) * mu
+           + (contact.broken ? 0. : joint.cohesion * length);
+  }
+
+
+
+  StateCheck
+  check_state(const Contact           &contact,
+              const ContactKinematics &kin,
+              const double             g,
+              const double             s,
+              const ContactLaw        &law,
+              const JointMaterial     &joint)
+  {
+    StateCheck r;
+    r.state           = contact.state;
+    r.slide_direction = contact.slide_direction;
+    r.normal_force    = 0.;
+    r.shear_force     = 0.;
+    const double p    = law.normal_penalty;
+    const double ps   = law.shear_penalty();
+    // Tolerance below which a gap or shear displacement is round-off.
+    const double tol = kin.tolerance;
+
+    if (contact.state == ContactState::open)
+      {
+        // Hysteresis: close only on a penetration beyond the reversal
+        // tolerance (opening is strict), so contacts at zero force do not
+        // chatter.
+        if (g < -kin.reversal_tolerance)
+          {
+            // Closing: lock it, or let it slide at once if the shear spring
+            // would already exceed the strength (saves an iteration).
+            r.state        = ContactState::locked;
+            const double n = -p * g;
+            const double strength
+              = shear_strength(contact, n, kin.length, joint);
+            if (std::abs(ps * s) > strength + ps * tol)
+              {
+                r.state           = ContactState::sliding;
+                r.slide_direction = s > 0. ? 1 : -1;
+              }
+            r.normal_force = n;
+          }
+      }
+    else
+      {
+        const double tension_limit
+          = contact.broken ? 0. : joint.tensile * kin.length;
+        if (p * g > tension_limit + p * tol)
+          r.state = ContactState::open;
+        else
+          {
+            const double n = -p * g;
+            const double strength
+              = shear_strength(contact, n, kin.length, joint);
+            r.normal_force = n;
+            const bool frictionless
+              = joint.friction_deg == 0.
+                && (contact.broken || joint.cohesion == 0.);
+            if (frictionless)
+              {
+                r.state           = ContactState::sliding;
+                r.slide_direction = s >= 0. ? 1 : -1;
+              }
+            else if (contact.state == ContactState::locked)
+              {
+                if (std::abs(ps * s) > strength + ps * tol)
+                  {
+                    r.state           = ContactState::sliding;
+                    r.slide_direction = s > 0. ? 1 : -1;
+                  }
+                r.shear_force = ps * s;
+              }
+            else if (contact.slide_direction == 0)
+              r.state = ContactState::locked;
+            else // sliding
+              {
+                if (s * contact.slide_direction
+                    < -std::max(tol, kin.reversal_tolerance))
+                  r.state = ContactState::locked;
+                r.shear_force = -strength * contact.slide_direction;
+              }
+          }
+      }
+    r.changed = r.state != contact.state;
+    return r;
+  }
+} // namespace rockdda::dda

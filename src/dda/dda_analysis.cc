@@ -1,0 +1,453 @@
+/**
+ * @file
+ * Analysis type "dda": 2D discontinuous deformation analysis of a block
+ * system read from a block file, with optional seismic input.
+ */
+#include <rockdda/dda/analyses.h>
+#include <rockdda/dda/block_file.h>
+#include <rockdda/dda/engine.h>
+#include <rockdda/dda/vtu_output.h>
+#include <rockdda/io/error.h>
+#include <rockdda/io/parameters.h>
+#include <rockdda/io/progress.h>
+#include <rockdda/seismic/ground_motion.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace rockdda::dda
+{
+  namespace
+  {
+    using dealii::Patterns::Double;
+    using dealii::Patterns::Integer;
+    using dealii::Patterns::Selection;
+
+    /// The "dda" analysis.
+    class DdaAnalysis : public io::Analysis
+    {
+    public:
+      std::string
+      name() const override
+      {
+        return "dda";
+      }
+
+      std::string
+      description() const override
+      {
+        return "2D discontinuous deformation analysis (DDA) of a block "
+               "system";
+      }
+
+      void
+      declare_parameters(dealii::ParameterHandler &prm) const override
+      {
+        seismic::GroundMotionInput::declare_parameters(prm);
+        prm.enter_subsection("DDA");
+        io::declare(prm,
+                    "Block file",
+                    "",
+                    dealii::Patterns::Anything(),
+                    "-",
+                    "Scene file (doc/block-file-format-dda.md): materials, "
+                    "joints, blocks, fixed, load and measurement points. "
+                    "Relative to this parameter file; $VAR is expanded.");
+        io::declare(
+          prm, "End time", "1", Double(0.), "s", "Simulated duration, > 0.");
+        io::declare(prm,
+                    "Time step",
+                    "0.001",
+                    Double(0.),
+                    "s",
+                    "Largest (and initial) time step, > 0. Steps are cut "
+                    "when the open-close iteration does not converge or a "
+                    "vertex moves too far, and grow back afterwards.");
+        io::declare(prm,
+                    "Minimum time step",
+                    "0",
+                    Double(0.),
+                    "s",
+                    "The run stops with a diagnosis if a step must be cut "
+                    "below this; 0 = 1e-6 x Time step.");
+        io::declare(prm,
+                    "Dynamic control",
+                    "1",
+                    Double(0., 1.),
+                    "-",
+                    "Fraction of the velocity carried into the next step: "
+                    "0 static relaxation, 1 fully dynamic.");
+        io::declare(prm,
+                    "Maximum open-close iterations",
+                    "6",
+                    Integer(1, 100),
+                    "-",
+                    "Iterations before the time step is cut.");
+        io::declare(prm,
+                    "Maximum displacement ratio",
+                    "0.01",
+                    Double(0., 1.),
+                    "-",
+                    "Largest vertex displacement per step as a fraction "
+                    "of the domain size (larger side of the bounding box). "
+                    "The contact search distance is 2.5 times this "
+                    "displacement.");
+        io::declare(prm,
+                    "Contact penalty",
+                    "0",
+                    Double(0.),
+                    "N/m",
+                    "Normal contact spring stiffness per metre of thickness; "
+                    "0 = 10 x the largest Young's modulus (x 1 m).");
+        io::declare(prm,
+                    "Shear penalty ratio",
+                    "0.4",
+                    Double(0.),
+                    "-",
+                    "Shear spring stiffness / normal penalty, > 0.");
+        io::declare(prm,
+                    "Fixed point penalty",
+                    "0",
+                    Double(0.),
+                    "N/m",
+                    "Stiffness of the springs of fixed points; 0 = 10 x the "
+                    "contact penalty.");
+        io::declare(prm,
+                    "Linear solver",
+                    "automatic",
+                    Selection("automatic|direct|iterative"),
+                    "-",
+                    "'direct': sparse LDL^T; 'iterative': block-Jacobi "
+                    "preconditioned CG with warm start; 'automatic': direct "
+                    "up to 60 blocks, iterative above.");
+        io::declare(prm,
+                    "Solver tolerance",
+                    "1e-10",
+                    Double(0.),
+                    "-",
+                    "Relative tolerance of the iterative solver (on the "
+                    "preconditioned residual).");
+        io::declare(prm,
+                    "Settling steps",
+                    "0",
+                    Integer(0, 100000),
+                    "-",
+                    "Static steps under gravity before t = 0 (no seismic "
+                    "input, time not advanced); the settled state is the "
+                    "reference for displacements.");
+        io::declare(prm,
+                    "Gravity",
+                    "9.80665",
+                    Double(0.),
+                    "m/s^2",
+                    "Gravitational acceleration, acting towards -y.");
+        io::declare(prm,
+                    "Seismic input",
+                    "none",
+                    Selection("none|inertial|displacement"),
+                    "-",
+                    "Horizontal ground acceleration from the 'Ground "
+                    "motion' section: 'inertial' loads every block with "
+                    "-a(t) (fixed points stay put); 'displacement' moves "
+                    "the fixed points with the ground displacement, the "
+                    "double integral of a(t) from rest (Kamai & Hatzor "
+                    "2008).");
+        io::declare(prm,
+                    "Output interval",
+                    "0.1",
+                    Double(0.),
+                    "s",
+                    "Spacing of VTU snapshots (blocks-NNNNN.vtu, "
+                    "contacts-NNNNN.vtu, blocks.pvd, contacts.pvd); 0 = no "
+                    "VTU output.");
+        io::declare(prm,
+                    "Statistics interval",
+                    "0",
+                    Double(0.),
+                    "s",
+                    "Spacing of rows in statistics.csv; 0 = every step.");
+        prm.leave_subsection();
+      }
+
+      void
+      parse_parameters(dealii::ParameterHandler &prm,
+                       const std::string        &prm_file) override
+      {
+        prm.enter_subsection("DDA");
+        const std::string file = prm.get("Block file");
+        end_time               = prm.get_double("End time");
+        Controls c;
+        c.time_step      = prm.get_double("Time step");
+        c.min_time_step  = prm.get_double("Minimum time step");
+        c.dynamic        = prm.get_double("Dynamic control");
+        c.max_iterations = prm.get_integer("Maximum open-close iterations");
+        c.max_displacement_ratio = prm.get_double("Maximum displacement ratio");
+        c.law.normal_penalty     = prm.get_double("Contact penalty");
+        c.law.shear_ratio        = prm.get_double("Shear penalty ratio");
+        c.fixed_penalty          = prm.get_double("Fixed point penalty");
+        const std::string solver = prm.get("Linear solver");
+        c.solver.type            = solver == "direct"      ? SolverType::direct
+                                   : solver == "iterative" ? SolverType::iterative
+                                                           : SolverType::automatic;
+        c.solver.tolerance       = prm.get_double("Solver tolerance");
+        settling_steps           = prm.get_integer("Settling steps");
+        const double      gravity = prm.get_double("Gravity");
+        const std::string mode    = prm.get("Seismic input");
+        output_interval           = prm.get_double("Output interval");
+        statistics_interval       = prm.get_double("Statistics interval");
+        prm.leave_subsection();
+
+        io::require(
+          end_time > 0., prm_file, "DDA/End time", end_time, "end time > 0 s");
+        io::require(
+          c.time_step > 0., prm_file, "DDA/Time step", c.time_step, "dt > 0 s");
+        io::require(c.law.shear_ratio > 0.,
+                    prm_file,
+                    "DDA/Shear penalty ratio",
+                    c.law.shear_ratio,
+                    "> 0");
+        io::require(c.max_displacement_ratio > 0.,
+                    prm_file,
+                    "DDA/Maximum displacement ratio",
+                    c.max_displacement_ratio,
+                    "0 < ratio <= 1");
+        io::require(c.solver.tolerance > 0. && c.solver.tolerance < 1.,
+                    prm_file,
+                    "DDA/Solver tolerance",
+                    c.solver.tolerance,
+                    "0 < tolerance < 1");
+        if (file.empty())
+          throw InputError(prm_file
+                           + ": key 'DDA/Block file' is empty; "
+                             "give the scene's block file");
+        const std::string path
+          = io::resolve_path(file, prm_file, "DDA/Block file");
+        BlockSystem scene = read_block_file(path);
+        scene.gravity     = geometry::Point(0., -gravity);
+        if (c.law.normal_penalty == 0.)
+          {
+            double e_max = 0.;
+            for (const auto &m : scene.materials)
+              e_max = std::max(e_max, m.young);
+            c.law.normal_penalty = 10. * e_max * 1.;
+          }
+        if (mode != "none")
+          {
+            motion.parse_parameters(prm, prm_file);
+            scene.seismic.mode   = mode == "inertial"
+                                     ? SeismicInput::Mode::inertial
+                                     : SeismicInput::Mode::displacement;
+            scene.seismic.record = motion.record;
+            scene.seismic.g      = gravity > 0. ? gravity : 9.80665;
+            motion_text          = motion.description;
+          }
+        try
+          {
+            dda = std::make_unique<DdaSystem>(scene, c);
+          }
+        catch (const InputError &e)
+          {
+            throw InputError("block file '" + path + "': " + e.what());
+          }
+      }
+
+      void
+      run(io::RunContext &context) override
+      {
+        for (const auto &w : dda->warnings())
+          context.log.line("warning: " + w);
+        if (!motion_text.empty())
+          context.log.line("seismic input: " + motion_text);
+        context.log.line(
+          "DDA: " + std::to_string(dda->system().blocks.size())
+          + " blocks, penalty "
+          + io::format_number(dda->controls().law.normal_penalty, 4)
+          + " N/m, time step " + io::format_number(dda->controls().time_step, 4)
+          + " s, domain " + io::format_number(dda->domain_size(), 4) + " m");
+
+        if (settling_steps > 0)
+          {
+            dda->settle(settling_steps);
+            context.log.line("settled with " + std::to_string(settling_steps)
+                             + " static steps");
+          }
+        io::Table table;
+        for (const auto &[n, u] :
+             std::vector<std::pair<std::string, std::string>>{
+               {"time", "s"},
+               {"dt", "s"},
+               {"open_close_iterations", "-"},
+               {"cuts", "-"},
+               {"contacts_open", "-"},
+               {"contacts_sliding", "-"},
+               {"contacts_locked", "-"},
+               {"kinetic_energy", "J/m"},
+               {"strain_energy", "J/m"},
+               {"contact_energy", "J/m"},
+               {"gravity_potential_energy", "J/m"},
+               {"max_vertex_step_displacement", "m"}})
+          table.add_column(n, u);
+        const auto &mps = dda->system().measurement_points;
+        for (std::size_t m = 0; m < mps.size(); ++m)
+          {
+            const std::string p = "mp" + std::to_string(m + 1) + "_";
+            table.add_column(p + "ux", "m");
+            table.add_column(p + "uy", "m");
+            table.add_column(p + "sigma_x", "Pa");
+            table.add_column(p + "sigma_y", "Pa");
+            table.add_column(p + "tau_xy", "Pa");
+          }
+        auto add_row = [&](const StepReport &r) {
+          std::vector<double> row = {dda->time(),
+                                     r.dt,
+                                     double(r.iterations),
+                                     double(r.cuts),
+                                     double(r.n_open),
+                                     double(r.n_sliding),
+                                     double(r.n_locked),
+                                     dda->kinetic_energy(),
+                                     dda->strain_energy(),
+                                     dda->contact_energy(),
+                                     dda->potential_energy(),
+                                     r.max_displacement};
+          for (const auto &m : dda->system().measurement_points)
+            {
+              const auto  d = m.point - m.initial;
+              const auto &s = dda->system().blocks[m.block].stress;
+              row.insert(row.end(), {d.x(), d.y(), s[0], s[1], s[2]});
+            }
+          table.add_row(row);
+        };
+
+        std::vector<std::pair<double, std::string>> block_files, contact_files;
+        auto                                        snapshot = [&]() {
+          char name[64];
+          std::snprintf(name, sizeof(name), "%05zu", block_files.size());
+          const std::string b = std::string("blocks-") + name + ".vtu";
+          const std::string c = std::string("contacts-") + name + ".vtu";
+          context.output.write(b, blocks_vtu(*dda));
+          context.output.write(c, contacts_vtu(*dda));
+          block_files.emplace_back(dda->time(), b);
+          contact_files.emplace_back(dda->time(), c);
+          context.output.write("blocks.pvd", pvd(block_files));
+          context.output.write("contacts.pvd", pvd(contact_files));
+        };
+
+        StepReport last;
+        add_row(last);
+        if (output_interval > 0.)
+          snapshot();
+        double next_output = output_interval, next_row = statistics_interval;
+        unsigned int        max_iterations   = 0;
+        unsigned long       iterations_total = 0;
+        std::string         failure;
+        const auto          start = std::chrono::steady_clock::now();
+        const unsigned long step_limit
+          = static_cast<unsigned long>(100. * end_time
+                                       / dda->controls().time_step)
+            + 1000;
+        {
+          io::ProgressBar progress("dda", end_time);
+          try
+            {
+              while (dda->time() < end_time - 1e-9 * dda->controls().time_step)
+                {
+                  // One step, landing exactly on output times.
+                  double target
+                    = std::min(end_time, dda->time() + dda->time_step());
+                  if (output_interval > 0.)
+                    target = std::min(target, next_output);
+                  last = dda->run_until(target);
+                  if (dda->n_steps > step_limit)
+                    throw DdaFailure(
+                      "stopped at t = " + io::format_number(dda->time(), 6)
+                      + " s after " + std::to_string(step_limit)
+                      + " steps (100 x End time / Time step + 1000): the time "
+                        "step stayed far below the requested one (now "
+                      + io::format_number(dda->time_step(), 4) + " s)");
+                  max_iterations = std::max(max_iterations, last.iterations);
+                  iterations_total += last.iterations;
+                  if (statistics_interval <= 0.
+                      || dda->time() >= next_row - 1e-12)
+                    {
+                      add_row(last);
+                      while (statistics_interval > 0.
+                             && next_row <= dda->time() + 1e-12)
+                        next_row += statistics_interval;
+                    }
+                  if (output_interval > 0.
+                      && dda->time() >= next_output - 1e-12)
+                    {
+                      snapshot();
+                      next_output += output_interval;
+                    }
+                  progress.update(dda->n_steps, dda->time());
+                }
+            }
+          catch (const DdaFailure &e)
+            {
+              failure = e.what();
+            }
+        }
+        const double wall = std::chrono::duration<double>(
+                              std::chrono::steady_clock::now() - start)
+                              .count();
+        context.output.write("statistics.csv", table.csv());
+        if (!failure.empty())
+          {
+            context.log.line("DDA stopped: " + failure);
+            throw DdaFailure(failure);
+          }
+
+        auto &s = context.summary;
+        s.add("final_time", dda->time(), "s");
+        s.add("steps", static_cast<double>(dda->n_steps), "-");
+        s.add("time_step_cuts", static_cast<double>(dda->n_cuts), "-");
+        s.add("kinetic_energy", dda->kinetic_energy(), "J/m");
+        s.add("strain_energy", dda->strain_energy(), "J/m");
+        s.add("contacts_final",
+              static_cast<double>(dda->contacts().size()),
+              "-");
+        double max_disp = 0.;
+        for (std::size_t b = 0; b < dda->system().blocks.size(); ++b)
+          max_disp
+            = std::max(max_disp,
+                       dda->centroid_displacement(static_cast<int>(b)).norm());
+        s.add("max_block_displacement", max_disp, "m");
+        for (std::size_t m = 0; m < mps.size(); ++m)
+          {
+            const auto       &mp = dda->system().measurement_points[m];
+            const auto        d  = mp.point - mp.initial;
+            const std::string p  = "mp" + std::to_string(m + 1) + "_";
+            s.add(p + "ux", d.x(), "m");
+            s.add(p + "uy", d.y(), "m");
+            s.add(p + "sigma_y",
+                  dda->system().blocks[mp.block].stress[1],
+                  "Pa");
+          }
+        context.log.line("DDA finished: " + std::to_string(dda->n_steps)
+                         + " steps, " + std::to_string(dda->n_cuts) + " cuts, "
+                         + io::format_number(wall, 3) + " s wall");
+      }
+
+    private:
+      std::unique_ptr<DdaSystem> dda;
+      seismic::GroundMotionInput motion;
+      std::string                motion_text;
+      double end_time = 1., output_interval = 0.1, statistics_interval = 0.;
+      unsigned int settling_steps = 0;
+    };
+  } // namespace
+
+
+
+  std::vector<std::unique_ptr<io::Analysis>>
+  make_analyses()
+  {
+    std::vector<std::unique_ptr<io::Analysis>> list;
+    list.push_back(std::make_unique<DdaAnalysis>());
+    return list;
+  }
+} // namespace rockdda::dda

@@ -1,0 +1,279 @@
+/**
+ * @file
+ * Analysis type "cut": generate the rock structure of the "Structure"
+ * section, cut it into blocks and write the block file, VTU, structure
+ * statistics and quick-look plots.
+ */
+#include <rockdda/io/error.h>
+#include <rockdda/io/parameters.h>
+#include <rockdda/structure/analyses.h>
+#include <rockdda/structure/block_output.h>
+#include <rockdda/structure/statistics.h>
+#include <rockdda/structure/structure_model.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace rockdda::structure
+{
+  namespace
+  {
+    /// Histogram of @p values in @p bins equal bins over [0, max].
+    io::Table
+    histogram(const std::vector<double> &values,
+              const unsigned int         bins,
+              const std::string         &name,
+              const std::string         &unit)
+    {
+      io::Table t;
+      t.add_column(name + "_from", unit);
+      t.add_column(name + "_to", unit);
+      t.add_column("blocks", "-");
+      t.add_column("fraction", "-");
+      const double top
+        = values.empty() ? 1. : *std::max_element(values.begin(), values.end());
+      std::vector<double> count(bins, 0.);
+      for (const double v : values)
+        count[std::min<std::size_t>(bins - 1, std::size_t(v / top * bins))]
+          += 1.;
+      for (unsigned int i = 0; i < bins; ++i)
+        t.add_row({top * i / bins,
+                   top * (i + 1) / bins,
+                   count[i],
+                   values.empty() ? 0. : count[i] / values.size()});
+      return t;
+    }
+
+    /// The "cut" analysis.
+    class CutAnalysis : public io::Analysis
+    {
+    public:
+      std::string
+      name() const override
+      {
+        return "cut";
+      }
+
+      std::string
+      description() const override
+      {
+        return "generate joint traces / a layered network and cut them into "
+               "blocks (block file, VTU, structure statistics)";
+      }
+
+      void
+      declare_parameters(dealii::ParameterHandler &prm) const override
+      {
+        using namespace dealii::Patterns;
+        declare_structure_parameters(prm);
+        prm.enter_subsection("Cut");
+        io::declare(prm,
+                    "Histogram bins",
+                    "20",
+                    Integer(1, 1000),
+                    "-",
+                    "Number of bins of the block width and area histograms.");
+        io::declare(prm,
+                    "Scan lines",
+                    "10",
+                    Integer(1, 10000),
+                    "-",
+                    "Number of horizontal and of vertical scan lines for "
+                    "P10.");
+        io::declare(prm,
+                    "Plots",
+                    "true",
+                    Bool(),
+                    "-",
+                    "Draw blocks.png and histograms.png with "
+                    "scripts/plot_structure.py (/usr/bin/python3 and "
+                    "matplotlib); skipped with a note if unavailable.");
+        io::declare(prm,
+                    "Write traces",
+                    "true",
+                    Bool(),
+                    "-",
+                    "Write the generated traces to traces.csv.");
+        prm.leave_subsection();
+      }
+
+      void
+      parse_parameters(dealii::ParameterHandler &prm,
+                       const std::string        &prm_file) override
+      {
+        model = parse_structure(prm, prm_file);
+        prm.enter_subsection("Cut");
+        bins         = prm.get_integer("Histogram bins");
+        scan_lines   = prm.get_integer("Scan lines");
+        plots        = prm.get_bool("Plots");
+        write_traces = prm.get_bool("Write traces");
+        prm.leave_subsection();
+      }
+
+      void
+      run(io::RunContext &context) override
+      {
+        auto &log = context.log;
+        log.line("random seed " + std::to_string(model.seed));
+        const TraceNetwork net = generate_traces(model);
+        log.line("generated " + std::to_string(net.traces.size()) + " traces ("
+                 + std::to_string(net.layers.bedding.size())
+                 + " bedding planes, "
+                 + std::to_string(net.layers.thicknesses.size()) + " beds)");
+
+        const auto     start    = std::chrono::steady_clock::now();
+        const BlockSet blocks   = build_blocks(model, net);
+        const double   cut_time = std::chrono::duration<double>(
+                                  std::chrono::steady_clock::now() - start)
+                                  .count();
+        const double area_sum = blocks.total_block_area()
+                                + blocks.excavated_area + blocks.dropped_area;
+        const double area_error
+          = std::abs(area_sum - blocks.domain_area) / blocks.domain_area;
+        log.line("cut " + std::to_string(blocks.blocks.size()) + " blocks in "
+                 + io::format_number(cut_time, 3) + " s; "
+                 + std::to_string(blocks.n_dangling_edges)
+                 + " dangling edges removed, "
+                 + std::to_string(blocks.n_holes_split) + " holes split, "
+                 + std::to_string(blocks.n_slivers_merged) + " slivers merged, "
+                 + std::to_string(blocks.n_slivers_dropped) + " dropped, "
+                 + std::to_string(blocks.n_slivers_remaining)
+                 + " remaining; area balance error "
+                 + io::format_number(area_error, 3));
+        if (blocks.blocks.empty())
+          log.line("WARNING: no blocks (is everything excavated?)");
+
+        const double dip = model.layered ? model.layers.bedding_dip : 0.;
+        const StructureStatistics s = compute_statistics(
+          blocks, net.traces, model.domain, model.excavations, dip, scan_lines);
+
+        // Files.
+        context.output.write("blocks.txt", block_file_text(blocks));
+        context.output.write("blocks.dda", dda_block_file_text(blocks));
+        context.output.write("blocks.vtu", blocks_vtu(blocks, dip));
+        context.output.write("edges.vtu", edges_vtu(blocks));
+        io::Table per_block;
+        per_block.add_column("block", "-");
+        per_block.add_column("area", "m^2");
+        per_block.add_column("width", "m");
+        per_block.add_column("centroid_x", "m");
+        per_block.add_column("centroid_y", "m");
+        per_block.add_column("vertices", "-");
+        per_block.add_column("min_angle", "deg");
+        for (std::size_t i = 0; i < blocks.blocks.size(); ++i)
+          {
+            const Polygon &p = blocks.blocks[i].polygon;
+            const Point    c = p.centroid();
+            per_block.add_row({double(i),
+                               s.areas[i],
+                               s.widths[i],
+                               c.x(),
+                               c.y(),
+                               double(p.vertices.size()),
+                               p.min_interior_angle() * 180. / M_PI});
+          }
+        context.output.write("statistics.csv", per_block.csv());
+        context.output.write("width_histogram.csv",
+                             histogram(s.widths, bins, "width", "m").csv());
+        context.output.write("area_histogram.csv",
+                             histogram(s.areas, bins, "area", "m^2").csv());
+        if (model.layered)
+          {
+            io::Table beds;
+            beds.add_column("bed", "-");
+            beds.add_column("bottom", "m");
+            beds.add_column("thickness", "m");
+            for (std::size_t k = 0; k < net.layers.thicknesses.size(); ++k)
+              beds.add_row({double(k),
+                            net.layers.bedding_offsets[k],
+                            net.layers.thicknesses[k]});
+            context.output.write("beds.csv", beds.csv());
+          }
+        if (write_traces)
+          {
+            io::Table t;
+            t.add_column("x0", "m");
+            t.add_column("y0", "m");
+            t.add_column("x1", "m");
+            t.add_column("y1", "m");
+            t.add_column("kind", "-");
+            t.add_column("set", "-");
+            for (const TaggedSegment &g : net.traces)
+              t.add_row({g.a.x(),
+                         g.a.y(),
+                         g.b.x(),
+                         g.b.y(),
+                         double(int(g.tag.kind)),
+                         double(g.tag.set)});
+            context.output.write("traces.csv", t.csv());
+          }
+
+        auto &sum = context.summary;
+        sum.add("random_seed", double(model.seed), "-");
+        sum.add("traces", double(net.traces.size()), "-");
+        sum.add("beds", double(net.layers.thicknesses.size()), "-");
+        sum.add("blocks", double(blocks.blocks.size()), "-");
+        sum.add("domain_area", blocks.domain_area, "m^2");
+        sum.add("block_area", blocks.total_block_area(), "m^2");
+        sum.add("excavated_area", blocks.excavated_area, "m^2");
+        sum.add("dropped_area", blocks.dropped_area, "m^2");
+        sum.add("area_balance_error", area_error, "-");
+        sum.add("mean_block_area", s.mean_area, "m^2");
+        sum.add("median_block_area", s.median_area, "m^2");
+        sum.add("mean_block_width", s.mean_width, "m");
+        sum.add("median_block_width", s.median_width, "m");
+        sum.add("p21_joints", s.p21_joints, "1/m");
+        sum.add("p21_all", s.p21_all, "1/m");
+        sum.add("p10_horizontal", s.p10_horizontal, "1/m");
+        sum.add("p10_vertical", s.p10_vertical, "1/m");
+        sum.add("dangling_edges", blocks.n_dangling_edges, "-");
+        sum.add("holes_split", blocks.n_holes_split, "-");
+        sum.add("slivers_merged", blocks.n_slivers_merged, "-");
+        sum.add("slivers_dropped", blocks.n_slivers_dropped, "-");
+        sum.add("slivers_remaining", blocks.n_slivers_remaining, "-");
+        sum.add("degenerate_dropped", blocks.n_degenerate_dropped, "-");
+        sum.add("cut_time", cut_time, "s");
+
+        if (plots)
+          {
+            const std::string script
+              = std::string(ROCKDDA_SOURCE_DIR) + "/scripts/plot_structure.py";
+            const std::string python = "/usr/bin/python3";
+            if (std::ifstream(python) && std::ifstream(script))
+              {
+                const std::string command = python + " '" + script + "' '"
+                                            + context.output.path()
+                                            + "' > /dev/null 2>&1";
+                if (std::system(command.c_str()) == 0)
+                  log.line("plots: blocks.png, histograms.png");
+                else
+                  log.line("note: plotting failed (" + command
+                           + "); is python3-matplotlib installed?");
+              }
+            else
+              log.line("note: no plots (" + python + " or " + script
+                       + " missing)");
+          }
+      }
+
+    private:
+      StructureModel model;
+      unsigned int   bins = 20, scan_lines = 10;
+      bool           plots = true, write_traces = true;
+    };
+  } // namespace
+
+
+
+  std::vector<std::unique_ptr<io::Analysis>>
+  make_analyses()
+  {
+    std::vector<std::unique_ptr<io::Analysis>> list;
+    list.push_back(std::make_unique<CutAnalysis>());
+    return list;
+  }
+} // namespace rockdda::structure

@@ -1,0 +1,1264 @@
+/**
+ * @file
+ * The deal.II heat solver (the only translation unit of the thermal
+ * subsystem that includes deal.II's finite-element headers).
+ */
+#include <rockdda/io/error.h>
+#include <rockdda/io/output.h>
+#include <rockdda/thermal/heat_solver.h>
+#include <rockdda/thermal/polygon_mesh.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/precondition.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/sundials/arkode.h>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <arkode/arkode_arkstep.h>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace rockdda::thermal
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /// Matrices and factorisation of one theta-scheme step size.
+    struct StepOperator
+    {
+      double               dt    = 0.;
+      double               theta = 0.;
+      SparseMatrix<double> a;     ///< M + theta dt K (hanging-condensed)
+      SparseMatrix<double> a_mod; ///< a with Dirichlet rows/cols removed
+      SparseMatrix<double> b;     ///< M - (1 - theta) dt K
+      PreconditionSSOR<SparseMatrix<double>> ssor;
+      // The per-step work of the direct path in Eigen (serial, no task
+      // overhead for the small systems of long runs): b, the Dirichlet
+      // columns of a, and the sparse Cholesky (LDL^T) factors of a_mod.
+      Eigen::SparseMatrix<double, Eigen::RowMajor> eigen_b, eigen_a_dirichlet;
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+    };
+
+    /// Copy a deal.II sparse matrix (optionally only some columns, renumbered
+    /// by @p column_map, -1 = skip) into Eigen.
+    template <typename EigenMatrix>
+    void
+    to_eigen(const SparseMatrix<double> &m,
+             EigenMatrix                &out,
+             const std::vector<int>     *column_map = nullptr,
+             const unsigned int          n_columns  = 0)
+    {
+      std::vector<Eigen::Triplet<double>> triplets;
+      triplets.reserve(m.n_nonzero_elements());
+      for (unsigned int row = 0; row < m.m(); ++row)
+        for (auto it = m.begin(row); it != m.end(row); ++it)
+          if (it->value() != 0.)
+            {
+              const int col
+                = column_map ? (*column_map)[it->column()] : int(it->column());
+              if (col >= 0)
+                triplets.emplace_back(row, col, it->value());
+            }
+      out.resize(m.m(), column_map ? n_columns : m.n());
+      out.setFromTriplets(triplets.begin(), triplets.end());
+    }
+
+    /// A probe: dof indices and shape values at a fixed point.
+    struct Probe
+    {
+      std::vector<types::global_dof_index> dofs;
+      std::vector<double>                  weights;
+    };
+  } // namespace
+
+
+
+  class HeatSolver::Impl
+  {
+  public:
+    explicit Impl(const HeatParameters &parameters);
+
+    void
+    advance_to(const double end_time);
+
+    HeatParameters                             prm;
+    Triangulation<2>                           tria;
+    FE_Q<2>                                    fe;
+    DoFHandler<2>                              dof_handler;
+    MappingQ1<2>                               mapping;
+    AffineConstraints<double>                  hanging;
+    SparsityPattern                            sparsity;
+    SparseMatrix<double>                       mass, stiffness;
+    std::vector<std::unique_ptr<StepOperator>> operators;
+
+    Vector<double> solution, new_solution, rhs_old, rhs_new, tmp, g_ext,
+      increment_old;
+
+    // Tags, boundary ids (= index into prm.boundary_conditions).
+    std::vector<std::string>             tags;
+    std::vector<types::global_dof_index> dirichlet_dofs;
+    std::vector<Point<2>>                dirichlet_points;
+    std::vector<unsigned int>            dirichlet_bc;
+    std::vector<bool>                    is_dirichlet;
+
+    // Uniform boundary data: F(t) += g_k(t) v_k; heat rate += g_k(t) s_k.
+    std::vector<unsigned int>   uniform_bc;
+    std::vector<Vector<double>> uniform_vectors;
+    std::vector<double>         uniform_rates;
+    bool                        nonuniform = false;
+    Vector<double>              robin_weights; ///< int h phi_j ds
+    Vector<double>              capacity;      ///< int rho c phi_j dA
+
+    // Per block: int phi, int x phi, int y phi; geometry moments.
+    std::vector<Vector<double>> block_phi, block_xphi, block_yphi;
+    std::vector<std::array<double, 6>>
+      block_geometry; // A, Sx, Sy, Sxx, Sxy, Syy
+
+    std::vector<Probe> probes;
+
+    double         time              = 0.;
+    double         boundary_heat     = 0.;
+    double         source_heat       = 0.;
+    double         rate_old          = 0.; ///< boundary heat rate at time
+    double         source_rate_old   = 0.;
+    bool           rhs_old_valid     = false;
+    bool           last_step_flipped = false;
+    unsigned long  steps_taken       = 0;
+    double         kappa_max         = 0.;
+    double         h_min             = 0.;
+    HeatStatistics stats;
+
+    std::ostringstream timer_stream;
+    TimerOutput        timer;
+
+  private:
+    void
+    make_mesh();
+    void
+    setup_system();
+    void
+    assemble_fixed();
+    /// Condensed right-hand side at @p t into @p f; returns the boundary
+    /// data part of the heat rate (without -w.T) and the source rate.
+    void
+    assemble_rhs(const double    t,
+                 Vector<double> &f,
+                 double         &boundary_rate,
+                 double         &source_rate) const;
+    StepOperator &
+    get_operator(const double dt, const double theta);
+    void
+    theta_step(const double dt, const double theta);
+    void
+    arkode_advance(const double end_time);
+    void
+    apply_dirichlet_values(const double t, Vector<double> &v) const;
+  };
+
+
+
+  HeatSolver::Impl::Impl(const HeatParameters &parameters)
+      : prm(parameters)
+      , fe(std::max(1u, parameters.degree))
+      , timer(timer_stream, TimerOutput::never, TimerOutput::wall_times)
+  {
+    if (prm.degree < 1 || prm.degree > 3)
+      throw InputError("heat: FE degree " + std::to_string(prm.degree)
+                       + " is not supported (1, 2 or 3)");
+    if (prm.materials.empty())
+      throw InputError("heat: no material");
+    for (const auto &m : prm.materials)
+      validate(m, "heat");
+    for (const auto &b : prm.blocks)
+      if (b.material >= prm.materials.size())
+        throw InputError("heat: block '" + b.name
+                         + "' refers to a material that does not exist");
+    if (!(prm.time_step > 0.) || !std::isfinite(prm.time_step))
+      throw InputError("heat: the time step must be > 0 s");
+    for (const auto &m : prm.materials)
+      kappa_max = std::max(kappa_max, m.diffusivity());
+
+    TimerOutput::Scope scope(timer, "setup");
+    make_mesh();
+    setup_system();
+    assemble_fixed();
+
+    // Initial condition.
+    solution.reinit(dof_handler.n_dofs());
+    std::vector<Point<2>> support(dof_handler.n_dofs());
+    DoFTools::map_dofs_to_support_points(mapping, dof_handler, support);
+    for (unsigned int i = 0; i < solution.size(); ++i)
+      solution[i] = prm.initial_field
+                      ? prm.initial_field(support[i][0], support[i][1])
+                      : prm.initial_temperature;
+    hanging.distribute(solution);
+    time = prm.start_time;
+  }
+
+
+
+  void
+  HeatSolver::Impl::make_mesh()
+  {
+    const bool merge
+      = prm.joint_contact == HeatParameters::JointContact::perfect;
+    const CoarseMesh coarse
+      = mesh_blocks(prm.blocks, prm.coarse_cell_size, merge);
+
+    std::vector<Point<2>> vertices;
+    for (const auto &v : coarse.vertices)
+      vertices.emplace_back(v[0], v[1]);
+    std::vector<CellData<2>> cells(coarse.quads.size());
+    for (unsigned int c = 0; c < coarse.quads.size(); ++c)
+      {
+        const auto &q = coarse.quads[c];
+        // deal.II numbers quadrilateral vertices lexicographically.
+        cells[c].vertices    = {q[0], q[1], q[3], q[2]};
+        cells[c].material_id = coarse.quad_block[c];
+      }
+    GridTools::consistently_order_cells(cells);
+    tria.create_triangulation(vertices, cells, SubCellData());
+
+    // Boundary ids from the polygon edges: the tag of the closest edge of
+    // the cell's block.
+    for (const auto &b : prm.blocks)
+      for (const auto &t : b.edge_tags)
+        if (std::find(tags.begin(), tags.end(), t) == tags.end())
+          tags.push_back(t);
+    std::map<std::string, unsigned int> bc_of_tag;
+    for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
+      {
+        const auto &tag = prm.boundary_conditions[k].tag;
+        if (std::find(tags.begin(), tags.end(), tag) == tags.end())
+          {
+            std::string known;
+            for (const auto &t : tags)
+              known += (known.empty() ? "" : ", ") + t;
+            throw InputError("heat: boundary condition for unknown boundary "
+                             "tag '"
+                             + tag + "' (the geometry's tags are: " + known
+                             + ")");
+          }
+        if (bc_of_tag.count(tag))
+          throw InputError("heat: two boundary conditions for tag '" + tag
+                           + "'");
+        bc_of_tag[tag] = k;
+      }
+    const unsigned int adiabatic_id = prm.boundary_conditions.size();
+
+    // Edges shared by two blocks (joints), to detect non-conforming meshes.
+    const auto on_other_block_edge
+      = [&](const Point2 &p, const unsigned int block, const double tol) {
+          for (unsigned int b = 0; b < prm.blocks.size(); ++b)
+            if (b != block)
+              {
+                const auto &v = prm.blocks[b].vertices;
+                for (std::size_t i = 0; i < v.size(); ++i)
+                  if (distance_to_segment(p, v[i], v[(i + 1) % v.size()]) < tol)
+                    return b;
+              }
+          return numbers::invalid_unsigned_int;
+        };
+
+    for (const auto &cell : tria.active_cell_iterators())
+      for (const auto f : cell->face_indices())
+        if (cell->face(f)->at_boundary())
+          {
+            const unsigned int block = cell->material_id();
+            const auto        &v     = prm.blocks[block].vertices;
+            const auto         c     = cell->face(f)->center();
+            const Point2       p{{c[0], c[1]}};
+            double             best = std::numeric_limits<double>::max();
+            unsigned int       edge = 0;
+            for (std::size_t i = 0; i < v.size(); ++i)
+              {
+                const double d
+                  = distance_to_segment(p, v[i], v[(i + 1) % v.size()]);
+                if (d < best)
+                  best = d, edge = i;
+              }
+            const double tol = 1e-6 * cell->face(f)->diameter();
+            if (merge)
+              {
+                const unsigned int other = on_other_block_edge(p, block, tol);
+                if (other != numbers::invalid_unsigned_int)
+                  throw InputError(
+                    "heat: blocks '" + prm.blocks[block].name + "' and '"
+                    + prm.blocks[other].name
+                    + "' touch along an edge that is not shared vertex to "
+                      "vertex; with perfect joint contact, neighbouring "
+                      "blocks must have the same joint end points (split the "
+                      "longer edge), or use insulated joints");
+              }
+            const std::string &tag = prm.blocks[block].edge_tags[edge];
+            const auto         it  = bc_of_tag.find(tag);
+            if (it != bc_of_tag.end())
+              cell->face(f)->set_boundary_id(it->second);
+            else if (tag == "adiabatic")
+              cell->face(f)->set_boundary_id(adiabatic_id);
+            else
+              throw InputError("heat: boundary tag '" + tag + "' of block '"
+                               + prm.blocks[block].name
+                               + "' has no boundary condition (give one, or "
+                                 "name the tag 'adiabatic')");
+          }
+
+    // Refine to the target coarse cell size.
+    for (unsigned int cycle = 0; cycle < 30; ++cycle)
+      {
+        bool any = false;
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->diameter() > 1.5 * prm.coarse_cell_size)
+            cell->set_refine_flag(), any = true;
+        if (!any)
+          break;
+        tria.execute_coarsening_and_refinement();
+      }
+    if (prm.global_refinements > 0)
+      tria.refine_global(prm.global_refinements);
+
+    // A priori band within band_width of the listed (exposed) tags.
+    if (prm.band_width > 0. && prm.band_cell_size > 0.)
+      {
+        std::vector<std::array<Point2, 2>> segments;
+        for (const auto &b : prm.blocks)
+          for (std::size_t i = 0; i < b.vertices.size(); ++i)
+            if (std::find(prm.refine_near_tags.begin(),
+                          prm.refine_near_tags.end(),
+                          b.edge_tags[i])
+                != prm.refine_near_tags.end())
+              segments.push_back(std::array<Point2, 2>{
+                {b.vertices[i], b.vertices[(i + 1) % b.vertices.size()]}});
+        for (unsigned int cycle = 0; cycle < 30 && !segments.empty(); ++cycle)
+          {
+            bool any = false;
+            for (const auto &cell : tria.active_cell_iterators())
+              if (cell->diameter() > 1.5 * prm.band_cell_size)
+                {
+                  const auto   c = cell->center();
+                  const Point2 p{{c[0], c[1]}};
+                  double       d = std::numeric_limits<double>::max();
+                  for (const auto &s : segments)
+                    d = std::min(d, distance_to_segment(p, s[0], s[1]));
+                  if (d < prm.band_width + 0.5 * cell->diameter())
+                    cell->set_refine_flag(), any = true;
+                }
+            if (!any)
+              break;
+            tria.execute_coarsening_and_refinement();
+          }
+      }
+  }
+
+
+
+  void
+  HeatSolver::Impl::setup_system()
+  {
+    dof_handler.reinit(tria);
+    dof_handler.distribute_dofs(fe);
+    hanging.clear();
+    DoFTools::make_hanging_node_constraints(dof_handler, hanging);
+    hanging.close();
+
+    DynamicSparsityPattern dsp(dof_handler.n_dofs());
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, hanging, true);
+    sparsity.copy_from(dsp);
+    mass.reinit(sparsity);
+    stiffness.reinit(sparsity);
+
+    const unsigned int n = dof_handler.n_dofs();
+    new_solution.reinit(n);
+    rhs_old.reinit(n);
+    rhs_new.reinit(n);
+    tmp.reinit(n);
+    g_ext.reinit(n);
+    increment_old.reinit(n);
+    robin_weights.reinit(n);
+    capacity.reinit(n);
+
+    // Dirichlet dofs (the first temperature tag wins at shared corners).
+    is_dirichlet.assign(n, false);
+    std::vector<Point<2>> support(n);
+    DoFTools::map_dofs_to_support_points(mapping, dof_handler, support);
+    for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
+      if (prm.boundary_conditions[k].type
+          == BoundaryCondition::Type::temperature)
+        {
+          const IndexSet set
+            = DoFTools::extract_boundary_dofs(dof_handler,
+                                              ComponentMask(),
+                                              {types::boundary_id(k)});
+          for (const auto i : set)
+            if (!is_dirichlet[i] && !hanging.is_constrained(i))
+              {
+                is_dirichlet[i] = true;
+                dirichlet_dofs.push_back(i);
+                dirichlet_points.push_back(support[i]);
+                dirichlet_bc.push_back(k);
+              }
+        }
+
+    stats.n_cells       = tria.n_active_cells();
+    stats.n_dofs        = n;
+    stats.min_cell_size = std::numeric_limits<double>::max();
+    for (const auto &cell : tria.active_cell_iterators())
+      {
+        stats.min_cell_size = std::min(stats.min_cell_size, cell->diameter());
+        stats.max_cell_size = std::max(stats.max_cell_size, cell->diameter());
+      }
+    // Smallest node spacing: cell diameter / sqrt(2) / degree.
+    h_min = stats.min_cell_size / std::sqrt(2.) / prm.degree;
+  }
+
+
+
+  void
+  HeatSolver::Impl::assemble_fixed()
+  {
+    const QGauss<2>    quadrature(fe.degree + 1);
+    const QGauss<1>    face_quadrature(fe.degree + 1);
+    FEValues<2>        fe_values(mapping,
+                          fe,
+                          quadrature,
+                          update_values | update_gradients
+                            | update_quadrature_points | update_JxW_values);
+    FEFaceValues<2>    fe_face(mapping,
+                            fe,
+                            face_quadrature,
+                            update_values | update_JxW_values);
+    const unsigned int dpc = fe.n_dofs_per_cell();
+    FullMatrix<double> cell_mass(dpc, dpc), cell_stiff(dpc, dpc);
+    Vector<double>     cell_vec(dpc), cell_vec2(dpc);
+    std::vector<types::global_dof_index> dofs(dpc);
+
+    // Uniform boundary data vectors.
+    std::vector<int> uniform_slot(prm.boundary_conditions.size(), -1);
+    for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
+      {
+        const auto &bc = prm.boundary_conditions[k];
+        if (!bc.value && bc.type != BoundaryCondition::Type::flux)
+          throw InputError("heat: boundary condition for tag '" + bc.tag
+                           + "' has no value");
+        if (bc.type == BoundaryCondition::Type::convective
+            && !(bc.heat_transfer_coefficient >= 0.))
+          throw InputError("heat: the heat transfer coefficient of tag '"
+                           + bc.tag + "' must be >= 0 W/(m^2 K)");
+        if (bc.type == BoundaryCondition::Type::temperature || !bc.value)
+          continue;
+        if (bc.uniform)
+          {
+            uniform_slot[k] = uniform_bc.size();
+            uniform_bc.push_back(k);
+            uniform_vectors.emplace_back(dof_handler.n_dofs());
+            uniform_rates.push_back(0.);
+          }
+        else
+          nonuniform = true;
+      }
+    if (prm.source)
+      nonuniform = true;
+
+    const unsigned int n_blocks = prm.blocks.size();
+    block_phi.assign(n_blocks, Vector<double>(dof_handler.n_dofs()));
+    block_xphi = block_phi;
+    block_yphi = block_phi;
+    block_geometry.assign(n_blocks,
+                          std::array<double, 6>{{0., 0., 0., 0., 0., 0.}});
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        fe_values.reinit(cell);
+        cell->get_dof_indices(dofs);
+        const unsigned int block = cell->material_id();
+        const Material    &mat   = prm.materials[prm.blocks[block].material];
+        const double       rho_c = mat.density * mat.heat_capacity;
+        cell_mass                = 0.;
+        cell_stiff               = 0.;
+        auto &geo                = block_geometry[block];
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          {
+            const double jxw = fe_values.JxW(q);
+            const auto  &x   = fe_values.quadrature_point(q);
+            geo[0] += jxw;
+            geo[1] += x[0] * jxw;
+            geo[2] += x[1] * jxw;
+            geo[3] += x[0] * x[0] * jxw;
+            geo[4] += x[0] * x[1] * jxw;
+            geo[5] += x[1] * x[1] * jxw;
+            for (unsigned int i = 0; i < dpc; ++i)
+              {
+                const double phi_i = fe_values.shape_value(i, q);
+                capacity[dofs[i]] += rho_c * phi_i * jxw;
+                block_phi[block][dofs[i]] += phi_i * jxw;
+                block_xphi[block][dofs[i]] += x[0] * phi_i * jxw;
+                block_yphi[block][dofs[i]] += x[1] * phi_i * jxw;
+                for (unsigned int j = 0; j < dpc; ++j)
+                  {
+                    cell_mass(i, j)
+                      += rho_c * phi_i * fe_values.shape_value(j, q) * jxw;
+                    cell_stiff(i, j) += mat.conductivity
+                                        * (fe_values.shape_grad(i, q)
+                                           * fe_values.shape_grad(j, q))
+                                        * jxw;
+                  }
+              }
+          }
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary()
+              && cell->face(f)->boundary_id() < prm.boundary_conditions.size())
+            {
+              const unsigned int k  = cell->face(f)->boundary_id();
+              const auto        &bc = prm.boundary_conditions[k];
+              if (bc.type == BoundaryCondition::Type::temperature || !bc.value)
+                continue;
+              fe_face.reinit(cell, f);
+              const double h = bc.type == BoundaryCondition::Type::convective
+                                 ? bc.heat_transfer_coefficient
+                                 : 0.;
+              cell_vec       = 0.;
+              double ds      = 0.;
+              for (const unsigned int q : fe_face.quadrature_point_indices())
+                {
+                  const double jxw = fe_face.JxW(q);
+                  ds += jxw;
+                  for (unsigned int i = 0; i < dpc; ++i)
+                    {
+                      const double phi_i = fe_face.shape_value(i, q);
+                      // Uniform data: v_k = int w phi, w = h or 1.
+                      cell_vec(i)
+                        += (h > 0.
+                              ? h
+                              : (bc.type == BoundaryCondition::Type::flux ? 1.
+                                                                          : 0.))
+                           * phi_i * jxw;
+                      robin_weights[dofs[i]] += h * phi_i * jxw;
+                      for (unsigned int j = 0; j < dpc; ++j)
+                        cell_stiff(i, j)
+                          += h * phi_i * fe_face.shape_value(j, q) * jxw;
+                    }
+                }
+              if (uniform_slot[k] >= 0)
+                {
+                  hanging.distribute_local_to_global(
+                    cell_vec, dofs, uniform_vectors[uniform_slot[k]]);
+                  uniform_rates[uniform_slot[k]]
+                    += (bc.type == BoundaryCondition::Type::convective ? h : 1.)
+                       * ds;
+                }
+            }
+        hanging.distribute_local_to_global(cell_mass, dofs, mass);
+        hanging.distribute_local_to_global(cell_stiff, dofs, stiffness);
+      }
+  }
+
+
+
+  void
+  HeatSolver::Impl::assemble_rhs(const double    t,
+                                 Vector<double> &f,
+                                 double         &boundary_rate,
+                                 double         &source_rate) const
+  {
+    f             = 0.;
+    boundary_rate = 0.;
+    source_rate   = 0.;
+    for (unsigned int s = 0; s < uniform_bc.size(); ++s)
+      {
+        const double g
+          = prm.boundary_conditions[uniform_bc[s]].value(0., 0., t);
+        if (!std::isfinite(g))
+          throw std::runtime_error("heat: boundary value of tag '"
+                                   + prm.boundary_conditions[uniform_bc[s]].tag
+                                   + "' is not finite at t = "
+                                   + io::format_number(t, 8) + " s");
+        f.add(g, uniform_vectors[s]);
+        boundary_rate += g * uniform_rates[s];
+      }
+    if (!nonuniform)
+      return;
+
+    const QGauss<2>                      quadrature(fe.degree + 1);
+    const QGauss<1>                      face_quadrature(fe.degree + 1);
+    FEValues<2>                          fe_values(mapping,
+                          fe,
+                          quadrature,
+                          update_values | update_quadrature_points
+                            | update_JxW_values);
+    FEFaceValues<2>                      fe_face(mapping,
+                            fe,
+                            face_quadrature,
+                            update_values | update_quadrature_points
+                              | update_JxW_values);
+    const unsigned int                   dpc = fe.n_dofs_per_cell();
+    Vector<double>                       cell_vec(dpc);
+    std::vector<types::global_dof_index> dofs(dpc);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        cell_vec = 0.;
+        bool any = false;
+        if (prm.source)
+          {
+            any = true;
+            fe_values.reinit(cell);
+            for (const unsigned int q : fe_values.quadrature_point_indices())
+              {
+                const auto  &x = fe_values.quadrature_point(q);
+                const double s = prm.source(x[0], x[1], t) * fe_values.JxW(q);
+                source_rate += s;
+                for (unsigned int i = 0; i < dpc; ++i)
+                  cell_vec(i) += s * fe_values.shape_value(i, q);
+              }
+          }
+        for (const auto fi : cell->face_indices())
+          if (cell->face(fi)->at_boundary()
+              && cell->face(fi)->boundary_id() < prm.boundary_conditions.size())
+            {
+              const auto &bc
+                = prm.boundary_conditions[cell->face(fi)->boundary_id()];
+              if (bc.uniform || !bc.value
+                  || bc.type == BoundaryCondition::Type::temperature)
+                continue;
+              any = true;
+              fe_face.reinit(cell, fi);
+              const double w = bc.type == BoundaryCondition::Type::convective
+                                 ? bc.heat_transfer_coefficient
+                                 : 1.;
+              for (const unsigned int q : fe_face.quadrature_point_indices())
+                {
+                  const auto  &x = fe_face.quadrature_point(q);
+                  const double g = w * bc.value(x[0], x[1], t) * fe_face.JxW(q);
+                  boundary_rate += g;
+                  for (unsigned int i = 0; i < dpc; ++i)
+                    cell_vec(i) += g * fe_face.shape_value(i, q);
+                }
+            }
+        if (any)
+          {
+            cell->get_dof_indices(dofs);
+            hanging.distribute_local_to_global(cell_vec, dofs, f);
+          }
+      }
+  }
+
+
+
+  StepOperator &
+  HeatSolver::Impl::get_operator(const double dt, const double theta)
+  {
+    for (auto &op : operators)
+      if (op->dt == dt && op->theta == theta)
+        return *op;
+    if (operators.size() >= 4)
+      operators.erase(operators.begin());
+    TimerOutput::Scope scope(timer, "factorize");
+    auto               op = std::make_unique<StepOperator>();
+    op->dt                = dt;
+    op->theta             = theta;
+    op->a.reinit(sparsity);
+    op->a.copy_from(mass);
+    op->a.add(theta * dt, stiffness);
+    op->b.reinit(sparsity);
+    op->b.copy_from(mass);
+    op->b.add(-(1. - theta) * dt, stiffness);
+    op->a_mod.reinit(sparsity);
+    op->a_mod.copy_from(op->a);
+    // Remove Dirichlet rows and columns (keeps the matrix symmetric).
+    if (!dirichlet_dofs.empty())
+      for (unsigned int row = 0; row < op->a_mod.m(); ++row)
+        for (auto it = op->a_mod.begin(row); it != op->a_mod.end(row); ++it)
+          if ((is_dirichlet[row] || is_dirichlet[it->column()])
+              && it->column() != row)
+            it->value() = 0.;
+    if (prm.direct_solver)
+      {
+        to_eigen(op->b, op->eigen_b);
+        std::vector<int> column_map(dof_handler.n_dofs(), -1);
+        for (std::size_t d = 0; d < dirichlet_dofs.size(); ++d)
+          column_map[dirichlet_dofs[d]] = d;
+        to_eigen(op->a,
+                 op->eigen_a_dirichlet,
+                 &column_map,
+                 dirichlet_dofs.size());
+        Eigen::SparseMatrix<double> a_mod;
+        to_eigen(op->a_mod, a_mod);
+        op->ldlt.compute(a_mod);
+        if (op->ldlt.info() != Eigen::Success)
+          throw std::runtime_error("heat: the factorisation of the system "
+                                   "matrix failed (not positive definite?)");
+      }
+    else
+      op->ssor.initialize(op->a_mod, 1.2);
+    ++stats.n_factorizations;
+    operators.push_back(std::move(op));
+    return *operators.back();
+  }
+
+
+
+  void
+  HeatSolver::Impl::apply_dirichlet_values(const double    t,
+                                           Vector<double> &v) const
+  {
+    for (std::size_t d = 0; d < dirichlet_dofs.size(); ++d)
+      {
+        const auto  &p = dirichlet_points[d];
+        const double g
+          = prm.boundary_conditions[dirichlet_bc[d]].value(p[0], p[1], t);
+        if (!std::isfinite(g))
+          throw std::runtime_error(
+            "heat: temperature of tag '"
+            + prm.boundary_conditions[dirichlet_bc[d]].tag
+            + "' is not finite at t = " + io::format_number(t, 8) + " s");
+        v[dirichlet_dofs[d]] = g;
+      }
+  }
+
+
+
+  void
+  HeatSolver::Impl::theta_step(const double dt, const double theta)
+  {
+    StepOperator &op = get_operator(dt, theta);
+    if (!rhs_old_valid)
+      {
+        assemble_rhs(time, rhs_old, rate_old, source_rate_old);
+        rate_old -= robin_weights * solution;
+        rhs_old_valid = true;
+      }
+    double rate_new = 0., source_rate_new = 0.;
+    assemble_rhs(time + dt, rhs_new, rate_new, source_rate_new);
+
+    // b = B T + dt (theta F_new + (1 - theta) F_old) - A g
+    const unsigned int n = solution.size();
+    using Map            = Eigen::Map<Eigen::VectorXd>;
+    using ConstMap       = Eigen::Map<const Eigen::VectorXd>;
+    if (prm.direct_solver)
+      Map(tmp.begin(), n).noalias()
+        = op.eigen_b * ConstMap(solution.begin(), n);
+    else
+      op.b.vmult(tmp, solution);
+    tmp.add(dt * theta, rhs_new, dt * (1. - theta), rhs_old);
+    if (!dirichlet_dofs.empty())
+      {
+        g_ext = 0.;
+        apply_dirichlet_values(time + dt, g_ext);
+        if (prm.direct_solver)
+          {
+            Eigen::VectorXd g(dirichlet_dofs.size());
+            for (std::size_t d = 0; d < dirichlet_dofs.size(); ++d)
+              g[d] = g_ext[dirichlet_dofs[d]];
+            Map(tmp.begin(), n) -= op.eigen_a_dirichlet * g;
+          }
+        else
+          {
+            op.a.vmult(new_solution, g_ext);
+            tmp -= new_solution;
+          }
+        for (const auto i : dirichlet_dofs)
+          tmp[i] = op.a.diag_element(i) * g_ext[i];
+      }
+    hanging.set_zero(tmp);
+
+    if (prm.direct_solver)
+      Map(new_solution.begin(), n) = op.ldlt.solve(ConstMap(tmp.begin(), n));
+    else
+      {
+        SolverControl            control(10000,
+                              prm.cg_tolerance
+                                * std::max(tmp.l2_norm(), 1e-300));
+        SolverCG<Vector<double>> cg(control);
+        new_solution = solution;
+        cg.solve(op.a_mod, new_solution, tmp, op.ssor);
+      }
+    hanging.distribute(new_solution);
+
+    // Energy bookkeeping (same theta weights as the scheme).
+    rate_new -= robin_weights * new_solution;
+    boundary_heat += dt * (theta * rate_new + (1. - theta) * rate_old);
+    source_heat
+      += dt * (theta * source_rate_new + (1. - theta) * source_rate_old);
+    rate_old        = rate_new;
+    source_rate_old = source_rate_new;
+    rhs_old.swap(rhs_new);
+
+    // Crank-Nicolson oscillation indicator: consecutive increments nearly
+    // opposite (the stiffest modes flip sign every step).
+    tmp = new_solution;
+    tmp -= solution;
+    const double n_new = tmp.l2_norm(), n_old = increment_old.l2_norm();
+    const bool   flip
+      = steps_taken > 0
+        && tmp.linfty_norm() > 1e-6 * (1. + solution.linfty_norm())
+        && (tmp * increment_old) < -0.5 * n_new * n_old;
+    // Two sign flips in a row: a smooth solution turning at a peak flips
+    // once, the Crank-Nicolson stiff-mode oscillation every step.
+    const bool oscillating = flip && last_step_flipped;
+    last_step_flipped      = flip;
+    if (oscillating)
+      {
+        ++stats.oscillation_steps;
+        if (theta < 1. && prm.oscillation_fallback
+            && std::isnan(stats.fallback_time))
+          stats.fallback_time = time + dt;
+      }
+    increment_old = tmp;
+
+    solution.swap(new_solution);
+    time += dt;
+    ++steps_taken;
+    ++stats.n_steps;
+  }
+
+
+
+  void
+  HeatSolver::Impl::advance_to(const double end_time)
+  {
+    if (!(end_time >= time - 1e-9 * prm.time_step))
+      throw std::invalid_argument("heat: advance_to() into the past");
+    if (prm.stepper == TimeStepper::arkode)
+      {
+        TimerOutput::Scope scope(timer, "time stepping (ARKODE)");
+        arkode_advance(end_time);
+        return;
+      }
+    TimerOutput::Scope scope(timer, "time stepping");
+    const double       theta_cn
+      = prm.stepper == TimeStepper::crank_nicolson ? 0.5 : 1.;
+    const double dt   = prm.time_step;
+    const auto   step = [&](const double h) {
+      const double theta = std::isnan(stats.fallback_time) ? theta_cn : 1.;
+      const bool   rannacher = theta < 1. && steps_taken < prm.rannacher_steps;
+      theta_step(h, rannacher ? 1. : theta);
+    };
+    // Whole steps of exactly dt (an interval within 1e-6 dt of a multiple
+    // of dt counts as that multiple, so that one factorisation serves the
+    // whole run), then one shorter step for a remainder.
+    const double remaining = end_time - time;
+    const long   n_whole   = std::lround(remaining / dt);
+    if (n_whole >= 1 && std::abs(remaining - n_whole * dt) <= 1e-6 * dt)
+      for (long i = 0; i < n_whole; ++i)
+        step(dt);
+    else
+      {
+        const long n = static_cast<long>(std::floor(remaining / dt));
+        for (long i = 0; i < n; ++i)
+          step(dt);
+        if (end_time - time > 1e-6 * dt)
+          step(end_time - time);
+      }
+    time = end_time;
+  }
+
+
+
+  void
+  HeatSolver::Impl::arkode_advance(const double end_time)
+  {
+    // M y' = -K y + F(t) with Dirichlet rows replaced by y_D' = g'(t)
+    // (finite difference of g); implicit DIRK with adaptive error control.
+    using VectorType = Vector<double>;
+    if (end_time - time <= 0.)
+      return;
+    SUNDIALS::ARKode<VectorType>::AdditionalData data(
+      time,
+      end_time,
+      std::min(prm.time_step, end_time - time),
+      end_time - time,
+      1e-12 * (end_time - time),
+      5,
+      10,
+      true,
+      false,
+      true,
+      3,
+      prm.arkode_absolute_tolerance,
+      prm.arkode_relative_tolerance);
+    SUNDIALS::ARKode<VectorType> ode(data);
+
+    // Central difference for g'(t): step ~ cube root of round-off times the
+    // time scale (the larger of |t| and dt).
+    const double g_eps
+      = 1e-5 * std::max({std::abs(time), std::abs(end_time), prm.time_step});
+    Vector<double> g0(dof_handler.n_dofs()), g1(dof_handler.n_dofs());
+    double         dummy_rate, dummy_source;
+    Vector<double> f(dof_handler.n_dofs());
+    // Free-row mask: zero at Dirichlet and hanging rows.
+    ode.implicit_function
+      = [&](const double t, const VectorType &y, VectorType &ydot) {
+          // ydot here is the right-hand side f_I(t, y) = -K y + F(t) (mass
+          // matrix handled by ARKODE's mass solver).
+          assemble_rhs(t, f, dummy_rate, dummy_source);
+          stiffness.vmult(ydot, y);
+          ydot.sadd(-1., 1., f);
+          if (!dirichlet_dofs.empty())
+            {
+              g0 = 0.;
+              g1 = 0.;
+              apply_dirichlet_values(t - g_eps, g0);
+              apply_dirichlet_values(t + g_eps, g1);
+              for (const auto i : dirichlet_dofs)
+                ydot[i] = mass.diag_element(i) * (g1[i] - g0[i]) / (2. * g_eps);
+            }
+          for (unsigned int i = 0; i < ydot.size(); ++i)
+            if (hanging.is_constrained(i))
+              ydot[i] = 0.;
+          return 0;
+        };
+
+    // Mass matrix with Dirichlet rows/cols reduced to the diagonal.
+    // (Free rows keep their Dirichlet columns: M_iD g'(t) is part of the
+    // equation; the matrix is then non-symmetric, which UMFPACK handles.)
+    SparseMatrix<double> m_mod(sparsity);
+    m_mod.copy_from(mass);
+    for (unsigned int row = 0; row < m_mod.m(); ++row)
+      if (is_dirichlet[row])
+        for (auto it = m_mod.begin(row); it != m_mod.end(row); ++it)
+          if (it->column() != row)
+            it->value() = 0.;
+    SparseMatrix<double> jacobian(sparsity);
+    SparseDirectUMFPACK  jac_solver, mass_solver;
+    mass_solver.initialize(m_mod);
+    double gamma_current = -1.;
+
+    ode.mass_times_vector
+      = [&](const double, const VectorType &v, VectorType &mv) {
+          m_mod.vmult(mv, v);
+          return 0;
+        };
+    ode.solve_mass = [&](SUNDIALS::SundialsOperator<VectorType> &,
+                         SUNDIALS::SundialsPreconditioner<VectorType> &,
+                         VectorType       &x,
+                         const VectorType &b,
+                         double) {
+      mass_solver.vmult(x, b);
+      return 0;
+    };
+    ode.jacobian_times_setup
+      = [&](double, const VectorType &, const VectorType &) { return 0; };
+    ode.jacobian_times_vector = [&](const VectorType &v,
+                                    VectorType       &jv,
+                                    double,
+                                    const VectorType &,
+                                    const VectorType &) {
+      stiffness.vmult(jv, v);
+      jv *= -1.;
+      for (const auto i : dirichlet_dofs)
+        jv[i] = 0.;
+      for (unsigned int i = 0; i < jv.size(); ++i)
+        if (hanging.is_constrained(i))
+          jv[i] = 0.;
+      return 0;
+    };
+    ode.jacobian_preconditioner_setup = [&](double,
+                                            const VectorType &,
+                                            const VectorType &,
+                                            int,
+                                            int   &j_current,
+                                            double gamma) {
+      // Newton matrix M - gamma J = M + gamma K (Dirichlet rows: M_ii).
+      if (gamma != gamma_current)
+        {
+          jacobian.copy_from(mass);
+          jacobian.add(gamma, stiffness);
+          for (unsigned int row = 0; row < jacobian.m(); ++row)
+            for (auto it = jacobian.begin(row); it != jacobian.end(row); ++it)
+              if (is_dirichlet[row] || hanging.is_constrained(row))
+                it->value()
+                  = (it->column() == row) ? mass.diag_element(row) : 0.;
+          jac_solver.initialize(jacobian);
+          gamma_current = gamma;
+          ++stats.n_factorizations;
+        }
+      j_current = 1;
+      return 0;
+    };
+    ode.jacobian_preconditioner_solve = [&](double,
+                                            const VectorType &,
+                                            const VectorType &,
+                                            const VectorType &r,
+                                            VectorType       &z,
+                                            double,
+                                            double,
+                                            int) {
+      jac_solver.vmult(z, r);
+      return 0;
+    };
+    ode.solve_linearized_system
+      = [&](SUNDIALS::SundialsOperator<VectorType>       &op,
+            SUNDIALS::SundialsPreconditioner<VectorType> &prec,
+            VectorType                                   &x,
+            const VectorType                             &b,
+            double                                        tol) -> int {
+      ReductionControl        control(200, 1e-14, std::max(tol, 1e-12));
+      SolverGMRES<VectorType> gmres(control);
+      gmres.solve(op, x, b, prec);
+      return 0;
+    };
+
+
+    // Heat bookkeeping is only approximate with ARKODE (trapezoidal in the
+    // output points); the theta scheme is exact.
+    double rate0 = 0., src0 = 0.;
+    assemble_rhs(time, f, rate0, src0);
+    rate0 -= robin_weights * solution;
+
+    VectorType y = solution;
+    apply_dirichlet_values(time, y);
+    hanging.distribute(y);
+    ode.solve_ode(y);
+    long int n_fails = 0, n_steps = 0;
+    ARKStepGetNumErrTestFails(ode.get_arkode_memory(), &n_fails);
+    ARKStepGetNumSteps(ode.get_arkode_memory(), &n_steps);
+    stats.n_rejected_steps += n_fails;
+    apply_dirichlet_values(end_time, y);
+    hanging.distribute(y);
+    solution     = y;
+    double rate1 = 0., src1 = 0.;
+    assemble_rhs(end_time, f, rate1, src1);
+    rate1 -= robin_weights * solution;
+    boundary_heat += 0.5 * (end_time - time) * (rate0 + rate1);
+    source_heat += 0.5 * (end_time - time) * (src0 + src1);
+    stats.n_steps += n_steps;
+    time          = end_time;
+    rhs_old_valid = false;
+  }
+
+
+
+  // -------------------------------------------------------------------------
+  HeatSolver::HeatSolver(const HeatParameters &parameters)
+      : impl(std::make_unique<Impl>(parameters))
+  {}
+
+  HeatSolver::~HeatSolver() = default;
+
+  double
+  HeatSolver::time() const
+  {
+    return impl->time;
+  }
+
+  void
+  HeatSolver::advance_to(const double end_time)
+  {
+    impl->advance_to(end_time);
+  }
+
+  double
+  HeatSolver::value(const double x, const double y) const
+  {
+    const auto found
+      = GridTools::find_active_cell_around_point(impl->mapping,
+                                                 impl->dof_handler,
+                                                 Point<2>(x, y));
+    if (found.first.state() != IteratorState::valid)
+      throw InputError("heat: point (" + io::format_number(x, 6) + ", "
+                       + io::format_number(y, 6) + ") m is outside the rock");
+    const Quadrature<2> q(GeometryInfo<2>::project_to_unit_cell(found.second));
+    FEValues<2>         fe_values(impl->mapping, impl->fe, q, update_values);
+    fe_values.reinit(found.first);
+    std::vector<double> v(1);
+    fe_values.get_function_values(impl->solution, v);
+    return v[0];
+  }
+
+  unsigned int
+  HeatSolver::add_probe(const double x, const double y)
+  {
+    std::pair<DoFHandler<2>::active_cell_iterator, Point<2>> found;
+    try
+      {
+        found = GridTools::find_active_cell_around_point(impl->mapping,
+                                                         impl->dof_handler,
+                                                         Point<2>(x, y));
+      }
+    catch (...)
+      {
+        found.first = impl->dof_handler.end();
+      }
+    if (found.first == impl->dof_handler.end()
+        || found.first.state() != IteratorState::valid)
+      throw InputError("heat: probe point (" + io::format_number(x, 6) + ", "
+                       + io::format_number(y, 6) + ") m is outside the rock");
+    const Quadrature<2> q(GeometryInfo<2>::project_to_unit_cell(found.second));
+    FEValues<2>         fe_values(impl->mapping, impl->fe, q, update_values);
+    fe_values.reinit(found.first);
+    Probe probe;
+    probe.dofs.resize(impl->fe.n_dofs_per_cell());
+    found.first->get_dof_indices(probe.dofs);
+    for (unsigned int i = 0; i < probe.dofs.size(); ++i)
+      probe.weights.push_back(fe_values.shape_value(i, 0));
+    impl->probes.push_back(probe);
+    return impl->probes.size() - 1;
+  }
+
+  double
+  HeatSolver::probe_value(const unsigned int index) const
+  {
+    const Probe &p = impl->probes.at(index);
+    double       v = 0.;
+    for (unsigned int i = 0; i < p.dofs.size(); ++i)
+      v += p.weights[i] * impl->solution[p.dofs[i]];
+    return v;
+  }
+
+  std::vector<BlockMoments>
+  HeatSolver::block_moments() const
+  {
+    std::vector<BlockMoments> result(impl->block_phi.size());
+    for (unsigned int b = 0; b < result.size(); ++b)
+      {
+        const auto   &g  = impl->block_geometry[b];
+        BlockMoments &m  = result[b];
+        m.area           = g[0];
+        m.centroid_x     = g[1] / g[0];
+        m.centroid_y     = g[2] / g[0];
+        const double t0  = impl->block_phi[b] * impl->solution;
+        const double tx  = impl->block_xphi[b] * impl->solution;
+        const double ty  = impl->block_yphi[b] * impl->solution;
+        m.mean           = t0 / g[0];
+        m.moment_x       = tx - m.centroid_x * t0;
+        m.moment_y       = ty - m.centroid_y * t0;
+        const double ixx = g[3] - g[1] * g[1] / g[0];
+        const double ixy = g[4] - g[1] * g[2] / g[0];
+        const double iyy = g[5] - g[2] * g[2] / g[0];
+        const double det = ixx * iyy - ixy * ixy;
+        m.gradient_x     = (iyy * m.moment_x - ixy * m.moment_y) / det;
+        m.gradient_y     = (ixx * m.moment_y - ixy * m.moment_x) / det;
+      }
+    return result;
+  }
+
+  double
+  HeatSolver::stored_heat() const
+  {
+    return impl->capacity * impl->solution;
+  }
+
+  double
+  HeatSolver::boundary_heat_in() const
+  {
+    return impl->boundary_heat;
+  }
+
+  double
+  HeatSolver::source_heat_in() const
+  {
+    return impl->source_heat;
+  }
+
+  double
+  HeatSolver::l2_error(const SpaceTimeFunction &exact) const
+  {
+    const QGauss<2>     quadrature(impl->fe.degree + 2);
+    FEValues<2>         fe_values(impl->mapping,
+                          impl->fe,
+                          quadrature,
+                          update_values | update_quadrature_points
+                            | update_JxW_values);
+    std::vector<double> v(quadrature.size());
+    double              sum = 0.;
+    for (const auto &cell : impl->dof_handler.active_cell_iterators())
+      {
+        fe_values.reinit(cell);
+        fe_values.get_function_values(impl->solution, v);
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          {
+            const auto  &x = fe_values.quadrature_point(q);
+            const double e = v[q] - exact(x[0], x[1], impl->time);
+            sum += e * e * fe_values.JxW(q);
+          }
+      }
+    return std::sqrt(sum);
+  }
+
+  std::string
+  HeatSolver::vtu() const
+  {
+    DataOut<2> data_out;
+    data_out.attach_dof_handler(impl->dof_handler);
+    data_out.add_data_vector(impl->solution, "temperature");
+    Vector<float> block(impl->tria.n_active_cells());
+    for (const auto &cell : impl->tria.active_cell_iterators())
+      block[cell->active_cell_index()] = cell->material_id();
+    data_out.add_data_vector(block, "block");
+    data_out.build_patches(impl->fe.degree);
+    DataOutBase::VtkFlags flags;
+    flags.time = impl->time;
+    data_out.set_flags(flags);
+    std::ostringstream out;
+    data_out.write_vtu(out);
+    return out.str();
+  }
+
+  HeatStatistics
+  HeatSolver::statistics() const
+  {
+    HeatStatistics s = impl->stats;
+    s.stiffness_ratio
+      = impl->prm.time_step * impl->kappa_max / (impl->h_min * impl->h_min);
+    return s;
+  }
+
+  std::string
+  HeatSolver::method_description() const
+  {
+    const auto &p = impl->prm;
+    std::string s;
+    switch (p.stepper)
+      {
+        case TimeStepper::crank_nicolson:
+          s = "Crank-Nicolson (theta = 1/2), dt = "
+              + io::format_number(p.time_step, 6) + " s, "
+              + std::to_string(p.rannacher_steps)
+              + " backward-Euler start-up steps";
+          break;
+        case TimeStepper::backward_euler:
+          s = "backward Euler (theta = 1), dt = "
+              + io::format_number(p.time_step, 6) + " s";
+          break;
+        case TimeStepper::arkode:
+          s = "SUNDIALS ARKODE (implicit DIRK, adaptive), rtol = "
+              + io::format_number(p.arkode_relative_tolerance, 3) + ", atol = "
+              + io::format_number(p.arkode_absolute_tolerance, 3) + " K";
+          break;
+      }
+    s += "; FE_Q(" + std::to_string(p.degree) + "); linear solver "
+         + (p.direct_solver ? "sparse Cholesky (Eigen LDLT, direct)"
+                            : "CG + SSOR");
+    return s;
+  }
+
+  std::string
+  HeatSolver::timing_summary() const
+  {
+    impl->timer_stream.str("");
+    impl->timer.print_summary();
+    return impl->timer_stream.str();
+  }
+} // namespace rockdda::thermal

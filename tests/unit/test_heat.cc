@@ -1,0 +1,576 @@
+/**
+ * @file
+ * Tests of the thermal subsystem: periodic half-space (Carslaw & Jaeger
+ * 1959, Sec. 2.6), thesis skin depth (Eq. 5.1), manufactured solutions
+ * (orders in space and time), energy balance, block moments, bad input.
+ */
+#include <rockdda/io/error.h>
+#include <rockdda/thermal/boundary_data.h>
+#include <rockdda/thermal/heat_solver.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+using namespace rockdda;
+using namespace rockdda::thermal;
+
+namespace
+{
+  const double day  = 86400.;
+  const double year = 365.25 * day;
+
+  Material
+  masada()
+  {
+    Material m;
+    m.name          = "Masada dolomite";
+    m.conductivity  = 1.7;
+    m.density       = 2600.;
+    m.heat_capacity = 810.;
+    return m;
+  }
+
+  Block
+  rectangle(const double                    x0,
+            const double                    y0,
+            const double                    x1,
+            const double                    y1,
+            const std::vector<std::string> &tags)
+  {
+    Block b;
+    b.name      = "rectangle";
+    b.vertices  = {{{x0, y0}}, {{x1, y0}}, {{x1, y1}}, {{x0, y1}}};
+    b.edge_tags = tags; // bottom, right, top, left
+    return b;
+  }
+
+  BoundaryCondition
+  constant_flux(const std::string &tag, const double q)
+  {
+    BoundaryCondition bc;
+    bc.tag   = tag;
+    bc.type  = BoundaryCondition::Type::flux;
+    bc.value = [q](double, double, double) { return q; };
+    return bc;
+  }
+
+  double
+  order(const double e_coarse, const double e_fine, const double ratio)
+  {
+    return std::log(e_coarse / e_fine) / std::log(ratio);
+  }
+} // namespace
+
+
+
+// The periodic half-space: T(z, t) = Tm + A exp(-z/d) sin(w t - z/d),
+// d = sqrt(2 kappa / w) (Carslaw & Jaeger 1959, Sec. 2.6). A column 30 m
+// deep (> 10 d, so the adiabatic bottom changes the field at 5 m by
+// ~exp(-2 (30 - 5) / d) ~ 1e-8), FE_Q(2) with 0.25 m cells (8 nodes per
+// d) and Crank-Nicolson with dt = 1/365 year (w dt = 0.017, phase error
+// ~ (w dt)^2 / 12 ~ 3e-5 rad). 12 years of spin-up from the mean: the
+// start-up transient decays like t^(-3/2) to well below 0.1 % of A.
+TEST(Heat, PeriodicHalfSpaceAmplitudeAndLag)
+{
+  const double   A = 10., Tm = 20.;
+  const double   w = 2. * M_PI / year;
+  HeatParameters p;
+  p.materials        = {masada()};
+  p.blocks           = {rectangle(
+    0., -30., 0.25, 0., {"far field", "adiabatic", "exposed", "adiabatic"})};
+  p.degree           = 2;
+  p.coarse_cell_size = 0.25;
+  BoundaryCondition surface;
+  surface.tag  = "exposed";
+  surface.type = BoundaryCondition::Type::temperature;
+  surface.value
+    = [=](double, double, double t) { return Tm + A * std::sin(w * t); };
+  p.boundary_conditions = {surface, constant_flux("far field", 0.)};
+  p.stepper             = TimeStepper::crank_nicolson;
+  p.time_step           = year / 365.;
+  p.initial_temperature = Tm;
+
+  HeatSolver                solver(p);
+  const std::vector<double> depths = {0.5, 1., 2.5, 5.};
+  for (const double z : depths)
+    solver.add_probe(0.125, -z);
+  solver.advance_to(12. * year);
+
+  std::vector<double>              t;
+  std::vector<std::vector<double>> samples(depths.size());
+  for (unsigned int i = 0; i < 365; ++i)
+    {
+      solver.advance_to(12. * year + (i + 1) * year / 365.);
+      t.push_back(solver.time());
+      for (unsigned int k = 0; k < depths.size(); ++k)
+        samples[k].push_back(solver.probe_value(k));
+    }
+  const double d = periodic_skin_depth(masada().diffusivity(), year);
+  EXPECT_NEAR(d, 2.847, 0.001);
+  for (unsigned int k = 0; k < depths.size(); ++k)
+    {
+      const SinusoidFit fit       = fit_sinusoid(t, samples[k], w);
+      const double      z         = depths[k];
+      const double      lag_days  = -fit.phase / w / day;
+      const double      lag_exact = z / d / w / day;
+      std::printf("z = %4.1f m: amplitude %.4f (exact %.4f) K, lag %.2f "
+                  "(exact %.2f) days, mean %.4f\n",
+                  z,
+                  fit.amplitude,
+                  A * std::exp(-z / d),
+                  lag_days,
+                  lag_exact,
+                  fit.mean);
+      EXPECT_NEAR(fit.amplitude, A * std::exp(-z / d), 0.01 * A);
+      EXPECT_NEAR(lag_days, lag_exact, 1.);
+      EXPECT_NEAR(fit.mean, Tm, 0.01 * A);
+    }
+}
+
+
+
+// Thesis Eq. 5.1, S_d = sqrt(kappa t_exp / 2), t_exp = 180 days: "2.5 m".
+TEST(Heat, ThesisSkinDepth)
+{
+  const double sd = thesis_skin_depth(masada().diffusivity(), 180. * day);
+  EXPECT_NEAR(sd, 2.5, 0.05);
+  EXPECT_NEAR(masada().diffusivity(), 8.072e-7, 1e-10);
+}
+
+
+
+namespace
+{
+  // Manufactured problem on the unit square (lambda = rho = c_p = 1 and
+  // h = 2): Dirichlet on the left and bottom, flux on the top, convective
+  // on the right, with the source and data computed from the exact T.
+  HeatParameters
+  manufactured(const unsigned int                            degree,
+               const double                                  h,
+               const double                                  dt,
+               const TimeStepper                             stepper,
+               std::function<double(double, double, double)> exact,
+               std::function<double(double, double, double)> dtdx,
+               std::function<double(double, double, double)> dtdy,
+               std::function<double(double, double, double)> source)
+  {
+    HeatParameters p;
+    Material       unit;
+    unit.conductivity = unit.density = unit.heat_capacity = 1.;
+    p.materials                                           = {unit};
+    p.blocks                                              = {
+                                                   rectangle(0., 0., 1., 1., {"dirichlet", "robin", "flux", "dirichlet"})};
+    p.degree           = degree;
+    p.coarse_cell_size = h;
+    p.time_step        = dt;
+    p.stepper          = stepper;
+    BoundaryCondition d, r, f;
+    d.tag                       = "dirichlet";
+    d.type                      = BoundaryCondition::Type::temperature;
+    d.value                     = exact;
+    d.uniform                   = false;
+    r.tag                       = "robin";
+    r.type                      = BoundaryCondition::Type::convective;
+    r.heat_transfer_coefficient = 2.;
+    r.value                     = [=](double x, double y, double t) {
+      return exact(x, y, t) + dtdx(x, y, t) / 2.;
+    };
+    r.uniform             = false;
+    f.tag                 = "flux";
+    f.type                = BoundaryCondition::Type::flux;
+    f.value               = dtdy;
+    f.uniform             = false;
+    p.boundary_conditions = {d, r, f};
+    p.initial_field       = [=](double x, double y) { return exact(x, y, 0.); };
+    p.source              = source;
+    return p;
+  }
+} // namespace
+
+
+
+// Space: T = (1 + t) sin(2x + 0.3) cos(1.5y) is linear in time, which the
+// theta scheme integrates exactly, so the error is spatial: O(h^(p+1)).
+TEST(Heat, ManufacturedSpaceConvergence)
+{
+  const double a = 2., b = 1.5;
+  auto         exact = [=](double x, double y, double t) {
+    return (1. + t) * std::sin(a * x + 0.3) * std::cos(b * y);
+  };
+  auto dx = [=](double x, double y, double t) {
+    return (1. + t) * a * std::cos(a * x + 0.3) * std::cos(b * y);
+  };
+  auto dy = [=](double x, double y, double t) {
+    return -(1. + t) * b * std::sin(a * x + 0.3) * std::sin(b * y);
+  };
+  auto source = [=](double x, double y, double t) {
+    return std::sin(a * x + 0.3) * std::cos(b * y)
+           * (1. + (a * a + b * b) * (1. + t));
+  };
+  for (unsigned int p = 1; p <= 3; ++p)
+    {
+      std::vector<double> errors;
+      const double        h0 = p == 3 ? 0.5 : 0.25;
+      for (unsigned int level = 0; level < 3; ++level)
+        {
+          const double h = h0 / (1 << level);
+          HeatSolver   solver(manufactured(
+            p, h, 0.1, TimeStepper::crank_nicolson, exact, dx, dy, source));
+          solver.advance_to(0.5);
+          errors.push_back(solver.l2_error(exact));
+        }
+      const double observed = order(errors[1], errors[2], 2.);
+      std::printf("FE_Q(%u): L2 errors %.3e %.3e %.3e, order %.2f\n",
+                  p,
+                  errors[0],
+                  errors[1],
+                  errors[2],
+                  observed);
+      EXPECT_NEAR(observed, p + 1., 0.2) << "degree " << p;
+    }
+}
+
+
+
+// Time: T = (1 + x^2 + x y + y^2 / 2)(1 + sin 2t) lies in Q2 at every
+// time, so the Q2 semi-discrete solution is exact and the error is the
+// time-stepping error: order 2 (CN, with its two backward-Euler start-up
+// steps) and 1 (BE).
+TEST(Heat, ManufacturedTimeConvergence)
+{
+  auto P = [](double x, double y) { return 1. + x * x + x * y + 0.5 * y * y; };
+  auto exact = [=](double x, double y, double t) {
+    return P(x, y) * (1. + std::sin(2. * t));
+  };
+  auto dx = [=](double x, double y, double t) {
+    return (2. * x + y) * (1. + std::sin(2. * t));
+  };
+  auto dy = [=](double x, double y, double t) {
+    return (x + y) * (1. + std::sin(2. * t));
+  };
+  auto source = [=](double x, double y, double t) {
+    // rho c dT/dt - lambda Laplace T, Laplace P = 2 + 1.
+    return P(x, y) * 2. * std::cos(2. * t) - 3. * (1. + std::sin(2. * t));
+  };
+  for (const auto stepper :
+       {TimeStepper::crank_nicolson, TimeStepper::backward_euler})
+    {
+      std::vector<double> errors;
+      for (const double dt : {1. / 16., 1. / 32., 1. / 64.})
+        {
+          HeatSolver solver(
+            manufactured(2, 0.25, dt, stepper, exact, dx, dy, source));
+          solver.advance_to(1.);
+          errors.push_back(solver.l2_error(exact));
+          const auto st = solver.statistics();
+          EXPECT_EQ(st.oscillation_steps, 0u);
+          EXPECT_EQ(st.n_factorizations,
+                    1u + (stepper == TimeStepper::crank_nicolson));
+        }
+      const double observed = order(errors[1], errors[2], 2.);
+      const double expected = stepper == TimeStepper::crank_nicolson ? 2. : 1.;
+      std::printf("%s: L2 errors %.3e %.3e %.3e, order %.2f\n",
+                  stepper == TimeStepper::crank_nicolson ? "CN" : "BE",
+                  errors[0],
+                  errors[1],
+                  errors[2],
+                  observed);
+      EXPECT_NEAR(observed, expected, 0.2);
+    }
+}
+
+
+
+// ARKODE with adaptive error control on the same problem: the error
+// follows the tolerance.
+TEST(Heat, ArkodeAdaptive)
+{
+  auto P = [](double x, double y) { return 1. + x * x + x * y + 0.5 * y * y; };
+  auto exact = [=](double x, double y, double t) {
+    return P(x, y) * (1. + std::sin(2. * t));
+  };
+  auto dx = [=](double x, double y, double t) {
+    return (2. * x + y) * (1. + std::sin(2. * t));
+  };
+  auto dy = [=](double x, double y, double t) {
+    return (x + y) * (1. + std::sin(2. * t));
+  };
+  auto source = [=](double x, double y, double t) {
+    return P(x, y) * 2. * std::cos(2. * t) - 3. * (1. + std::sin(2. * t));
+  };
+  HeatParameters p
+    = manufactured(2, 0.25, 0.01, TimeStepper::arkode, exact, dx, dy, source);
+  p.arkode_relative_tolerance = 1e-7;
+  p.arkode_absolute_tolerance = 1e-9;
+  HeatSolver solver(p);
+  solver.advance_to(1.);
+  const double error = solver.l2_error(exact);
+  std::printf("ARKODE: L2 error %.3e after %lu steps (%s)\n",
+              error,
+              solver.statistics().n_steps,
+              solver.method_description().c_str());
+  EXPECT_LT(error, 1e-4);
+  EXPECT_GT(solver.statistics().n_steps, 0u);
+}
+
+
+
+// A closed domain (convective and flux boundaries only): two blocks of
+// different materials, an L-shaped one (ear clipping) and a refinement
+// band (hanging nodes). The stored heat change equals the boundary heat
+// input integrated with the scheme's own theta weights, to round-off.
+TEST(Heat, EnergyBalanceClosedDomain)
+{
+  for (const auto stepper :
+       {TimeStepper::crank_nicolson, TimeStepper::backward_euler})
+    {
+      HeatParameters p;
+      Material       soft = masada();
+      soft.name           = "soft";
+      soft.conductivity   = 0.8;
+      soft.density        = 2200.;
+      p.materials         = {masada(), soft};
+      Block l;
+      l.name     = "L";
+      l.vertices = {
+        {{0., 0.}}, {{4., 0.}}, {{4., 2.}}, {{2., 2.}}, {{2., 4.}}, {{0., 4.}}};
+      l.edge_tags
+        = {"base", "joint", "joint", "exposed", "exposed", "adiabatic"};
+      Block r;
+      r.name                = "R";
+      r.vertices            = {{{4., 0.}}, {{6., 0.}}, {{6., 2.}}, {{4., 2.}}};
+      r.edge_tags           = {"base", "exposed", "exposed", "joint"};
+      r.material            = 1;
+      p.blocks              = {l, r};
+      p.degree              = 2;
+      p.coarse_cell_size    = 1.;
+      p.refine_near_tags    = {"exposed"};
+      p.band_width          = 0.5;
+      p.band_cell_size      = 0.25;
+      p.time_step           = day;
+      p.stepper             = stepper;
+      p.initial_temperature = 15.;
+      BoundaryCondition air;
+      air.tag                       = "exposed";
+      air.type                      = BoundaryCondition::Type::convective;
+      air.heat_transfer_coefficient = 10.;
+      air.value                     = [](double, double, double t) {
+        return 25. + 8. * std::sin(2. * M_PI * t / (20. * day));
+      };
+      p.boundary_conditions
+        = {air, constant_flux("base", 5.), constant_flux("joint", 0.)};
+      HeatSolver   solver(p);
+      const double e0 = solver.stored_heat();
+      solver.advance_to(60. * day);
+      const double stored = solver.stored_heat() - e0;
+      const double input  = solver.boundary_heat_in();
+      std::printf("stored %.6e J/m, boundary input %.6e J/m, cells %u, "
+                  "relative mismatch %.2e\n",
+                  stored,
+                  input,
+                  solver.statistics().n_cells,
+                  std::abs(stored - input) / std::abs(input));
+      EXPECT_GT(std::abs(input), 1e6);
+      EXPECT_LT(std::abs(stored - input), 1e-6 * std::abs(input));
+    }
+}
+
+
+
+// Per-block mean and linear trend of a linear field are exact.
+TEST(Heat, BlockMomentsOfLinearField)
+{
+  HeatParameters p;
+  p.blocks = {rectangle(1., -2., 4., 0., {"a", "a", "a", "a"})};
+  auto linear
+    = [](double x, double y, double) { return 10. + 2. * x + 3. * y; };
+  BoundaryCondition bc;
+  bc.tag                = "a";
+  bc.type               = BoundaryCondition::Type::temperature;
+  bc.value              = linear;
+  bc.uniform            = false;
+  p.boundary_conditions = {bc};
+  p.initial_field       = [&](double x, double y) { return linear(x, y, 0.); };
+  p.coarse_cell_size    = 0.5;
+  p.degree              = 1;
+  HeatSolver solver(p);
+  solver.advance_to(10. * day);
+  const auto m = solver.block_moments();
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_NEAR(m[0].area, 6., 1e-12);
+  EXPECT_NEAR(m[0].centroid_x, 2.5, 1e-12);
+  EXPECT_NEAR(m[0].centroid_y, -1., 1e-12);
+  EXPECT_NEAR(m[0].mean, 10. + 5. - 3., 1e-9);
+  EXPECT_NEAR(m[0].gradient_x, 2., 1e-9);
+  EXPECT_NEAR(m[0].gradient_y, 3., 1e-9);
+  EXPECT_NEAR(solver.value(2., -1.), linear(2., -1., 0.), 1e-9);
+}
+
+
+
+// Bad input: each gets an InputError with a clear message.
+TEST(Heat, BadInput)
+{
+  HeatParameters p;
+  p.blocks = {rectangle(0., 0., 1., 1., {"a", "a", "exposed", "a"})};
+  p.boundary_conditions
+    = {constant_flux("a", 0.), constant_flux("exposed", 0.)};
+
+  HeatParameters negative            = p;
+  negative.materials[0].conductivity = -1.7;
+  try
+    {
+      HeatSolver solver(negative);
+      FAIL() << "negative conductivity accepted";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("conductivity"), std::string::npos)
+        << e.what();
+      EXPECT_NE(std::string(e.what()).find("-1.7"), std::string::npos);
+    }
+
+  HeatParameters unknown = p;
+  unknown.boundary_conditions.push_back(constant_flux("tension crack", 1.));
+  try
+    {
+      HeatSolver solver(unknown);
+      FAIL() << "unknown tag accepted";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("'tension crack'"),
+                std::string::npos)
+        << e.what();
+    }
+
+  HeatParameters missing = p;
+  missing.boundary_conditions.pop_back();
+  EXPECT_THROW(HeatSolver solver(missing), InputError);
+
+  // A CSV temperature record with a bad value on line 4, and one whose time
+  // goes backwards on line 3.
+  const std::string file = ::testing::TempDir() + "heat_bad.csv";
+  {
+    std::ofstream out(file);
+    out << "time_day,temperature_C\n0, 10\n1, 12\n2, twelve\n";
+  }
+  try
+    {
+      read_time_series(file, 86400.);
+      FAIL() << "bad CSV accepted";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find(file + ":4"), std::string::npos)
+        << e.what();
+    }
+  {
+    std::ofstream out(file);
+    out << "# air temperature\n0, 10\n0, 12\n";
+  }
+  try
+    {
+      read_time_series(file, 86400.);
+      FAIL() << "non-increasing CSV accepted";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find(file + ":3"), std::string::npos)
+        << e.what();
+    }
+  EXPECT_THROW(read_time_series(file + ".missing"), InputError);
+  std::remove(file.c_str());
+
+  // A good record interpolates linearly, in seconds.
+  {
+    std::ofstream out(file);
+    out << "time_day,temperature_C\n0, 10\n1, 12\n";
+  }
+  const TimeSeries s = read_time_series(file, 86400.);
+  EXPECT_DOUBLE_EQ(s(43200.), 11.);
+  EXPECT_THROW(s(2. * 86400.), std::runtime_error);
+  std::remove(file.c_str());
+
+  EXPECT_THROW(parse_sinusoids("9, 0, 0", "x"), InputError);
+  EXPECT_EQ(parse_sinusoids("9, 31557600, 0; 5, 86400, 1.5", "x").size(), 2u);
+}
+
+
+
+// Extremes: dt from 1 s to 1 year, diffusivity 1e-8 to 1e-4 m^2/s, a
+// 50 K surface amplitude switched on at t = 0 (a 50 K jump against the
+// initial field: the hardest case for Crank-Nicolson). Every run stays
+// finite and within the maximum-principle bounds [10, 60] K (up to 1 %);
+// the default Rannacher start-up (2 backward-Euler steps) damps the CN
+// oscillation, and without it the oscillation is detected and reported.
+TEST(Heat, StabilityAtExtremes)
+{
+  for (const double kappa : {1e-8, 1e-4})
+    for (const double dt : {1., year})
+      for (const unsigned int variant : {0u, 1u, 2u})
+        {
+          // 0: CN with start-up, 1: BE, 2: CN without start-up.
+          HeatParameters p;
+          Material       m = masada();
+          m.conductivity   = kappa * m.density * m.heat_capacity;
+          p.materials      = {m};
+          p.blocks = {rectangle(0., -10., 1., 0., {"a", "a", "exposed", "a"})};
+          BoundaryCondition s;
+          s.tag   = "exposed";
+          s.type  = BoundaryCondition::Type::temperature;
+          s.value = [](double, double, double t) {
+            return 10. + 50. * std::cos(2. * M_PI * t / year);
+          };
+          p.boundary_conditions  = {s, constant_flux("a", 0.)};
+          p.coarse_cell_size     = 0.5;
+          p.degree               = 2;
+          p.time_step            = dt;
+          p.stepper              = variant == 1 ? TimeStepper::backward_euler
+                                                : TimeStepper::crank_nicolson;
+          p.rannacher_steps      = variant == 2 ? 0 : 2;
+          p.oscillation_fallback = variant != 2;
+          p.initial_temperature  = 10.;
+          HeatSolver solver(p);
+          solver.add_probe(0.5, -1.);
+          const double end = dt < 10. ? 2000. : 5. * year;
+          solver.advance_to(end);
+          const auto   st = solver.statistics();
+          const double v  = solver.probe_value(0);
+          EXPECT_TRUE(std::isfinite(v));
+          std::printf("kappa %.0e dt %.0e %s: T(1 m) = %.4f, stiffness "
+                      "ratio %.2e, oscillating steps %lu, fallback to BE "
+                      "at %.3g s\n",
+                      kappa,
+                      dt,
+                      variant == 0   ? "CN+startup"
+                      : variant == 1 ? "BE"
+                                     : "CN (no startup)",
+                      v,
+                      st.stiffness_ratio,
+                      st.oscillation_steps,
+                      st.fallback_time);
+          if (variant == 2 && st.stiffness_ratio > 1e3)
+            {
+              // The undamped CN oscillation is detected.
+              EXPECT_GT(st.oscillation_steps, 0u);
+            }
+          else
+            {
+              EXPECT_GE(v, 10. - 0.5);
+              EXPECT_LE(v, 60. + 0.5);
+              // BE never oscillates; CN with start-up flags at most the
+              // step that triggers the fallback and the first BE step
+              // that damps it (then it continues as BE, reported).
+              EXPECT_LE(st.oscillation_steps, variant == 1 ? 0u : 2u);
+              if (st.oscillation_steps > 0)
+                {
+                  EXPECT_FALSE(std::isnan(st.fallback_time));
+                }
+            }
+        }
+}
