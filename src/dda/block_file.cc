@@ -133,6 +133,17 @@ namespace rockdda::dda
             blocks[b.id] = static_cast<int>(system.blocks.size());
             system.blocks.push_back(b);
           }
+        else if (keyword == "edge-joints")
+          {
+            if (words.size() < 4)
+              throw InputError(where
+                               + "expected 'edge-joints BLOCK J0 J1 J2 ...' "
+                                 "(one joint id per edge)");
+            Pending p{line_no, integer(0), keyword, {}};
+            for (std::size_t k = 1; k < words.size(); ++k)
+              p.values.push_back(integer(k));
+            pending.push_back(p);
+          }
         else if (keyword == "fixed" || keyword == "fixed-block"
                  || keyword == "load" || keyword == "measure"
                  || keyword == "velocity")
@@ -151,8 +162,9 @@ namespace rockdda::dda
           }
         else
           throw InputError(where + "unknown keyword '" + keyword
-                           + "'; valid: material, joint, block, fixed, "
-                             "fixed-block, load, measure, velocity");
+                           + "'; valid: material, joint, block, "
+                             "edge-joints, fixed, fixed-block, load, "
+                             "measure, velocity");
       }
     if (system.blocks.empty())
       throw InputError("block file '" + name + "': no blocks");
@@ -187,7 +199,29 @@ namespace rockdda::dda
                            + std::to_string(p.line) + ": block "
                            + std::to_string(p.block) + " is not defined");
         const int idx = b->second;
-        if (p.kind == "fixed")
+        if (p.kind == "edge-joints")
+          {
+            auto &block = system.blocks[idx];
+            if (p.values.size() != block.polygon.vertices.size())
+              throw InputError("block file '" + name + "', line "
+                               + std::to_string(p.line) + ": block "
+                               + std::to_string(p.block) + " has "
+                               + std::to_string(block.polygon.vertices.size())
+                               + " edges but " + std::to_string(p.values.size())
+                               + " edge joint ids are given");
+            block.edge_joints.clear();
+            for (const double id : p.values)
+              {
+                auto j = joints.find(static_cast<int>(id));
+                if (j == joints.end())
+                  throw InputError("block file '" + name + "', line "
+                                   + std::to_string(p.line) + ": joint "
+                                   + std::to_string(static_cast<int>(id))
+                                   + " is not defined");
+                block.edge_joints.push_back(j->second);
+              }
+          }
+        else if (p.kind == "fixed")
           {
             FixedPoint f;
             f.block = idx;

@@ -86,8 +86,27 @@ namespace rockdda::dda
         const double          area = b.polygon.signed_area();
         if (!(std::abs(area) > 1e-12 * size * size))
           throw InputError(name + ": zero area (degenerate polygon)");
+        if (!b.edge_joints.empty()
+            && b.edge_joints.size() != b.polygon.vertices.size())
+          throw InputError(
+            name + ": has " + std::to_string(b.edge_joints.size())
+            + " edge joint materials for "
+            + std::to_string(b.polygon.vertices.size()) + " edges");
+        for (const int j : b.edge_joints)
+          if (j < 0 || j >= static_cast<int>(system.joints.size()))
+            throw InputError(name + ": an edge has no joint material (index "
+                             + std::to_string(j) + ")");
         if (area < 0.)
           {
+            // Reversed, edge k (v_k -> v_k+1) becomes edge n-2-k (mod n).
+            if (!b.edge_joints.empty())
+              {
+                const int        n = static_cast<int>(b.edge_joints.size());
+                std::vector<int> e(n);
+                for (int k = 0; k < n; ++k)
+                  e[((n - 2 - k) % n + n) % n] = b.edge_joints[k];
+                b.edge_joints = e;
+              }
             std::reverse(v.begin(), v.end());
             warnings.push_back(name
                                + ": vertices were clockwise; reversed to "

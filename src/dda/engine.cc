@@ -187,11 +187,15 @@ namespace rockdda::dda
       = contact_set.transfer(detect_contacts(polys, detection), gap_tolerance);
     for (auto &c : start)
       {
-        const int a = scene.blocks[c.geometry.block_i].joint;
-        const int b = scene.blocks[c.geometry.block_j].joint;
-        c.joint = scene.joints[a].friction_deg <= scene.joints[b].friction_deg
-                    ? a
-                    : b;
+        // A tagged edge carries its own joint material; otherwise the weaker
+        // of the two blocks' joint materials applies.
+        const auto &edges = scene.blocks[c.geometry.block_j].edge_joints;
+        const int   a     = scene.blocks[c.geometry.block_i].joint;
+        const int   b     = scene.blocks[c.geometry.block_j].joint;
+        c.joint           = !edges.empty() ? edges[c.geometry.edge]
+                            : scene.joints[a].friction_deg <= scene.joints[b].friction_deg
+                              ? a
+                              : b;
       }
 
     StepReport  report;

@@ -7,6 +7,9 @@
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#ifdef ROCKDDA_WITH_CHOLMOD
+#  include <Eigen/CholmodSupport>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -58,20 +61,47 @@ namespace rockdda::dda
 
 
   /// The direct solver: a lower-triangular CSC copy of the matrix whose
-  /// values are gathered from the block storage through a fixed map.
+  /// values are gathered from the block storage through a fixed map, and
+  /// its sparse Cholesky factorisation: CHOLMOD's supernodal LL^T (Chen et
+  /// al. 2008) when available, else Eigen's simplicial LDL^T. The
+  /// symbolic analysis is kept while the block pattern is unchanged.
   struct LinearSolver::Direct
   {
     using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-    Sparse                                                               matrix;
+    Sparse matrix;
+#ifdef ROCKDDA_WITH_CHOLMOD
+    Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> ldlt;
+#else
     Eigen::SimplicialLDLT<Sparse, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+#endif
     /// For each stored value: block kind (0 diag, 1 off), index, entry.
     std::vector<int>  source_block, source_entry;
     std::vector<char> source_kind;
+    /// The pattern analysed last.
+    std::vector<std::pair<int, int>> analysed_pairs;
+    int                              analysed_blocks = -1;
+
+    /// True if the factorisation has only positive pivots.
+    bool
+    positive_definite() const
+    {
+      if (ldlt.info() != Eigen::Success)
+        return false;
+#ifdef ROCKDDA_WITH_CHOLMOD
+      return true;
+#else
+      return !(ldlt.vectorD().array() <= 0.).any();
+#endif
+    }
 
     void
     analyse(const BlockSparseMatrix &K)
     {
       const int n = K.n_blocks();
+      if (n == analysed_blocks && K.pairs == analysed_pairs)
+        return;
+      analysed_blocks = n;
+      analysed_pairs  = K.pairs;
       // Column block c: the diagonal block's lower part, then the
       // transposed upper blocks K_cj (j > c) as rows of block j.
       std::vector<std::vector<std::pair<int, int>>> below(n);
@@ -174,13 +204,10 @@ namespace rockdda::dda
             factorised = false;
             direct->gather(K);
             direct->ldlt.factorize(direct->matrix);
-            if (direct->ldlt.info() != Eigen::Success)
+            if (!direct->positive_definite())
               return false;
             factorised = true;
           }
-        // Positive definite: every pivot of D must be positive.
-        if ((direct->ldlt.vectorD().array() <= 0.).any())
-          return false;
         x = direct->ldlt.solve(f);
         return x.allFinite();
       }

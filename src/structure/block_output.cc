@@ -4,6 +4,7 @@
 
 #include <fstream>
 #include <iomanip>
+#include <set>
 #include <sstream>
 
 namespace rockdda::structure
@@ -166,6 +167,29 @@ namespace rockdda::structure
 
 
 
+  namespace
+  {
+    /// DDA joint id of an edge tag: 1 boundary and excavation, 2 bedding,
+    /// 3 split (fictitious cut, glued), 10 + k joint set k.
+    int
+    dda_joint_id(const EdgeTag &tag)
+    {
+      switch (tag.kind)
+        {
+          case EdgeKind::bedding:
+            return 2;
+          case EdgeKind::split:
+            return 3;
+          case EdgeKind::joint:
+            return 10 + tag.set;
+          default:
+            return 1;
+        }
+    }
+  } // namespace
+
+
+
   std::string
   dda_block_file_text(const BlockSet &blocks)
   {
@@ -173,15 +197,26 @@ namespace rockdda::structure
     out << std::setprecision(17);
     out << "# Blocks cut by rockdda, in the DDA scene format "
            "(doc/block-file-format-dda.md).\n"
-        << "# Edit the material and joint lines; per-edge tags are in "
-           "blocks.txt.\n"
-        << "material 1 2300 15.3e9 0.21 plane-strain\n"
-        << "joint 1 30 0 0\n";
+        << "# One joint material per edge tag: 1 boundary/excavation, 2 "
+           "bedding,\n# 3 split (a fictitious cut of a face with a hole: "
+           "glued), 10+k joint set k.\n# Edit the material and joint lines "
+           "(friction deg, cohesion Pa, tensile Pa).\n"
+        << "material 1 2300 15.3e9 0.21 plane-strain\n";
+    std::set<int> ids;
+    for (const auto &b : blocks.blocks)
+      for (const auto &t : b.edge_tags)
+        ids.insert(dda_joint_id(t));
+    ids.insert(1);
+    for (const int id : ids)
+      out << "joint " << id << (id == 3 ? " 45 1e9 1e9" : " 30 0 0") << "\n";
     for (std::size_t b = 0; b < blocks.blocks.size(); ++b)
       {
         out << "block " << b << " 1 1 ";
         for (const Point &p : blocks.blocks[b].polygon.vertices)
           out << " " << p.x() << " " << p.y();
+        out << "\nedge-joints " << b;
+        for (const auto &t : blocks.blocks[b].edge_tags)
+          out << " " << dda_joint_id(t);
         out << "\n";
       }
     return out.str();

@@ -57,6 +57,11 @@ namespace rockdda::dda
     int material = -1;
     /// Index into BlockSystem::joints (joint material of the block's faces).
     int joint = 0;
+    /// Per-edge joint materials (indices into BlockSystem::joints): edge k
+    /// runs from vertex k to vertex k+1. Empty: every edge uses @p joint.
+    /// A contact on a tagged edge uses that edge's joint material (e.g. one
+    /// per joint set of a cut rock mass, doc/block-file-format-dda.md).
+    std::vector<int> edge_joints;
     /// Velocity of the 6 unknowns (m/s, rad/s, 1/s).
     Vector6 velocity = Vector6::Zero();
     /// Accumulated stress (sigma_x, sigma_y, tau_xy) (Pa), tension positive.
