@@ -6,6 +6,7 @@
  * folder given as argument. See README.md.
  */
 #include <rockdda/thermal/heat_solver.h>
+#include <rockdda/thermal/verification.h>
 
 #include <chrono>
 #include <cmath>
@@ -19,51 +20,6 @@ using namespace rockdda::thermal;
 namespace
 {
   using F = std::function<double(double, double, double)>;
-
-  HeatParameters
-  manufactured(const unsigned int degree,
-               const double       h,
-               const double       dt,
-               const TimeStepper  stepper,
-               F                  exact,
-               F                  dtdx,
-               F                  dtdy,
-               F                  source)
-  {
-    HeatParameters p;
-    Material       unit;
-    unit.conductivity = unit.density = unit.heat_capacity = 1.;
-    p.materials                                           = {unit};
-    Block b;
-    b.name             = "unit square";
-    b.vertices         = {{{0., 0.}}, {{1., 0.}}, {{1., 1.}}, {{0., 1.}}};
-    b.edge_tags        = {"dirichlet", "robin", "flux", "dirichlet"};
-    p.blocks           = {b};
-    p.degree           = degree;
-    p.coarse_cell_size = h;
-    p.time_step        = dt;
-    p.stepper          = stepper;
-    BoundaryCondition d, r, f;
-    d.tag                       = "dirichlet";
-    d.type                      = BoundaryCondition::Type::temperature;
-    d.value                     = exact;
-    d.uniform                   = false;
-    r.tag                       = "robin";
-    r.type                      = BoundaryCondition::Type::convective;
-    r.heat_transfer_coefficient = 2.;
-    r.value                     = [=](double x, double y, double t) {
-      return exact(x, y, t) + dtdx(x, y, t) / 2.;
-    };
-    r.uniform             = false;
-    f.tag                 = "flux";
-    f.type                = BoundaryCondition::Type::flux;
-    f.value               = dtdy;
-    f.uniform             = false;
-    p.boundary_conditions = {d, r, f};
-    p.initial_field       = [=](double x, double y) { return exact(x, y, 0.); };
-    p.source              = source;
-    return p;
-  }
 
   double
   seconds_since(const std::chrono::steady_clock::time_point &t0)
@@ -102,7 +58,7 @@ main(int argc, char **argv)
         {
           const double h  = 0.5 / (1 << level);
           const auto   t0 = std::chrono::steady_clock::now();
-          HeatSolver   solver(manufactured(
+          HeatSolver   solver(manufactured_problem(
             p, h, 0.1, TimeStepper::crank_nicolson, exact, dx, dy, source));
           solver.advance_to(0.5);
           const double e    = solver.l2_error(exact);
@@ -145,7 +101,7 @@ main(int argc, char **argv)
           const double dt = 0.25 / (1 << level);
           const auto   t0 = std::chrono::steady_clock::now();
           HeatSolver   solver(
-            manufactured(2, 0.25, dt, stepper, exact, dx, dy, source));
+            manufactured_problem(2, 0.25, dt, stepper, exact, dx, dy, source));
           solver.advance_to(1.);
           const double e    = solver.l2_error(exact);
           const double wall = seconds_since(t0);
@@ -160,7 +116,7 @@ main(int argc, char **argv)
       {
         const double   tol = std::pow(10., -2. - level);
         const auto     t0  = std::chrono::steady_clock::now();
-        HeatParameters p   = manufactured(
+        HeatParameters p   = manufactured_problem(
           2, 0.25, 0.01, TimeStepper::arkode, exact, dx, dy, source);
         p.arkode_relative_tolerance = tol;
         p.arkode_absolute_tolerance = tol;

@@ -9,6 +9,7 @@
  * BAND_WIDTH BAND_CELL DT_HOURS]]; with CYCLES the sweep is skipped.
  */
 #include <rockdda/thermal/heat_solver.h>
+#include <rockdda/thermal/verification.h>
 
 #include <algorithm>
 #include <chrono>
@@ -24,17 +25,6 @@ namespace
 {
   const double day  = 86400.;
   const double year = 365.25 * day;
-
-  Material
-  masada()
-  {
-    Material m;
-    m.name          = "Masada dolomite";
-    m.conductivity  = 1.7;
-    m.density       = 2600.;
-    m.heat_capacity = 810.;
-    return m;
-  }
 
   double
   seconds_since(const std::chrono::steady_clock::time_point &t0)
@@ -62,7 +52,7 @@ namespace
     const auto     t0 = std::chrono::steady_clock::now();
     const double   A = 10., Tm = 20., w = 2. * M_PI / year;
     HeatParameters p;
-    p.materials = {masada()};
+    p.materials = {masada_dolomite()};
     Block b;
     b.name             = "column";
     b.vertices         = {{{0., -30.}}, {{h, -30.}}, {{h, 0.}}, {{0., 0.}}};
@@ -99,7 +89,7 @@ namespace
           v[k].push_back(solver.probe_value(k));
       }
     HalfSpaceResult r;
-    const double    d = periodic_skin_depth(masada().diffusivity(), year);
+    const double d = periodic_skin_depth(masada_dolomite().diffusivity(), year);
     for (unsigned int k = 0; k < 4; ++k)
       {
         const SinusoidFit fit  = fit_sinusoid(t, v[k], w);
@@ -192,7 +182,7 @@ main(int argc, char **argv)
       return argc > i ? std::atof(argv[i]) : fallback;
     };
     HeatParameters p;
-    p.materials = {masada()};
+    p.materials = {masada_dolomite()};
     Block b;
     b.name             = "Masada Block 1";
     b.vertices         = {{{0., 0.}}, {{15., 0.}}, {{15., 7.}}, {{0., 7.}}};

@@ -7,6 +7,7 @@
 #include <rockdda/io/error.h>
 #include <rockdda/thermal/boundary_data.h>
 #include <rockdda/thermal/heat_solver.h>
+#include <rockdda/thermal/verification.h>
 
 #include <gtest/gtest.h>
 
@@ -22,17 +23,6 @@ namespace
 {
   const double day  = 86400.;
   const double year = 365.25 * day;
-
-  Material
-  masada()
-  {
-    Material m;
-    m.name          = "Masada dolomite";
-    m.conductivity  = 1.7;
-    m.density       = 2600.;
-    m.heat_capacity = 810.;
-    return m;
-  }
 
   Block
   rectangle(const double                    x0,
@@ -79,7 +69,7 @@ TEST(Heat, PeriodicHalfSpaceAmplitudeAndLag)
   const double   A = 10., Tm = 20.;
   const double   w = 2. * M_PI / year;
   HeatParameters p;
-  p.materials        = {masada()};
+  p.materials        = {masada_dolomite()};
   p.blocks           = {rectangle(
     0., -30., 0.25, 0., {"far field", "adiabatic", "exposed", "adiabatic"})};
   p.degree           = 2;
@@ -109,7 +99,7 @@ TEST(Heat, PeriodicHalfSpaceAmplitudeAndLag)
       for (unsigned int k = 0; k < depths.size(); ++k)
         samples[k].push_back(solver.probe_value(k));
     }
-  const double d = periodic_skin_depth(masada().diffusivity(), year);
+  const double d = periodic_skin_depth(masada_dolomite().diffusivity(), year);
   EXPECT_NEAR(d, 2.847, 0.001);
   for (unsigned int k = 0; k < depths.size(); ++k)
     {
@@ -136,60 +126,11 @@ TEST(Heat, PeriodicHalfSpaceAmplitudeAndLag)
 // Thesis Eq. 5.1, S_d = sqrt(kappa t_exp / 2), t_exp = 180 days: "2.5 m".
 TEST(Heat, ThesisSkinDepth)
 {
-  const double sd = thesis_skin_depth(masada().diffusivity(), 180. * day);
+  const double sd
+    = thesis_skin_depth(masada_dolomite().diffusivity(), 180. * day);
   EXPECT_NEAR(sd, 2.5, 0.05);
-  EXPECT_NEAR(masada().diffusivity(), 8.072e-7, 1e-10);
+  EXPECT_NEAR(masada_dolomite().diffusivity(), 8.072e-7, 1e-10);
 }
-
-
-
-namespace
-{
-  // Manufactured problem on the unit square (lambda = rho = c_p = 1 and
-  // h = 2): Dirichlet on the left and bottom, flux on the top, convective
-  // on the right, with the source and data computed from the exact T.
-  HeatParameters
-  manufactured(const unsigned int                            degree,
-               const double                                  h,
-               const double                                  dt,
-               const TimeStepper                             stepper,
-               std::function<double(double, double, double)> exact,
-               std::function<double(double, double, double)> dtdx,
-               std::function<double(double, double, double)> dtdy,
-               std::function<double(double, double, double)> source)
-  {
-    HeatParameters p;
-    Material       unit;
-    unit.conductivity = unit.density = unit.heat_capacity = 1.;
-    p.materials                                           = {unit};
-    p.blocks                                              = {
-                                                   rectangle(0., 0., 1., 1., {"dirichlet", "robin", "flux", "dirichlet"})};
-    p.degree           = degree;
-    p.coarse_cell_size = h;
-    p.time_step        = dt;
-    p.stepper          = stepper;
-    BoundaryCondition d, r, f;
-    d.tag                       = "dirichlet";
-    d.type                      = BoundaryCondition::Type::temperature;
-    d.value                     = exact;
-    d.uniform                   = false;
-    r.tag                       = "robin";
-    r.type                      = BoundaryCondition::Type::convective;
-    r.heat_transfer_coefficient = 2.;
-    r.value                     = [=](double x, double y, double t) {
-      return exact(x, y, t) + dtdx(x, y, t) / 2.;
-    };
-    r.uniform             = false;
-    f.tag                 = "flux";
-    f.type                = BoundaryCondition::Type::flux;
-    f.value               = dtdy;
-    f.uniform             = false;
-    p.boundary_conditions = {d, r, f};
-    p.initial_field       = [=](double x, double y) { return exact(x, y, 0.); };
-    p.source              = source;
-    return p;
-  }
-} // namespace
 
 
 
@@ -218,7 +159,7 @@ TEST(Heat, ManufacturedSpaceConvergence)
       for (unsigned int level = 0; level < 3; ++level)
         {
           const double h = h0 / (1 << level);
-          HeatSolver   solver(manufactured(
+          HeatSolver   solver(manufactured_problem(
             p, h, 0.1, TimeStepper::crank_nicolson, exact, dx, dy, source));
           solver.advance_to(0.5);
           errors.push_back(solver.l2_error(exact));
@@ -263,7 +204,7 @@ TEST(Heat, ManufacturedTimeConvergence)
       for (const double dt : {1. / 16., 1. / 32., 1. / 64.})
         {
           HeatSolver solver(
-            manufactured(2, 0.25, dt, stepper, exact, dx, dy, source));
+            manufactured_problem(2, 0.25, dt, stepper, exact, dx, dy, source));
           solver.advance_to(1.);
           errors.push_back(solver.l2_error(exact));
           const auto st = solver.statistics();
@@ -302,8 +243,8 @@ TEST(Heat, ArkodeAdaptive)
   auto source = [=](double x, double y, double t) {
     return P(x, y) * 2. * std::cos(2. * t) - 3. * (1. + std::sin(2. * t));
   };
-  HeatParameters p
-    = manufactured(2, 0.25, 0.01, TimeStepper::arkode, exact, dx, dy, source);
+  HeatParameters p = manufactured_problem(
+    2, 0.25, 0.01, TimeStepper::arkode, exact, dx, dy, source);
   p.arkode_relative_tolerance = 1e-7;
   p.arkode_absolute_tolerance = 1e-9;
   HeatSolver solver(p);
@@ -329,11 +270,11 @@ TEST(Heat, EnergyBalanceClosedDomain)
        {TimeStepper::crank_nicolson, TimeStepper::backward_euler})
     {
       HeatParameters p;
-      Material       soft = masada();
+      Material       soft = masada_dolomite();
       soft.name           = "soft";
       soft.conductivity   = 0.8;
       soft.density        = 2200.;
-      p.materials         = {masada(), soft};
+      p.materials         = {masada_dolomite(), soft};
       Block l;
       l.name     = "L";
       l.vertices = {
@@ -516,7 +457,7 @@ TEST(Heat, StabilityAtExtremes)
         {
           // 0: CN with start-up, 1: BE, 2: CN without start-up.
           HeatParameters p;
-          Material       m = masada();
+          Material       m = masada_dolomite();
           m.conductivity   = kappa * m.density * m.heat_capacity;
           p.materials      = {m};
           p.blocks = {rectangle(0., -10., 1., 0., {"a", "a", "exposed", "a"})};
