@@ -169,14 +169,17 @@ namespace
   /// One case: rows x columns wall, dynamic control, solver name
   /// (automatic, direct, iterative), timed steps; prints ms per step.
   void
-  single(int rows, int columns, double dynamic, const std::string &name,
-         int steps)
+  single(int                rows,
+         int                columns,
+         double             dynamic,
+         const std::string &name,
+         int                steps)
   {
     Controls c;
     c.time_step          = 1e-3;
     c.dynamic            = dynamic;
     c.law.normal_penalty = 1e11;
-    c.solver.type        = name == "direct"    ? SolverType::direct
+    c.solver.type        = name == "direct"      ? SolverType::direct
                            : name == "iterative" ? SolverType::iterative
                                                  : SolverType::automatic;
     DdaSystem dda(brick_wall(rows, columns), c);
@@ -299,9 +302,10 @@ main(int argc, char **argv)
            std::atoi(argv[6]));
   else
     {
-      std::fprintf(stderr,
-                   "usage: dda_scaling scaling [max_blocks] | accuracy | single "
-                   "rows columns dynamic solver steps\n");
+      std::fprintf(
+        stderr,
+        "usage: dda_scaling scaling [max_blocks] | accuracy | single "
+        "rows columns dynamic solver steps\n");
       return 2;
     }
   return 0;
