@@ -179,9 +179,14 @@ namespace
     c.time_step          = 1e-3;
     c.dynamic            = dynamic;
     c.law.normal_penalty = 1e11;
-    c.solver.type        = name == "direct"      ? SolverType::direct
-                           : name == "iterative" ? SolverType::iterative
-                                                 : SolverType::automatic;
+    c.solver.type        = name == "direct" ? SolverType::direct
+                           : name == "iterative" || name == "jacobi"
+                             ? SolverType::iterative
+                             : SolverType::automatic;
+    if (name == "jacobi")
+      c.solver.preconditioner = Preconditioner::block_jacobi;
+    if (std::getenv("TOL"))
+      c.solver.tolerance = std::atof(std::getenv("TOL"));
     DdaSystem dda(brick_wall(rows, columns), c);
     for (int k = 0; k < 3; ++k)
       dda.step();

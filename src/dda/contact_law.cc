@@ -16,7 +16,14 @@ namespace rockdda::dda
                  const double         length,
                  const JointMaterial &joint)
   {
-    const double mu = std::tan(joint.friction_deg * M_PI / 180.);
+    // tan() is called per contact and iteration; remember the last angle.
+    thread_local double last_deg = 0., last_mu = 0.;
+    if (joint.friction_deg != last_deg)
+      {
+        last_deg = joint.friction_deg;
+        last_mu  = std::tan(joint.friction_deg * M_PI / 180.);
+      }
+    const double mu = last_mu;
     return std::max(0., n) * mu
            + (contact.broken ? 0. : joint.cohesion * length);
   }

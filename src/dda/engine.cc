@@ -294,6 +294,19 @@ namespace rockdda::dda
           }
         changes                   = 0;
         unsigned friction_changes = 0;
+        // Force scale of the friction iteration: the mean normal force of
+        // the closed contacts (previous iteration).
+        double   force_sum = 0.;
+        unsigned n_closed  = 0;
+        for (const auto &ct : contacts)
+          if (ct.state != ContactState::open)
+            {
+              force_sum += std::abs(ct.normal_force);
+              ++n_closed;
+            }
+        const double friction_tolerance
+          = 1e-3 * (n_closed > 0 ? force_sum / n_closed : 0.)
+            + gap_tolerance * ctrl.law.normal_penalty;
         for (std::size_t c = 0; c < contacts.size(); ++c)
           {
             Contact                 &ct  = contacts[c];
@@ -311,8 +324,7 @@ namespace rockdda::dda
             if (ct.state == ContactState::sliding
                 && r.state == ContactState::sliding
                 && std::abs(r.normal_force - ct.normal_force)
-                     > 1e-3 * std::abs(r.normal_force)
-                         + gap_tolerance * ctrl.law.normal_penalty)
+                     > 1e-3 * std::abs(r.normal_force) + friction_tolerance)
               ++friction_changes;
             ct.normal_force = r.normal_force;
             ct.shear_force  = r.shear_force;

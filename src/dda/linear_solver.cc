@@ -13,6 +13,58 @@
 
 namespace rockdda::dda
 {
+  namespace
+  {
+    /// Inverse of a symmetric positive definite 6x6 matrix by Cholesky
+    /// (fixed-size loops; Eigen's LLT::solve takes a generic path here).
+    /// Returns false if a pivot is not positive.
+    bool
+    invert_spd(const Matrix6 &A, Matrix6 &inverse)
+    {
+      double L[6][6] = {};
+      for (int j = 0; j < 6; ++j)
+        {
+          double d = A(j, j);
+          for (int k = 0; k < j; ++k)
+            d -= L[j][k] * L[j][k];
+          if (!(d > 0.))
+            return false;
+          L[j][j] = std::sqrt(d);
+          for (int i = j + 1; i < 6; ++i)
+            {
+              double v = A(i, j);
+              for (int k = 0; k < j; ++k)
+                v -= L[i][k] * L[j][k];
+              L[i][j] = v / L[j][j];
+            }
+        }
+      // W = L^-1 (lower triangular), inverse = W^T W.
+      double W[6][6] = {};
+      for (int c = 0; c < 6; ++c)
+        {
+          W[c][c] = 1. / L[c][c];
+          for (int i = c + 1; i < 6; ++i)
+            {
+              double v = 0.;
+              for (int k = c; k < i; ++k)
+                v -= L[i][k] * W[k][c];
+              W[i][c] = v / L[i][i];
+            }
+        }
+      for (int a = 0; a < 6; ++a)
+        for (int b = a; b < 6; ++b)
+          {
+            double v = 0.;
+            for (int k = b; k < 6; ++k)
+              v += W[k][a] * W[k][b];
+            inverse(a, b) = inverse(b, a) = v;
+          }
+      return true;
+    }
+  } // namespace
+
+
+
   void
   BlockSparseMatrix::reinit(const int                               n,
                             const std::vector<std::pair<int, int>> &p)
@@ -183,10 +235,10 @@ namespace rockdda::dda
   LinearSolver::solve(const BlockSparseMatrix &K,
                       const Eigen::VectorXd   &f,
                       Eigen::VectorXd         &x,
-                      const bool               same_matrix)
+                      const bool               same_matrix,
+                      const double             tolerance)
   {
-    const int n = K.n_blocks();
-    iterations  = 0;
+    iterations = 0;
     if (current == SolverType::direct)
       {
         if (!same_matrix || !factorised)
@@ -202,28 +254,89 @@ namespace rockdda::dda
         return x.allFinite();
       }
 
-    // Block-Jacobi preconditioned CG.
     if (!same_matrix || !factorised)
       {
-        factorised = false;
-        inverse_diag.resize(n);
-        for (int i = 0; i < n; ++i)
-          {
-            Eigen::LLT<Matrix6> llt(K.diag[i]);
-            if (llt.info() != Eigen::Success)
-              return false;
-            inverse_diag[i] = llt.solve(Matrix6::Identity());
-          }
-        factorised = true;
+        factorised = setup_preconditioner(K);
+        if (!factorised)
+          return false;
       }
+    if (x.size() != f.size() || !x.allFinite())
+      x = Eigen::VectorXd::Zero(f.size());
+    const double tol = tolerance > 0. ? tolerance : options.tolerance;
+    return options.preconditioner == Preconditioner::block_dilu
+             ? dilu_cg(K, f, x, tol)
+             : jacobi_cg(K, f, x, tol);
+  }
+
+
+
+  int
+  LinearSolver::iteration_limit(const int n) const
+  {
+    return options.max_iterations > 0 ? options.max_iterations
+                                      : std::min(20000, 60 * n + 100);
+  }
+
+
+
+  bool
+  LinearSolver::setup_preconditioner(const BlockSparseMatrix &K)
+  {
+    const int n = K.n_blocks();
+    inverse_diag.resize(n);
+    if (options.preconditioner == Preconditioner::block_jacobi)
+      {
+        for (int i = 0; i < n; ++i)
+          if (!invert_spd(K.diag[i], inverse_diag[i]))
+            return false;
+        return true;
+      }
+    // Rows of the upper block triangle.
+    row_start.assign(n + 1, 0);
+    for (const auto &pr : K.pairs)
+      ++row_start[pr.first + 1];
+    for (int i = 0; i < n; ++i)
+      row_start[i + 1] += row_start[i];
+    // Pivots P_i = K_ii - sum_{j<i} K_ij P_j^-1 K_ji, accumulated forward.
+    pivot.assign(K.diag.begin(), K.diag.end());
+    diag_shift.resize(n);
+    for (int i = 0; i < n; ++i)
+      {
+        if (!invert_spd(pivot[i], inverse_diag[i]))
+          {
+            // Modified pivot not positive definite: fall back to the
+            // diagonal block (symmetric Gauss-Seidel there); M stays SPD.
+            pivot[i] = K.diag[i];
+            if (!invert_spd(pivot[i], inverse_diag[i]))
+              return false;
+          }
+        diag_shift[i] = K.diag[i] - 2. * pivot[i];
+        for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+          {
+            const Matrix6 &A   = K.off[k];
+            const Matrix6  PiA = inverse_diag[i].lazyProduct(A);
+            pivot[K.pairs[k].second].noalias()
+              -= A.transpose().lazyProduct(PiA);
+          }
+      }
+    return true;
+  }
+
+
+
+  bool
+  LinearSolver::jacobi_cg(const BlockSparseMatrix &K,
+                          const Eigen::VectorXd   &f,
+                          Eigen::VectorXd         &x,
+                          const double             tolerance)
+  {
+    const int n       = K.n_blocks();
     auto precondition = [&](const Eigen::VectorXd &in, Eigen::VectorXd &out) {
       out.resize(in.size());
       for (int i = 0; i < n; ++i)
         out.segment<6>(6 * i).noalias()
           = inverse_diag[i] * in.segment<6>(6 * i);
     };
-    if (x.size() != f.size() || !x.allFinite())
-      x = Eigen::VectorXd::Zero(f.size());
     precondition(f, z);
     const double bnorm = f.dot(z);
     if (!(bnorm > 0.))
@@ -236,10 +349,8 @@ namespace rockdda::dda
     precondition(r, z);
     p                   = z;
     double       rz     = r.dot(z);
-    const double tol2   = options.tolerance * options.tolerance * bnorm;
-    const int    max_it = options.max_iterations > 0
-                            ? options.max_iterations
-                            : std::min(20000, 60 * n + 100);
+    const double tol2   = tolerance * tolerance * bnorm;
+    const int    max_it = iteration_limit(n);
     while (rz > tol2)
       {
         if (iterations >= max_it)
@@ -259,6 +370,115 @@ namespace rockdda::dda
         if (!std::isfinite(rz))
           return false;
       }
+    return x.allFinite();
+  }
+
+
+
+  void
+  LinearSolver::backward_sweep(const BlockSparseMatrix &K,
+                               const Eigen::VectorXd   &v,
+                               Eigen::VectorXd         &out) const
+  {
+    const int n = K.n_blocks();
+    out.resize(v.size());
+    for (int i = n - 1; i >= 0; --i)
+      {
+        Vector6 acc = v.segment<6>(6 * i);
+        for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+          acc.noalias() -= K.off[k] * out.segment<6>(6 * K.pairs[k].second);
+        out.segment<6>(6 * i).noalias() = inverse_diag[i] * acc;
+      }
+  }
+
+
+
+  void
+  LinearSolver::forward_sweep(const BlockSparseMatrix &K,
+                              Eigen::VectorXd         &w) const
+  {
+    const int n = K.n_blocks();
+    for (int i = 0; i < n; ++i)
+      {
+        const Vector6 s     = inverse_diag[i] * w.segment<6>(6 * i);
+        w.segment<6>(6 * i) = s;
+        for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+          {
+            const Matrix6 &A = K.off[k];
+            const int      j = K.pairs[k].second;
+            for (int c = 0; c < 6; ++c)
+              w[6 * j + c] -= A.col(c).dot(s);
+          }
+      }
+  }
+
+
+
+  bool
+  LinearSolver::dilu_cg(const BlockSparseMatrix &K,
+                        const Eigen::VectorXd   &f,
+                        Eigen::VectorXd         &x,
+                        const double             tolerance)
+  {
+    // PCG on K with M = (P + L) P^-1 (P + U) is CG on
+    // A^ = (P + L)^-1 K (P + U)^-1 (unknown y = (P + U) x) preconditioned
+    // by multiplication with P. With K = (P + L) + (P + U) + (D - 2 P):
+    // A^ v = t + (P + L)^-1 (v + (D - 2 P) t), t = (P + U)^-1 v.
+    const int n      = K.n_blocks();
+    auto times_pivot = [&](const Eigen::VectorXd &in, Eigen::VectorXd &out) {
+      out.resize(in.size());
+      for (int i = 0; i < n; ++i)
+        out.segment<6>(6 * i).noalias() = pivot[i] * in.segment<6>(6 * i);
+    };
+    // Right-hand side norm r^T M^-1 r for the stopping test.
+    r = f;
+    forward_sweep(K, r);
+    times_pivot(r, z);
+    const double bnorm = r.dot(z);
+    if (!(bnorm > 0.))
+      {
+        x.setZero();
+        return std::isfinite(bnorm);
+      }
+    // y0 = (P + U) x0, r^0 = (P + L)^-1 (f - K x0).
+    Eigen::VectorXd &y = t_y;
+    times_pivot(x, y);
+    for (std::size_t k = 0; k < K.pairs.size(); ++k)
+      y.segment<6>(6 * K.pairs[k].first).noalias()
+        += K.off[k] * x.segment<6>(6 * K.pairs[k].second);
+    K.vmult(x, q);
+    r = f - q;
+    forward_sweep(K, r);
+    times_pivot(r, z);
+    p                   = z;
+    double       rz     = r.dot(z);
+    const double tol2   = tolerance * tolerance * bnorm;
+    const int    max_it = iteration_limit(n);
+    while (rz > tol2)
+      {
+        if (iterations >= max_it)
+          return false;
+        ++iterations;
+        backward_sweep(K, p, t);
+        q = p;
+        for (int i = 0; i < n; ++i)
+          q.segment<6>(6 * i).noalias() += diag_shift[i] * t.segment<6>(6 * i);
+        forward_sweep(K, q);
+        q += t;
+        const double pq = p.dot(q);
+        if (!(pq > 0.))
+          return false;
+        const double alpha = rz / pq;
+        y += alpha * p;
+        r -= alpha * q;
+        times_pivot(r, z);
+        const double rz_new = r.dot(z);
+        p                   = z + (rz_new / rz) * p;
+        rz                  = rz_new;
+        if (!std::isfinite(rz))
+          return false;
+      }
+    backward_sweep(K, y, x);
     return x.allFinite();
   }
 } // namespace rockdda::dda

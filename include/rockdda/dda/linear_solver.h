@@ -56,7 +56,7 @@ namespace rockdda::dda
   enum class SolverType
   {
     /// Direct for up to automatic_limit blocks, iterative above (measured
-    /// faster from about 100 blocks, benchmarks/dda-scaling).
+    /// faster from about 60 blocks, benchmarks/dda-scaling).
     automatic,
     /// Sparse LDL^T (Eigen SimplicialLDLT, AMD ordering), pattern analysed
     /// once per step, factorised per open-close iteration.
@@ -65,12 +65,28 @@ namespace rockdda::dda
     iterative
   };
 
+  /// Preconditioner of the iterative solver.
+  enum class Preconditioner
+  {
+    /// Inverse 6x6 diagonal blocks.
+    block_jacobi,
+    /// Block diagonal-ILU M = (P + L) P^-1 (P + L)^T, with L the strict
+    /// lower block triangle of K and P_i = K_ii - sum_{j<i} K_ij P_j^-1
+    /// K_ji (no fill-in), applied with Eisenstat's trick so that a CG
+    /// iteration costs about one mat-vec (Eisenstat 1981; Saad 2003,
+    /// Sec. 10.3).
+    block_dilu
+  };
+
   /// Options of the linear solver.
   struct SolverOptions
   {
-    SolverType type = SolverType::automatic;
-    /// Relative tolerance of CG on the preconditioned residual norm.
-    double tolerance = 1e-10;
+    SolverType     type           = SolverType::automatic;
+    Preconditioner preconditioner = Preconditioner::block_dilu;
+    /// Relative tolerance of CG on the preconditioned residual norm, for
+    /// every solve (benchmarks/dda-scaling: 1e-8 keeps block positions
+    /// within ~1e-11 m of the direct solver).
+    double tolerance = 1e-8;
     /// CG iteration limit (0: 10 * number of unknowns, at most 20000).
     int max_iterations = 0;
     /// Automatic choice: direct up to this many blocks.
@@ -97,13 +113,15 @@ namespace rockdda::dda
      * previous call (only f changed), and its factorisation (direct) or
      * preconditioner (iterative) is reused. Returns false if the matrix is
      * not positive definite, CG did not converge, or the result is not
-     * finite.
+     * finite. @p tolerance > 0 overrides the CG tolerance of the options
+     * for this call (the direct solver ignores it).
      */
     bool
     solve(const BlockSparseMatrix &matrix,
           const Eigen::VectorXd   &f,
           Eigen::VectorXd         &x,
-          const bool               same_matrix = false);
+          const bool               same_matrix = false,
+          const double             tolerance   = 0.);
 
     /// The solver used for the current pattern (never automatic).
     SolverType
@@ -121,13 +139,46 @@ namespace rockdda::dda
 
   private:
     struct Direct;
+    /// Set up the preconditioner of @p K; false if a diagonal block is not
+    /// positive definite.
+    bool
+    setup_preconditioner(const BlockSparseMatrix &K);
+    /// Block-Jacobi preconditioned CG.
+    bool
+    jacobi_cg(const BlockSparseMatrix &K,
+              const Eigen::VectorXd   &f,
+              Eigen::VectorXd         &x,
+              const double             tolerance);
+    /// CG on the Eisenstat-transformed system of the block D-ILU.
+    bool
+    dilu_cg(const BlockSparseMatrix &K,
+            const Eigen::VectorXd   &f,
+            Eigen::VectorXd         &x,
+            const double             tolerance);
+    /// Solve (P + U) t = v, U the strict upper block triangle of K.
+    void
+    backward_sweep(const BlockSparseMatrix &K,
+                   const Eigen::VectorXd   &v,
+                   Eigen::VectorXd         &t) const;
+    /// Solve (P + L) s = w in place (w is overwritten by s).
+    void
+    forward_sweep(const BlockSparseMatrix &K, Eigen::VectorXd &w) const;
+    /// Iteration limit for @p n blocks.
+    int
+    iteration_limit(const int n) const;
+
     SolverOptions           options;
     SolverType              current    = SolverType::direct;
     int                     iterations = 0;
     bool                    factorised = false;
     std::unique_ptr<Direct> direct;
-    std::vector<Matrix6>    inverse_diag;
-    Eigen::VectorXd         r, z, p, q;
+    /// Inverse diagonal blocks (Jacobi) or inverse pivots P_i^-1 (D-ILU).
+    std::vector<Matrix6> inverse_diag;
+    /// Pivots P_i and K_ii - 2 P_i (D-ILU).
+    std::vector<Matrix6> pivot, diag_shift;
+    /// First pair of each block row (pairs are sorted by (i, j)).
+    std::vector<int> row_start;
+    Eigen::VectorXd  r, z, p, q, t, t_y;
   };
 } // namespace rockdda::dda
 
