@@ -178,12 +178,25 @@ namespace rockdda::thermal
         io::declare(prm,
                     "Joint contact",
                     "perfect",
-                    Selection("perfect|insulated"),
+                    Selection("perfect|conductance|insulated"),
                     "-",
                     "Conduction across edges shared by two blocks: "
                     "'perfect' (one conforming domain; shared edges must "
-                    "have the same end points) or 'insulated' (each block "
-                    "is its own domain and joint faces use their tags).");
+                    "have the same end points), 'conductance' (each block "
+                    "is its own mesh; the joint passes the flux "
+                    "q = h_j (T1 - T2) with h_j = 'Joint conductance'; the "
+                    "tags of joint edges are not used) or 'insulated' (each "
+                    "block is its own domain and joint faces use their "
+                    "tags).");
+        io::declare(prm,
+                    "Joint conductance",
+                    "1000",
+                    Double(0.),
+                    "W/(m^2 K)",
+                    "Contact conductance h_j of the joints with 'Joint "
+                    "contact = conductance'; > 0. An open joint of "
+                    "aperture a filled with air (0.026 W/(m K)) has "
+                    "h_j ~ 0.026 / a, e.g. 26 for a = 1 mm.");
         prm.leave_subsection();
 
         prm.enter_subsection("Materials");
@@ -536,9 +549,18 @@ namespace rockdda::thermal
               }
             p.blocks.push_back(block);
           }
-        p.joint_contact = prm.get("Joint contact") == "perfect"
-                            ? HeatParameters::JointContact::perfect
-                            : HeatParameters::JointContact::insulated;
+        const std::string contact = prm.get("Joint contact");
+        p.joint_contact           = contact == "perfect"
+                                      ? HeatParameters::JointContact::perfect
+                                    : contact == "conductance"
+                                      ? HeatParameters::JointContact::conductance
+                                      : HeatParameters::JointContact::insulated;
+        p.joint_conductance       = prm.get_double("Joint conductance");
+        io::require(p.joint_conductance > 0.,
+                    prm_file,
+                    "Heat/Geometry/Joint conductance",
+                    p.joint_conductance,
+                    "> 0 W/(m^2 K)");
       }
       prm.leave_subsection();
 

@@ -86,6 +86,16 @@ namespace rockdda::thermal
       out.setFromTriplets(triplets.begin(), triplets.end());
     }
 
+    /// Two cells facing each other across a joint (contact conductance):
+    /// quadrature points (real coordinates) and weights on the overlap of
+    /// their faces.
+    struct JointPair
+    {
+      DoFHandler<2>::active_cell_iterator a, b;
+      std::vector<Point<2>>               points;
+      std::vector<double>                 weights;
+    };
+
     /// A probe: dof indices and shape values at a fixed point.
     struct Probe
     {
@@ -139,6 +149,10 @@ namespace rockdda::thermal
 
     std::vector<Probe> probes;
 
+    /// Boundary id of joint faces (contact conductance).
+    types::boundary_id     joint_id = 0;
+    std::vector<JointPair> joint_pairs;
+
     double         time              = 0.;
     double         boundary_heat     = 0.;
     double         source_heat       = 0.;
@@ -157,6 +171,9 @@ namespace rockdda::thermal
   private:
     void
     make_mesh();
+    /// Pair the faces on both sides of every joint (contact conductance).
+    void
+    find_joint_pairs();
     void
     setup_system();
     void
@@ -198,6 +215,12 @@ namespace rockdda::thermal
                          + "' refers to a material that does not exist");
     if (!(prm.time_step > 0.) || !std::isfinite(prm.time_step))
       throw InputError("heat: the time step must be > 0 s");
+    if (prm.joint_contact == HeatParameters::JointContact::conductance
+        && (!(prm.joint_conductance > 0.)
+            || !std::isfinite(prm.joint_conductance)))
+      throw InputError("heat: the joint conductance "
+                       + io::format_number(prm.joint_conductance, 6)
+                       + " W/(m^2 K) must be > 0 and finite");
     for (const auto &m : prm.materials)
       kappa_max = std::max(kappa_max, m.diffusivity());
 
@@ -268,6 +291,9 @@ namespace rockdda::thermal
         bc_of_tag[tag] = k;
       }
     const unsigned int adiabatic_id = prm.boundary_conditions.size();
+    joint_id                        = adiabatic_id + 1;
+    const bool conductance
+      = prm.joint_contact == HeatParameters::JointContact::conductance;
 
     // Edges shared by two blocks (joints), to detect non-conforming meshes.
     const auto on_other_block_edge
@@ -300,10 +326,18 @@ namespace rockdda::thermal
                 if (d < best)
                   best = d, edge = i;
               }
-            const double tol = 1e-6 * cell->face(f)->diameter();
+            const double       tol   = 1e-6 * cell->face(f)->diameter();
+            const unsigned int other = (merge || conductance)
+                                         ? on_other_block_edge(p, block, tol)
+                                         : numbers::invalid_unsigned_int;
+            if (conductance && other != numbers::invalid_unsigned_int)
+              {
+                // A joint face: coupled to the other side, its tag unused.
+                cell->face(f)->set_boundary_id(joint_id);
+                continue;
+              }
             if (merge)
               {
-                const unsigned int other = on_other_block_edge(p, block, tol);
                 if (other != numbers::invalid_unsigned_int)
                   throw InputError(
                     "heat: blocks '" + prm.blocks[block].name + "' and '"
@@ -376,6 +410,73 @@ namespace rockdda::thermal
 
 
   void
+  HeatSolver::Impl::find_joint_pairs()
+  {
+    joint_pairs.clear();
+    if (prm.joint_contact != HeatParameters::JointContact::conductance)
+      return;
+    // Joint faces with their end points.
+    struct JointFace
+    {
+      DoFHandler<2>::active_cell_iterator cell;
+      Point<2>                            p0, p1;
+    };
+    std::vector<JointFace> faces;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      for (const auto f : cell->face_indices())
+        if (cell->face(f)->at_boundary()
+            && cell->face(f)->boundary_id() == joint_id)
+          faces.push_back(
+            {cell, cell->face(f)->vertex(0), cell->face(f)->vertex(1)});
+    // Sort by the x of the face centre so that only nearby faces are
+    // compared (the overlap test is exact for any pair).
+    std::sort(faces.begin(), faces.end(), [](const auto &u, const auto &v) {
+      return std::min(u.p0[0], u.p1[0]) < std::min(v.p0[0], v.p1[0]);
+    });
+    const QGauss<1> gauss(fe.degree + 1);
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      {
+        const auto        &fa   = faces[i];
+        const double       len  = fa.p0.distance(fa.p1);
+        const double       tol  = 1e-6 * len;
+        const Tensor<1, 2> t    = (fa.p1 - fa.p0) / len;
+        const double       xmax = std::max(fa.p0[0], fa.p1[0]) + tol;
+        for (std::size_t j = i + 1; j < faces.size(); ++j)
+          {
+            const auto &fb = faces[j];
+            if (std::min(fb.p0[0], fb.p1[0]) > xmax)
+              break;
+            if (fb.cell->material_id() == fa.cell->material_id())
+              continue;
+            // Collinear (both end points of b on the line of a)?
+            const auto offset = [&](const Point<2> &q) {
+              const Tensor<1, 2> d = q - fa.p0;
+              return std::abs(d[0] * t[1] - d[1] * t[0]);
+            };
+            if (offset(fb.p0) > tol || offset(fb.p1) > tol)
+              continue;
+            const double s0 = (fb.p0 - fa.p0) * t, s1 = (fb.p1 - fa.p0) * t;
+            const double lo = std::max(0., std::min(s0, s1));
+            const double hi = std::min(len, std::max(s0, s1));
+            if (hi - lo <= tol)
+              continue;
+            JointPair pair;
+            pair.a = fa.cell;
+            pair.b = fb.cell;
+            for (unsigned int q = 0; q < gauss.size(); ++q)
+              {
+                const double s = lo + gauss.point(q)[0] * (hi - lo);
+                pair.points.push_back(fa.p0 + s * t);
+                pair.weights.push_back(gauss.weight(q) * (hi - lo));
+              }
+            joint_pairs.push_back(std::move(pair));
+          }
+      }
+  }
+
+
+
+  void
   HeatSolver::Impl::setup_system()
   {
     dof_handler.reinit(tria);
@@ -386,6 +487,20 @@ namespace rockdda::thermal
 
     DynamicSparsityPattern dsp(dof_handler.n_dofs());
     DoFTools::make_sparsity_pattern(dof_handler, dsp, hanging, true);
+    find_joint_pairs();
+    {
+      const unsigned int                   dpc = fe.n_dofs_per_cell();
+      std::vector<types::global_dof_index> dofs(2 * dpc), dofs_a(dpc),
+        dofs_b(dpc);
+      for (const auto &pair : joint_pairs)
+        {
+          pair.a->get_dof_indices(dofs_a);
+          pair.b->get_dof_indices(dofs_b);
+          std::copy(dofs_a.begin(), dofs_a.end(), dofs.begin());
+          std::copy(dofs_b.begin(), dofs_b.end(), dofs.begin() + dpc);
+          hanging.add_entries_local_to_global(dofs, dsp, true);
+        }
+    }
     sparsity.copy_from(dsp);
     mass.reinit(sparsity);
     stiffness.reinit(sparsity);
@@ -572,6 +687,46 @@ namespace rockdda::thermal
             }
         hanging.distribute_local_to_global(cell_mass, dofs, mass);
         hanging.distribute_local_to_global(cell_stiff, dofs, stiffness);
+      }
+
+    // Contact conductance: h_j int_joint (T_a - T_b)(v_a - v_b) ds, with
+    // the points of each pair mapped into both cells.
+    const double                         hj = prm.joint_conductance;
+    FullMatrix<double>                   pair_matrix(2 * dpc, 2 * dpc);
+    std::vector<types::global_dof_index> pair_dofs(2 * dpc), dofs_b(dpc);
+    std::vector<double>                  jump(2 * dpc);
+    for (const auto &pair : joint_pairs)
+      {
+        std::vector<Point<2>> unit_a, unit_b;
+        for (const auto &x : pair.points)
+          {
+            unit_a.push_back(GeometryInfo<2>::project_to_unit_cell(
+              mapping.transform_real_to_unit_cell(pair.a, x)));
+            unit_b.push_back(GeometryInfo<2>::project_to_unit_cell(
+              mapping.transform_real_to_unit_cell(pair.b, x)));
+          }
+        FEValues<2> va(mapping, fe, Quadrature<2>(unit_a), update_values);
+        FEValues<2> vb(mapping, fe, Quadrature<2>(unit_b), update_values);
+        va.reinit(pair.a);
+        vb.reinit(pair.b);
+        pair_matrix = 0.;
+        for (unsigned int q = 0; q < pair.points.size(); ++q)
+          {
+            for (unsigned int i = 0; i < dpc; ++i)
+              {
+                jump[i]       = va.shape_value(i, q);
+                jump[dpc + i] = -vb.shape_value(i, q);
+              }
+            const double w = hj * pair.weights[q];
+            for (unsigned int i = 0; i < 2 * dpc; ++i)
+              for (unsigned int j = 0; j < 2 * dpc; ++j)
+                pair_matrix(i, j) += w * jump[i] * jump[j];
+          }
+        pair.a->get_dof_indices(dofs);
+        pair.b->get_dof_indices(dofs_b);
+        std::copy(dofs.begin(), dofs.end(), pair_dofs.begin());
+        std::copy(dofs_b.begin(), dofs_b.end(), pair_dofs.begin() + dpc);
+        hanging.distribute_local_to_global(pair_matrix, pair_dofs, stiffness);
       }
   }
 

@@ -515,3 +515,183 @@ TEST(Heat, StabilityAtExtremes)
             }
         }
 }
+
+
+
+namespace
+{
+  /// Two blocks side by side in a slab [0, L1 + L2] x [0, H]: block 1
+  /// (lambda1) on the left, block 2 (lambda2) on the right, T = @p tl on
+  /// the left end and @p tr on the right end, top and bottom adiabatic.
+  HeatParameters
+  two_block_slab(const double                       l1,
+                 const double                       l2,
+                 const double                       lambda1,
+                 const double                       lambda2,
+                 const double                       tl,
+                 const double                       tr,
+                 const HeatParameters::JointContact contact,
+                 const double                       hj)
+  {
+    HeatParameters p;
+    Material       m1 = masada_dolomite(), m2 = masada_dolomite();
+    m1.name         = "left";
+    m1.conductivity = lambda1;
+    m2.name         = "right";
+    m2.conductivity = lambda2;
+    p.materials     = {m1, m2};
+    Block b1        = rectangle(
+      0., 0., l1, 1., {"adiabatic", "joint", "adiabatic", "left end"});
+    Block b2 = rectangle(
+      l1, 0., l1 + l2, 1., {"adiabatic", "right end", "adiabatic", "joint"});
+    b1.name     = "left block";
+    b2.name     = "right block";
+    b2.material = 1;
+    p.blocks    = {b1, b2};
+    BoundaryCondition left, right;
+    left.tag              = "left end";
+    left.type             = BoundaryCondition::Type::temperature;
+    left.value            = [tl](double, double, double) { return tl; };
+    right                 = left;
+    right.tag             = "right end";
+    right.value           = [tr](double, double, double) { return tr; };
+    p.boundary_conditions = {left, right, constant_flux("joint", 0.)};
+    p.joint_contact       = contact;
+    p.joint_conductance   = hj;
+    p.degree              = 2;
+    p.coarse_cell_size    = 0.25;
+    p.initial_temperature = 0.5 * (tl + tr);
+    return p;
+  }
+} // namespace
+
+
+
+// Contact conductance h_j across a joint (series resistances): at steady
+// state q = (T_L - T_R) / (L1/lambda1 + 1/h_j + L2/lambda2), each block
+// carries a linear profile (gradient -q/lambda) and the joint a jump q/h_j.
+// The linear profile lies in FE_Q, so the FE steady state is exact up to
+// round-off; backward Euler with dt = one diffusion time L^2/kappa_min
+// damps the slowest mode (rate >= pi^2 kappa / (4 L^2), a block held on one
+// side and insulated on the other) by at least (1 + pi^2/4)^-1 ~ 0.3 per
+// step, so after 60 steps the transient is below 1e-30 of the initial
+// error. What remains is round-off amplified by the condition number
+// (~1e4 for these meshes): the tolerance 1e-8 of T_L - T_R leaves a
+// margin. Block means and gradients are checked (they determine the
+// jump). Large h_j tends to perfect contact, small h_j to insulated
+// joints.
+TEST(Heat, JointConductanceSteadyState)
+{
+  const double l1 = 1., l2 = 1.5, lambda1 = 1.7, lambda2 = 0.8;
+  const double tl = 30., tr = 10.;
+  const double kappa = masada_dolomite().diffusivity();
+  const double t_diff
+    = (l1 + l2) * (l1 + l2) / (kappa * std::min(lambda1, lambda2) / 1.7);
+  const auto steady
+    = [&](const HeatParameters::JointContact contact, const double hj) {
+        HeatParameters p
+          = two_block_slab(l1, l2, lambda1, lambda2, tl, tr, contact, hj);
+        p.stepper   = TimeStepper::backward_euler;
+        p.time_step = t_diff;
+        HeatSolver solver(p);
+        solver.advance_to(59. * t_diff);
+        const auto before = solver.block_moments();
+        solver.advance_to(60. * t_diff);
+        const auto after = solver.block_moments();
+        // The transient has decayed: one more step changes nothing.
+        for (unsigned int b = 0; b < 2; ++b)
+          EXPECT_NEAR(after[b].mean, before[b].mean, 1e-10 * (tl - tr));
+        return after;
+      };
+  for (const double hj : {0.5, 2., 50.})
+    {
+      const double q   = (tl - tr) / (l1 / lambda1 + 1. / hj + l2 / lambda2);
+      const auto   m   = steady(HeatParameters::JointContact::conductance, hj);
+      const double t1  = tl - q * l1 / lambda1; // left side of the joint
+      const double t2  = t1 - q / hj;           // right side of the joint
+      const double tol = 1e-8 * (tl - tr);
+      std::printf("h_j = %5.1f W/m^2/K: q = %.6f W/m^2, jump %.6f K "
+                  "(FE: %.6f K), block mean errors %.1e %.1e K\n",
+                  hj,
+                  q,
+                  q / hj,
+                  (m[0].mean + m[0].gradient_x * 0.5 * l1)
+                    - (m[1].mean - m[1].gradient_x * 0.5 * l2),
+                  m[0].mean - 0.5 * (tl + t1),
+                  m[1].mean - 0.5 * (t2 + tr));
+      EXPECT_NEAR(m[0].mean, 0.5 * (tl + t1), tol);
+      EXPECT_NEAR(m[1].mean, 0.5 * (t2 + tr), tol);
+      EXPECT_NEAR(m[0].gradient_x, -q / lambda1, tol / l1);
+      EXPECT_NEAR(m[1].gradient_x, -q / lambda2, tol / l2);
+      EXPECT_NEAR(m[0].gradient_y, 0., tol / l1);
+      // Jump at the joint from the two linear profiles.
+      EXPECT_NEAR((m[0].mean + m[0].gradient_x * 0.5 * l1)
+                    - (m[1].mean - m[1].gradient_x * 0.5 * l2),
+                  q / hj,
+                  4. * tol);
+    }
+
+  // Limits: h_j = 1e9 W/(m^2 K) differs from perfect contact by the joint
+  // resistance 1e-9 against L/lambda ~ 2.5 m^2 K/W (relative 4e-10);
+  // h_j = 1e-9 differs from insulated joints by q ~ 1e-9 (T_L - T_R).
+  const auto perfect   = steady(HeatParameters::JointContact::perfect, 1.);
+  const auto stiff     = steady(HeatParameters::JointContact::conductance, 1e9);
+  const auto insulated = steady(HeatParameters::JointContact::insulated, 1.);
+  const auto loose = steady(HeatParameters::JointContact::conductance, 1e-9);
+  std::printf("limits: |h_j = 1e9 - perfect| = %.1e K, |h_j = 1e-9 - "
+              "insulated| = %.1e K\n",
+              std::abs(stiff[0].mean - perfect[0].mean),
+              std::abs(loose[0].mean - insulated[0].mean));
+  for (unsigned int b = 0; b < 2; ++b)
+    {
+      EXPECT_NEAR(stiff[b].mean, perfect[b].mean, 1e-7 * (tl - tr));
+      EXPECT_NEAR(loose[b].mean, insulated[b].mean, 1e-7 * (tl - tr));
+    }
+  EXPECT_NEAR(insulated[0].mean, tl, 1e-8 * (tl - tr));
+  EXPECT_NEAR(insulated[1].mean, tr, 1e-8 * (tl - tr));
+}
+
+
+
+// The joint term is conservative: in a closed domain (convective and flux
+// boundaries only) with a contact conductance, non-matching meshes on the
+// two sides of the joint (block 2 is refined near its exposed face, block
+// 1 is not) and Crank-Nicolson, the stored heat change equals the boundary
+// input to round-off.
+TEST(Heat, JointConductanceEnergyBalance)
+{
+  HeatParameters p = two_block_slab(
+    1., 1.5, 1.7, 0.8, 30., 10., HeatParameters::JointContact::conductance, 5.);
+  p.blocks[1].edge_tags = {"adiabatic", "exposed", "adiabatic", "joint"};
+  p.blocks[0].edge_tags = {"adiabatic", "joint", "adiabatic", "base"};
+  BoundaryCondition air;
+  air.tag                       = "exposed";
+  air.type                      = BoundaryCondition::Type::convective;
+  air.heat_transfer_coefficient = 10.;
+  air.value                     = [](double, double, double t) {
+    return 25. + 8. * std::sin(2. * M_PI * t / (5. * day));
+  };
+  p.boundary_conditions = {air, constant_flux("base", 3.)};
+  p.refine_near_tags    = {"exposed"};
+  p.band_width          = 1.2;
+  p.band_cell_size      = 0.07;
+  p.time_step           = day / 4.;
+  p.initial_temperature = 15.;
+  HeatSolver   solver(p);
+  const double e0 = solver.stored_heat();
+  solver.advance_to(20. * day);
+  const double stored = solver.stored_heat() - e0;
+  const double input  = solver.boundary_heat_in();
+  const auto   m      = solver.block_moments();
+  std::printf("joint conductance: stored %.6e J/m, input %.6e J/m, "
+              "mismatch %.2e, block means %.4f %.4f\n",
+              stored,
+              input,
+              std::abs(stored - input) / std::abs(input),
+              m[0].mean,
+              m[1].mean);
+  EXPECT_GT(std::abs(input), 1e5);
+  EXPECT_LT(std::abs(stored - input), 1e-8 * std::abs(input));
+  // The run did something: block 1 moved from its initial 15 degC.
+  EXPECT_GT(std::abs(m[0].mean - 15.), 1e-3);
+}

@@ -90,10 +90,15 @@ namespace rockdda::thermal
     /// Heat conduction across joints (edges shared by two blocks).
     enum class JointContact
     {
-      perfect,  ///< the blocks form one conforming domain
-      insulated ///< each block is its own domain; joint faces use their tag
+      perfect,     ///< the blocks form one conforming domain
+      conductance, ///< each block is its own mesh; the joint passes
+                   ///< q = h_j (T1 - T2) (joint_conductance)
+      insulated    ///< each block is its own domain; joint faces use their tag
     } joint_contact
       = JointContact::perfect;
+    /// Contact conductance h_j of the joints (JointContact::conductance),
+    /// W/(m^2 K); > 0.
+    double joint_conductance = 1000.;
 
     unsigned int degree             = 2;  ///< FE_Q degree, 1..3
     double       coarse_cell_size   = 1.; ///< target coarse cell size, m
