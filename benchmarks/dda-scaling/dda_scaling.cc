@@ -8,6 +8,7 @@
  *
  *   dda_scaling scaling [max_blocks] > scaling.csv
  *   dda_scaling accuracy > accuracy.csv
+ *   dda_scaling tolerance > tolerance.csv
  */
 #include <rockdda/analytical/newmark.h>
 #include <rockdda/dda/engine.h>
@@ -121,8 +122,10 @@ namespace
         if (rows * columns > max_blocks)
           continue;
         for (double dynamic : {0., 1.})
-          for (SolverType solver : {SolverType::direct, SolverType::iterative})
+          for (const std::string name : {"direct", "jacobi", "iterative"})
             {
+              const SolverType solver
+                = name == "direct" ? SolverType::direct : SolverType::iterative;
               const int n
                 = static_cast<int>(brick_wall(rows, columns).blocks.size());
               // The simplicial LDL^T takes seconds per step at 10,000
@@ -140,6 +143,8 @@ namespace
                   c.dynamic            = dynamic;
                   c.law.normal_penalty = 1e11;
                   c.solver.type        = solver;
+                  if (name == "jacobi")
+                    c.solver.preconditioner = Preconditioner::block_jacobi;
                   DdaSystem dda(brick_wall(rows, columns), c);
                   for (int k = 0; k < 3; ++k)
                     dda.step();
@@ -156,7 +161,9 @@ namespace
               std::printf("%d,%s,%s,%.4f,%.0f,%.2f,%zu\n",
                           n,
                           dynamic > 0. ? "dynamic" : "static",
-                          solver == SolverType::direct ? "direct" : "iterative",
+                          name == "direct"   ? "direct"
+                          : name == "jacobi" ? "cg-block-jacobi"
+                                             : "cg-block-dilu",
                           1e3 * t,
                           n / t,
                           iterations,
@@ -185,8 +192,6 @@ namespace
                              : SolverType::automatic;
     if (name == "jacobi")
       c.solver.preconditioner = Preconditioner::block_jacobi;
-    if (std::getenv("TOL"))
-      c.solver.tolerance = std::atof(std::getenv("TOL"));
     DdaSystem dda(brick_wall(rows, columns), c);
     for (int k = 0; k < 3; ++k)
       dda.step();
@@ -206,6 +211,70 @@ namespace
                 dda.system().blocks.size() / t,
                 double(it) / steps,
                 double(solver_it) / steps);
+  }
+
+  /// CG tolerance against cost and accuracy: ms and CG iterations per step
+  /// on the 1,000-block wall (dynamic), and the largest vertex distance
+  /// from the direct solver after 30 dynamic steps of the same wall.
+  void
+  tolerance()
+  {
+    std::printf("tolerance,preconditioner,ms_per_step,cg_iterations_per_step,"
+                "max_vertex_difference_m\n");
+    auto run = [](double         tol,
+                  Preconditioner pc,
+                  SolverType     type,
+                  int            steps,
+                  double        &ms,
+                  double        &cg) {
+      Controls c;
+      c.time_step             = 1e-3;
+      c.dynamic               = 1.;
+      c.law.normal_penalty    = 1e11;
+      c.solver.type           = type;
+      c.solver.tolerance      = tol;
+      c.solver.preconditioner = pc;
+      DdaSystem dda(brick_wall(25, 40), c);
+      for (int k = 0; k < 3; ++k)
+        dda.step();
+      const auto t0 = std::chrono::steady_clock::now();
+      unsigned   it = 0;
+      for (int k = 0; k < steps; ++k)
+        it += dda.step().solver_iterations;
+      ms = 1e3 * seconds_since(t0) / steps;
+      cg = double(it) / steps;
+      return dda.system();
+    };
+    double            ms, cg;
+    const BlockSystem direct
+      = run(1e-8, Preconditioner::block_dilu, SolverType::direct, 30, ms, cg);
+    for (auto pc : {Preconditioner::block_jacobi, Preconditioner::block_dilu})
+      for (double tol : {1e-4, 1e-6, 1e-8, 1e-10, 1e-12})
+        {
+          std::vector<double> times;
+          BlockSystem         result;
+          for (int repeat = 0; repeat < 3; ++repeat)
+            {
+              result = run(tol, pc, SolverType::iterative, 30, ms, cg);
+              times.push_back(ms);
+            }
+          std::sort(times.begin(), times.end());
+          double diff = 0.;
+          for (std::size_t b = 0; b < result.blocks.size(); ++b)
+            for (std::size_t v = 0; v < 4; ++v)
+              diff = std::max(diff,
+                              (result.blocks[b].polygon.vertices[v]
+                               - direct.blocks[b].polygon.vertices[v])
+                                .norm());
+          std::printf("%.0e,%s,%.3f,%.1f,%.3e\n",
+                      tol,
+                      pc == Preconditioner::block_dilu ? "block-dilu"
+                                                       : "block-jacobi",
+                      times[1],
+                      cg,
+                      diff);
+          std::fflush(stdout);
+        }
   }
 
   void
@@ -299,6 +368,8 @@ main(int argc, char **argv)
     scaling(argc > 2 ? std::atoi(argv[2]) : 20000);
   else if (what == "accuracy")
     accuracy();
+  else if (what == "tolerance")
+    tolerance();
   else if (what == "single" && argc > 6)
     single(std::atoi(argv[2]),
            std::atoi(argv[3]),
@@ -307,10 +378,10 @@ main(int argc, char **argv)
            std::atoi(argv[6]));
   else
     {
-      std::fprintf(
-        stderr,
-        "usage: dda_scaling scaling [max_blocks] | accuracy | single "
-        "rows columns dynamic solver steps\n");
+      std::fprintf(stderr,
+                   "usage: dda_scaling scaling [max_blocks] | accuracy | "
+                   "tolerance | single "
+                   "rows columns dynamic solver steps\n");
       return 2;
     }
   return 0;

@@ -9,5 +9,6 @@ max=${2:-20000}
 here=$(cd "$(dirname "$0")" && pwd)
 "$build/dda_scaling" scaling "$max" > "$here/scaling.csv"
 "$build/dda_scaling" accuracy > "$here/accuracy.csv"
+"$build/dda_scaling" tolerance > "$here/tolerance.csv"
 /usr/bin/python3 "$here/plot.py" "$here"
-cat "$here/scaling.csv"
+cat "$here/scaling.csv" "$here/tolerance.csv"
