@@ -168,6 +168,79 @@ main(int argc, char **argv)
                    half_space(p, h, year / 52., TimeStepper::arkode, tol));
     }
 
+  // Adaptive (Kelly) against uniform meshes: a 2 m wide column (square
+  // cells, so the mesh can refine near the surface and stay coarse below),
+  // FE_Q(p), CN with daily steps; error vs cells vs wall time.
+  if (argc <= 2)
+    {
+      std::ofstream out(folder + "/adaptive.csv");
+      out << "mesh,degree,coarse_cell_m,min_cell_m,max_cells,final_cells,"
+             "max_dofs,adaptations,amplitude_error,lag_error_day,"
+             "wall_time_s\n";
+      const auto run = [&](const unsigned int p,
+                           const double       coarse,
+                           const double       min_cell,
+                           const bool         adaptive) {
+        const auto     t0 = std::chrono::steady_clock::now();
+        const double   A = 10., Tm = 20., w = 2. * M_PI / year;
+        HeatParameters prm         = half_space_column(2., p, coarse, A, Tm);
+        prm.adaptive_refinement    = adaptive;
+        prm.adaptive_interval      = 10;
+        prm.refine_fraction        = 0.3;
+        prm.coarsen_fraction       = 0.03;
+        prm.adaptive_min_cell_size = min_cell;
+        HeatSolver   solver(prm);
+        const double depths[] = {0.5, 1., 2.5, 5.};
+        for (const double z : depths)
+          solver.add_probe(1., -z);
+        solver.advance_to(12. * year);
+        std::vector<double> t, v[4];
+        unsigned int        max_dofs = solver.statistics().n_dofs;
+        for (unsigned int i = 0; i < 73; ++i)
+          {
+            solver.advance_to(12. * year + (i + 1) * year / 73.);
+            t.push_back(solver.time());
+            max_dofs = std::max(max_dofs, solver.statistics().n_dofs);
+            for (unsigned int k = 0; k < 4; ++k)
+              v[k].push_back(solver.probe_value(k));
+          }
+        const double d
+          = periodic_skin_depth(masada_dolomite().diffusivity(), year);
+        double ea = 0., el = 0.;
+        for (unsigned int k = 0; k < 4; ++k)
+          {
+            const SinusoidFit fit = fit_sinusoid(t, v[k], w);
+            ea                    = std::max(ea,
+                          std::abs(fit.amplitude - A * std::exp(-depths[k] / d))
+                            / A);
+            el                    = std::max(el,
+                          std::abs(-fit.phase / w - depths[k] / d / w) / day);
+          }
+        const auto st = solver.statistics();
+        out << (adaptive ? "adaptive" : "uniform") << ',' << p << ',' << coarse
+            << ',' << (adaptive ? min_cell : coarse) << ',' << st.max_n_cells
+            << ',' << st.n_cells << ',' << max_dofs << ',' << st.n_adaptations
+            << ',' << ea << ',' << el << ',' << seconds_since(t0) << '\n';
+        std::printf("%s p=%u coarse=%g min=%g: %u cells (max), amp.err=%.2e "
+                    "lag.err=%.2f d\n",
+                    adaptive ? "adaptive" : "uniform",
+                    p,
+                    coarse,
+                    min_cell,
+                    st.max_n_cells,
+                    ea,
+                    el);
+      };
+      for (const double h : {2., 1., 0.5, 0.25})
+        run(1, h, 0., false);
+      run(1, 2., 0.5, true);
+      run(1, 2., 0.25, true);
+      for (const double h : {2., 1., 0.5})
+        run(2, h, 0., false);
+      run(2, 2., 1., true);
+      run(2, 2., 0.5, true);
+    }
+
   // 1,000 annual cycles of Masada Block 1 (15 m x 7 m): the top and the
   // slope face (right) exchange heat with air at 20 + 9 sin(annual) + 5
   // sin(daily) deg C (h = 10 W/m^2/K), the base and the tension-crack side

@@ -267,6 +267,50 @@ namespace rockdda::thermal
                     Double(0.),
                     "m",
                     "Cell size in the band; 0: no band.");
+        io::declare(prm,
+                    "Adaptive refinement",
+                    "false",
+                    Bool(),
+                    "-",
+                    "Refine and coarsen the mesh during the run by the "
+                    "Kelly error estimator (theta scheme only), every "
+                    "'Adaptive interval' steps, transferring the field. "
+                    "Cells are never coarser than 'Coarse cell size' (nor "
+                    "than 'Band cell size' in the band).");
+        io::declare(prm,
+                    "Adaptive interval",
+                    "10",
+                    Integer(1, 1000000),
+                    "-",
+                    "Time steps between two mesh adaptations; >= 1.");
+        io::declare(prm,
+                    "Refine fraction",
+                    "0.3",
+                    Double(0., 1.),
+                    "-",
+                    "Cells holding this fraction of the estimated error are "
+                    "refined; in [0, 1], refine + coarsen fraction <= 1.");
+        io::declare(prm,
+                    "Coarsen fraction",
+                    "0.03",
+                    Double(0., 1.),
+                    "-",
+                    "Cells holding this fraction of the estimated error are "
+                    "coarsened; in [0, 1].");
+        io::declare(prm,
+                    "Minimum cell size",
+                    "0",
+                    Double(0.),
+                    "m",
+                    "Adaptive refinement stops at cells of about this size "
+                    "(diameter <= 1.5 times it); >= 0, 0: no limit.");
+        io::declare(prm,
+                    "Maximum cells",
+                    "0",
+                    Integer(0),
+                    "-",
+                    "Upper limit of the number of cells of the adaptive "
+                    "mesh; 0: no limit.");
         prm.leave_subsection();
 
         prm.enter_subsection("Time stepping");
@@ -571,9 +615,21 @@ namespace rockdda::thermal
       for (const auto &t : split(prm.get("Refine near tags"), ','))
         if (!t.empty())
           p.refine_near_tags.push_back(t);
-      p.band_width     = prm.get_double("Band width");
-      p.band_cell_size = prm.get_double("Band cell size");
+      p.band_width             = prm.get_double("Band width");
+      p.band_cell_size         = prm.get_double("Band cell size");
+      p.adaptive_refinement    = prm.get_bool("Adaptive refinement");
+      p.adaptive_interval      = prm.get_integer("Adaptive interval");
+      p.refine_fraction        = prm.get_double("Refine fraction");
+      p.coarsen_fraction       = prm.get_double("Coarsen fraction");
+      p.adaptive_min_cell_size = prm.get_double("Minimum cell size");
+      p.adaptive_max_cells     = prm.get_integer("Maximum cells");
       prm.leave_subsection();
+      io::require(p.refine_fraction + p.coarsen_fraction <= 1.,
+                  prm_file,
+                  "Heat/Mesh/Coarsen fraction",
+                  p.coarsen_fraction,
+                  "<= 1 - Refine fraction ("
+                    + io::format_number(1. - p.refine_fraction, 6) + ")");
       io::require(p.coarse_cell_size > 0.,
                   prm_file,
                   "Heat/Mesh/Coarse cell size",
@@ -854,6 +910,8 @@ namespace rockdda::thermal
         }
       table.add_column("stored_heat_change", "J/m");
       table.add_column("boundary_heat_in", "J/m");
+      if (parameters.adaptive_refinement)
+        table.add_column("cells", "-");
 
       std::vector<std::vector<double>> samples(probes.size());
       std::vector<double>              sample_times;
@@ -873,6 +931,8 @@ namespace rockdda::thermal
           }
         row.push_back(solver.stored_heat() - e0);
         row.push_back(solver.boundary_heat_in() - q0);
+        if (parameters.adaptive_refinement)
+          row.push_back(solver.statistics().n_cells);
         for (const double v : row)
           if (!std::isfinite(v))
             throw std::runtime_error("heat: non-finite result at t = "
@@ -922,6 +982,19 @@ namespace rockdda::thermal
       context.output.write("statistics.csv", table.csv());
 
       const auto st = solver.statistics();
+      if (parameters.adaptive_refinement)
+        {
+          context.summary.add("adaptations", st.n_adaptations, "-");
+          context.summary.add("final_cells", st.n_cells, "-");
+          context.summary.add("max_cells", st.max_n_cells, "-");
+          context.summary.add("mesh_transfer_heat",
+                              st.mesh_transfer_heat,
+                              "J/m");
+          context.log.line("adaptive mesh: " + std::to_string(st.n_adaptations)
+                           + " adaptations, " + std::to_string(st.n_cells)
+                           + " cells at the end (at most "
+                           + std::to_string(st.max_n_cells) + ")");
+        }
       context.summary.add("time_steps", st.n_steps, "-");
       context.summary.add("factorizations", st.n_factorizations, "-");
       context.summary.add("stiffness_ratio", st.stiffness_ratio, "-");
@@ -949,8 +1022,11 @@ namespace rockdda::thermal
         closed = closed && bc.type != BoundaryCondition::Type::temperature;
       if (closed && parameters.stepper != TimeStepper::arkode)
         {
+          // Heat added by the (non-conservative) field transfer onto
+          // adapted meshes counts as input.
           const double stored = solver.stored_heat() - e0;
-          const double input  = solver.boundary_heat_in() - q0;
+          const double input  = solver.boundary_heat_in() - q0
+                               + st.mesh_transfer_heat - st0.mesh_transfer_heat;
           const double rel
             = std::abs(stored - input) / std::max(std::abs(input), 1e-300);
           context.summary.add("energy_balance_relative_error", rel, "-");

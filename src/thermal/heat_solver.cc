@@ -15,6 +15,7 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_refinement.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
@@ -28,6 +29,8 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/error_estimator.h>
+#include <deal.II/numerics/solution_transfer.h>
 #include <deal.II/sundials/arkode.h>
 
 #include <Eigen/SparseCholesky>
@@ -147,7 +150,10 @@ namespace rockdda::thermal
     std::vector<std::array<double, 6>>
       block_geometry; // A, Sx, Sy, Sxx, Sxy, Syy
 
-    std::vector<Probe> probes;
+    std::vector<Probe>    probes;
+    std::vector<Point<2>> probe_points;
+    /// Polygon edges carrying a refine_near_tags tag.
+    std::vector<std::array<Point2, 2>> band_segments;
 
     /// Boundary id of joint faces (contact conductance).
     types::boundary_id     joint_id = 0;
@@ -167,6 +173,16 @@ namespace rockdda::thermal
 
     std::ostringstream timer_stream;
     TimerOutput        timer;
+
+    /// Probe at @p p (throws InputError if outside the rock).
+    Probe
+    locate_probe(const Point<2> &p) const;
+    /// Kelly estimate, refine and coarsen, transfer the field, rebuild.
+    void
+    adapt_mesh();
+    /// Distance from @p p to the nearest face listed in refine_near_tags, m.
+    double
+    distance_to_band_tags(const Point<2> &p) const;
 
   private:
     void
@@ -223,9 +239,28 @@ namespace rockdda::thermal
                        + " W/(m^2 K) must be > 0 and finite");
     for (const auto &m : prm.materials)
       kappa_max = std::max(kappa_max, m.diffusivity());
+    if (prm.adaptive_refinement)
+      {
+        if (prm.stepper == TimeStepper::arkode)
+          throw InputError("heat: adaptive refinement needs a theta scheme "
+                           "(crank-nicolson or backward-euler), not arkode");
+        if (prm.adaptive_interval < 1)
+          throw InputError("heat: the adaptive interval must be >= 1 step");
+        if (!(prm.refine_fraction >= 0. && prm.refine_fraction <= 1.
+              && prm.coarsen_fraction >= 0. && prm.coarsen_fraction <= 1.
+              && prm.refine_fraction + prm.coarsen_fraction <= 1.))
+          throw InputError("heat: the refine fraction ("
+                           + io::format_number(prm.refine_fraction, 6)
+                           + ") and coarsen fraction ("
+                           + io::format_number(prm.coarsen_fraction, 6)
+                           + ") must lie in [0, 1] with a sum <= 1");
+        if (!(prm.adaptive_min_cell_size >= 0.))
+          throw InputError("heat: the minimum cell size must be >= 0 m");
+      }
 
     TimerOutput::Scope scope(timer, "setup");
     make_mesh();
+    dof_handler.reinit(tria);
     setup_system();
     assemble_fixed();
 
@@ -375,28 +410,25 @@ namespace rockdda::thermal
       tria.refine_global(prm.global_refinements);
 
     // A priori band within band_width of the listed (exposed) tags.
+    band_segments.clear();
     if (prm.band_width > 0. && prm.band_cell_size > 0.)
       {
-        std::vector<std::array<Point2, 2>> segments;
         for (const auto &b : prm.blocks)
           for (std::size_t i = 0; i < b.vertices.size(); ++i)
             if (std::find(prm.refine_near_tags.begin(),
                           prm.refine_near_tags.end(),
                           b.edge_tags[i])
                 != prm.refine_near_tags.end())
-              segments.push_back(std::array<Point2, 2>{
+              band_segments.push_back(std::array<Point2, 2>{
                 {b.vertices[i], b.vertices[(i + 1) % b.vertices.size()]}});
-        for (unsigned int cycle = 0; cycle < 30 && !segments.empty(); ++cycle)
+        for (unsigned int cycle = 0; cycle < 30 && !band_segments.empty();
+             ++cycle)
           {
             bool any = false;
             for (const auto &cell : tria.active_cell_iterators())
               if (cell->diameter() > 1.5 * prm.band_cell_size)
                 {
-                  const auto   c = cell->center();
-                  const Point2 p{{c[0], c[1]}};
-                  double       d = std::numeric_limits<double>::max();
-                  for (const auto &s : segments)
-                    d = std::min(d, distance_to_segment(p, s[0], s[1]));
+                  const double d = distance_to_band_tags(cell->center());
                   if (d < prm.band_width + 0.5 * cell->diameter())
                     cell->set_refine_flag(), any = true;
                 }
@@ -405,6 +437,118 @@ namespace rockdda::thermal
             tria.execute_coarsening_and_refinement();
           }
       }
+  }
+
+
+
+  double
+  HeatSolver::Impl::distance_to_band_tags(const Point<2> &c) const
+  {
+    const Point2 p{{c[0], c[1]}};
+    double       d = std::numeric_limits<double>::max();
+    for (const auto &s : band_segments)
+      d = std::min(d, distance_to_segment(p, s[0], s[1]));
+    return d;
+  }
+
+
+
+  Probe
+  HeatSolver::Impl::locate_probe(const Point<2> &point) const
+  {
+    std::pair<DoFHandler<2>::active_cell_iterator, Point<2>> found;
+    try
+      {
+        found = GridTools::find_active_cell_around_point(mapping,
+                                                         dof_handler,
+                                                         point);
+      }
+    catch (...)
+      {
+        found.first = dof_handler.end();
+      }
+    if (found.first == dof_handler.end()
+        || found.first.state() != IteratorState::valid)
+      throw InputError("heat: probe point (" + io::format_number(point[0], 6)
+                       + ", " + io::format_number(point[1], 6)
+                       + ") m is outside the rock");
+    const Quadrature<2> q(GeometryInfo<2>::project_to_unit_cell(found.second));
+    FEValues<2>         fe_values(mapping, fe, q, update_values);
+    fe_values.reinit(found.first);
+    Probe probe;
+    probe.dofs.resize(fe.n_dofs_per_cell());
+    found.first->get_dof_indices(probe.dofs);
+    for (unsigned int i = 0; i < probe.dofs.size(); ++i)
+      probe.weights.push_back(fe_values.shape_value(i, 0));
+    return probe;
+  }
+
+
+
+  void
+  HeatSolver::Impl::adapt_mesh()
+  {
+    TimerOutput::Scope scope(timer, "adapt mesh");
+    // Kelly et al. (1983): jumps of the normal gradient across faces.
+    Vector<float> indicator(tria.n_active_cells());
+    KellyErrorEstimator<2>::estimate(
+      mapping, dof_handler, QGauss<1>(fe.degree + 1), {}, solution, indicator);
+    if (!(indicator.l1_norm() > 0.))
+      return;
+    GridRefinement::refine_and_coarsen_fixed_fraction(
+      tria,
+      indicator,
+      prm.refine_fraction,
+      prm.coarsen_fraction,
+      prm.adaptive_max_cells > 0 ? prm.adaptive_max_cells
+                                 : std::numeric_limits<unsigned int>::max());
+    // Limits: no cell finer than the minimum size; no cell coarser than the
+    // coarse size, nor than the band size inside the a priori band.
+    const bool band = !band_segments.empty();
+    bool       any  = false;
+    for (const auto &cell : tria.active_cell_iterators())
+      {
+        if (cell->refine_flag_set()
+            && (cell->diameter() <= 1.5 * prm.adaptive_min_cell_size
+                || cell->level() >= 24))
+          cell->clear_refine_flag();
+        if (cell->coarsen_flag_set())
+          {
+            const double parent = cell->level() > 0
+                                    ? cell->parent()->diameter()
+                                    : std::numeric_limits<double>::max();
+            if (parent > 1.5 * prm.coarse_cell_size
+                || (band && parent > 1.5 * prm.band_cell_size
+                    && distance_to_band_tags(cell->center())
+                         < prm.band_width + 0.5 * parent))
+              cell->clear_coarsen_flag();
+          }
+        any = any || cell->refine_flag_set() || cell->coarsen_flag_set();
+      }
+    if (!any)
+      return;
+
+    const double                        heat_before = capacity * solution;
+    SolutionTransfer<2, Vector<double>> transfer(dof_handler);
+    tria.prepare_coarsening_and_refinement();
+    const std::vector<Vector<double>> in{solution, increment_old};
+    transfer.prepare_for_coarsening_and_refinement(in);
+    tria.execute_coarsening_and_refinement();
+    setup_system();
+    assemble_fixed();
+    std::vector<Vector<double>> out(in.size(),
+                                    Vector<double>(dof_handler.n_dofs()));
+    transfer.interpolate(in, out);
+    solution.swap(out[0]);
+    increment_old.swap(out[1]);
+    hanging.distribute(solution);
+    hanging.distribute(increment_old);
+    operators.clear();
+    rhs_old_valid = false;
+    for (unsigned int k = 0; k < probes.size(); ++k)
+      probes[k] = locate_probe(probe_points[k]);
+    stats.mesh_transfer_heat += capacity * solution - heat_before;
+    ++stats.n_adaptations;
   }
 
 
@@ -479,7 +623,6 @@ namespace rockdda::thermal
   void
   HeatSolver::Impl::setup_system()
   {
-    dof_handler.reinit(tria);
     dof_handler.distribute_dofs(fe);
     hanging.clear();
     DoFTools::make_hanging_node_constraints(dof_handler, hanging);
@@ -517,6 +660,9 @@ namespace rockdda::thermal
 
     // Dirichlet dofs (the first temperature tag wins at shared corners).
     is_dirichlet.assign(n, false);
+    dirichlet_dofs.clear();
+    dirichlet_points.clear();
+    dirichlet_bc.clear();
     std::vector<Point<2>> support(n);
     DoFTools::map_dofs_to_support_points(mapping, dof_handler, support);
     for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
@@ -538,8 +684,10 @@ namespace rockdda::thermal
         }
 
     stats.n_cells       = tria.n_active_cells();
+    stats.max_n_cells   = std::max(stats.max_n_cells, stats.n_cells);
     stats.n_dofs        = n;
     stats.min_cell_size = std::numeric_limits<double>::max();
+    stats.max_cell_size = 0.;
     for (const auto &cell : tria.active_cell_iterators())
       {
         stats.min_cell_size = std::min(stats.min_cell_size, cell->diameter());
@@ -571,6 +719,10 @@ namespace rockdda::thermal
     std::vector<types::global_dof_index> dofs(dpc);
 
     // Uniform boundary data vectors.
+    uniform_bc.clear();
+    uniform_vectors.clear();
+    uniform_rates.clear();
+    nonuniform = false;
     std::vector<int> uniform_slot(prm.boundary_conditions.size(), -1);
     for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
       {
@@ -1009,6 +1161,8 @@ namespace rockdda::thermal
       const double theta = std::isnan(stats.fallback_time) ? theta_cn : 1.;
       const bool   rannacher = theta < 1. && steps_taken < prm.rannacher_steps;
       theta_step(h, rannacher ? 1. : theta);
+      if (prm.adaptive_refinement && steps_taken % prm.adaptive_interval == 0)
+        adapt_mesh();
     };
     // Whole steps of exactly dt (an interval within 1e-6 dt of a multiple
     // of dt counts as that multiple, so that one factorisation serves the
@@ -1245,30 +1399,8 @@ namespace rockdda::thermal
   unsigned int
   HeatSolver::add_probe(const double x, const double y)
   {
-    std::pair<DoFHandler<2>::active_cell_iterator, Point<2>> found;
-    try
-      {
-        found = GridTools::find_active_cell_around_point(impl->mapping,
-                                                         impl->dof_handler,
-                                                         Point<2>(x, y));
-      }
-    catch (...)
-      {
-        found.first = impl->dof_handler.end();
-      }
-    if (found.first == impl->dof_handler.end()
-        || found.first.state() != IteratorState::valid)
-      throw InputError("heat: probe point (" + io::format_number(x, 6) + ", "
-                       + io::format_number(y, 6) + ") m is outside the rock");
-    const Quadrature<2> q(GeometryInfo<2>::project_to_unit_cell(found.second));
-    FEValues<2>         fe_values(impl->mapping, impl->fe, q, update_values);
-    fe_values.reinit(found.first);
-    Probe probe;
-    probe.dofs.resize(impl->fe.n_dofs_per_cell());
-    found.first->get_dof_indices(probe.dofs);
-    for (unsigned int i = 0; i < probe.dofs.size(); ++i)
-      probe.weights.push_back(fe_values.shape_value(i, 0));
-    impl->probes.push_back(probe);
+    impl->probes.push_back(impl->locate_probe(Point<2>(x, y)));
+    impl->probe_points.emplace_back(x, y);
     return impl->probes.size() - 1;
   }
 

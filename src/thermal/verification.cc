@@ -1,5 +1,7 @@
 #include <rockdda/thermal/verification.h>
 
+#include <cmath>
+
 namespace rockdda::thermal
 {
   Material
@@ -58,6 +60,38 @@ namespace rockdda::thermal
     p.boundary_conditions = {d, r, f};
     p.initial_field       = [=](double x, double y) { return exact(x, y, 0.); };
     p.source              = source;
+    return p;
+  }
+
+
+
+  HeatParameters
+  half_space_column(const double       width,
+                    const unsigned int degree,
+                    const double       cell_size,
+                    const double       amplitude,
+                    const double       mean)
+  {
+    const double   year = 365.25 * 86400.;
+    HeatParameters p;
+    p.materials = {masada_dolomite()};
+    Block b;
+    b.name      = "column";
+    b.vertices  = {{{0., -30.}}, {{width, -30.}}, {{width, 0.}}, {{0., 0.}}};
+    b.edge_tags = {"adiabatic", "adiabatic", "exposed", "adiabatic"};
+    p.blocks    = {b};
+    p.degree    = degree;
+    p.coarse_cell_size = cell_size;
+    BoundaryCondition surface;
+    surface.tag   = "exposed";
+    surface.type  = BoundaryCondition::Type::temperature;
+    surface.value = [=](double, double, double t) {
+      return mean + amplitude * std::sin(2. * M_PI * t / year);
+    };
+    p.boundary_conditions = {surface};
+    p.stepper             = TimeStepper::crank_nicolson;
+    p.time_step           = year / 365.;
+    p.initial_temperature = mean;
     return p;
   }
 } // namespace rockdda::thermal

@@ -108,6 +108,20 @@ namespace rockdda::thermal
     double                   band_width     = 0.; ///< m; 0 = no band
     double                   band_cell_size = 0.; ///< m, cell size in the band
 
+    /// Kelly-estimator refinement and coarsening during the run (theta
+    /// scheme), every adaptive_interval steps; the solution is transferred.
+    bool         adaptive_refinement = false;
+    unsigned int adaptive_interval   = 10; ///< steps between adaptations
+    /// Cells holding this fraction of the estimated error are refined.
+    double refine_fraction = 0.3;
+    /// Cells holding this fraction of the estimated error are coarsened.
+    double coarsen_fraction = 0.03;
+    /// No refinement of cells of about this size (diameter <= 1.5 times
+    /// it), m; 0: limited only by adaptive_max_cells.
+    double adaptive_min_cell_size = 0.;
+    /// Upper limit of the number of cells; 0: no limit.
+    unsigned int adaptive_max_cells = 0;
+
     TimeStepper stepper    = TimeStepper::crank_nicolson;
     double      time_step  = 86400.; ///< s (theta scheme; ARKODE initial)
     double      start_time = 0.;     ///< s
@@ -160,7 +174,12 @@ namespace rockdda::thermal
     unsigned long oscillation_steps = 0;
     /// Time at which Crank-Nicolson fell back to backward Euler (s), or
     /// NaN if it did not.
-    double fallback_time = std::numeric_limits<double>::quiet_NaN();
+    double        fallback_time = std::numeric_limits<double>::quiet_NaN();
+    unsigned long n_adaptations = 0; ///< mesh changes by the Kelly estimator
+    unsigned int  max_n_cells   = 0; ///< largest mesh during the run
+    /// Heat added by interpolating the field onto adapted meshes (the
+    /// transfer is not conservative), J/m; part of the energy balance.
+    double mesh_transfer_heat = 0.;
   };
 
   /**

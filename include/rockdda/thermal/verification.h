@@ -37,6 +37,20 @@ namespace rockdda::thermal
                        const ScalarField &dtdx,
                        const ScalarField &dtdy,
                        const ScalarField &source);
+
+  /**
+   * The periodic half-space as a column @p width m wide and 30 m deep
+   * (Masada dolomite, adiabatic sides and base): the top is held at
+   * @p mean + @p amplitude sin(2 pi t / 1 year) (K); FE_Q(@p degree),
+   * coarse cells of @p cell_size m, Crank-Nicolson with daily steps,
+   * starting from @p mean. Used by the adaptivity test and benchmark.
+   */
+  HeatParameters
+  half_space_column(const double       width,
+                    const unsigned int degree,
+                    const double       cell_size,
+                    const double       amplitude,
+                    const double       mean);
 } // namespace rockdda::thermal
 
 #endif
