@@ -4,6 +4,8 @@
  */
 #include <rockdda/dda/contact_set.h>
 
+#include <algorithm>
+
 namespace rockdda::dda
 {
   std::uint64_t
@@ -36,10 +38,11 @@ namespace rockdda::dda
         Contact                &r = result[c];
         r.geometry                = g;
         r.xi_ref                  = g.xi;
-        auto it = stored.find(key(g.block_i, g.vertex, g.block_j, g.edge));
-        if (it != stored.end())
+        const Contact *found
+          = find(by_edge, key(g.block_i, g.vertex, g.block_j, g.edge));
+        if (found != nullptr)
           {
-            const Contact &o  = it->second;
+            const Contact &o  = *found;
             r.state           = o.state;
             r.normal_force    = o.normal_force;
             r.shear_force     = o.shear_force;
@@ -50,11 +53,12 @@ namespace rockdda::dda
           }
         else
           {
-            auto v = by_vertex.find(vertex_key(g.block_i, g.vertex, g.block_j));
-            if (v != by_vertex.end() && v->second.state != ContactState::open)
+            const Contact *v
+              = find(by_vertex, vertex_key(g.block_i, g.vertex, g.block_j));
+            if (v != nullptr && v->state != ContactState::open)
               {
                 // The vertex moved onto another edge of the same block.
-                const Contact &o  = v->second;
+                const Contact &o  = *v;
                 r.state           = o.state;
                 r.normal_force    = o.normal_force;
                 r.slide_direction = o.slide_direction;
@@ -71,18 +75,54 @@ namespace rockdda::dda
 
 
 
+  const Contact *
+  ContactSet::find(const std::vector<std::pair<std::uint64_t, int>> &index,
+                   const std::uint64_t                               k) const
+  {
+    const auto it
+      = std::lower_bound(index.begin(), index.end(), std::make_pair(k, -1));
+    return it != index.end() && it->first == k ? &stored[it->second] : nullptr;
+  }
+
+
+
   void
   ContactSet::store(const std::vector<Contact> &contacts)
   {
-    stored.clear();
+    stored = contacts;
+    by_edge.clear();
     by_vertex.clear();
-    for (const Contact &c : contacts)
+    for (std::size_t c = 0; c < stored.size(); ++c)
       {
-        const auto &g                                       = c.geometry;
-        stored[key(g.block_i, g.vertex, g.block_j, g.edge)] = c;
-        auto &v = by_vertex[vertex_key(g.block_i, g.vertex, g.block_j)];
-        if (v.state == ContactState::open)
-          v = c;
+        const auto &g = stored[c].geometry;
+        by_edge.emplace_back(key(g.block_i, g.vertex, g.block_j, g.edge),
+                             static_cast<int>(c));
+        by_vertex.emplace_back(vertex_key(g.block_i, g.vertex, g.block_j),
+                               static_cast<int>(c));
       }
+    std::sort(by_edge.begin(), by_edge.end());
+    // Per vertex key, keep one entry: the first closed contact in input
+    // order, else the first one.
+    std::sort(by_vertex.begin(),
+              by_vertex.end(),
+              [this](const auto &a, const auto &b) {
+                if (a.first != b.first)
+                  return a.first < b.first;
+                const bool ca = stored[a.second].state != ContactState::open;
+                const bool cb = stored[b.second].state != ContactState::open;
+                if (ca != cb)
+                  return ca;
+                return a.second < b.second;
+              });
+    by_vertex.erase(std::unique(by_vertex.begin(),
+                                by_vertex.end(),
+                                [](const auto &a, const auto &b) {
+                                  return a.first == b.first;
+                                }),
+                    by_vertex.end());
+    // Duplicate edge keys (not expected) keep the last contact, as before.
+    for (std::size_t k = by_edge.size(); k-- > 1;)
+      if (by_edge[k].first == by_edge[k - 1].first)
+        by_edge[k - 1].second = by_edge[k].second;
   }
 } // namespace rockdda::dda

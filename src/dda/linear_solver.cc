@@ -235,8 +235,7 @@ namespace rockdda::dda
   LinearSolver::solve(const BlockSparseMatrix &K,
                       const Eigen::VectorXd   &f,
                       Eigen::VectorXd         &x,
-                      const bool               same_matrix,
-                      const double             tolerance)
+                      const bool               same_matrix)
   {
     iterations = 0;
     if (current == SolverType::direct)
@@ -262,10 +261,9 @@ namespace rockdda::dda
       }
     if (x.size() != f.size() || !x.allFinite())
       x = Eigen::VectorXd::Zero(f.size());
-    const double tol = tolerance > 0. ? tolerance : options.tolerance;
     return options.preconditioner == Preconditioner::block_dilu
-             ? dilu_cg(K, f, x, tol)
-             : jacobi_cg(K, f, x, tol);
+             ? dilu_cg(K, f, x)
+             : jacobi_cg(K, f, x);
   }
 
 
@@ -327,8 +325,7 @@ namespace rockdda::dda
   bool
   LinearSolver::jacobi_cg(const BlockSparseMatrix &K,
                           const Eigen::VectorXd   &f,
-                          Eigen::VectorXd         &x,
-                          const double             tolerance)
+                          Eigen::VectorXd         &x)
   {
     const int n       = K.n_blocks();
     auto precondition = [&](const Eigen::VectorXd &in, Eigen::VectorXd &out) {
@@ -349,7 +346,7 @@ namespace rockdda::dda
     precondition(r, z);
     p                   = z;
     double       rz     = r.dot(z);
-    const double tol2   = tolerance * tolerance * bnorm;
+    const double tol2   = options.tolerance * options.tolerance * bnorm;
     const int    max_it = iteration_limit(n);
     while (rz > tol2)
       {
@@ -417,8 +414,7 @@ namespace rockdda::dda
   bool
   LinearSolver::dilu_cg(const BlockSparseMatrix &K,
                         const Eigen::VectorXd   &f,
-                        Eigen::VectorXd         &x,
-                        const double             tolerance)
+                        Eigen::VectorXd         &x)
   {
     // PCG on K with M = (P + L) P^-1 (P + U) is CG on
     // A^ = (P + L)^-1 K (P + U)^-1 (unknown y = (P + U) x) preconditioned
@@ -450,31 +446,64 @@ namespace rockdda::dda
     r = f - q;
     forward_sweep(K, r);
     times_pivot(r, z);
-    p                   = z;
+    p = Eigen::VectorXd::Zero(f.size());
+    q.resize(f.size());
+    t.resize(f.size());
     double       rz     = r.dot(z);
-    const double tol2   = tolerance * tolerance * bnorm;
+    double       beta   = 0.;
+    const double tol2   = options.tolerance * options.tolerance * bnorm;
     const int    max_it = iteration_limit(n);
+    // One pass per sweep, with the vector updates fused into them:
+    // p = z + beta p in the backward sweep, q = A^ p and p.q in the forward
+    // sweep, then y, r, z and r.z in one loop.
     while (rz > tol2)
       {
         if (iterations >= max_it)
           return false;
         ++iterations;
-        backward_sweep(K, p, t);
-        q = p;
+        for (int i = n - 1; i >= 0; --i)
+          {
+            auto pi     = p.segment<6>(6 * i);
+            pi          = z.segment<6>(6 * i) + beta * pi;
+            Vector6 acc = pi;
+            for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+              acc.noalias() -= K.off[k] * t.segment<6>(6 * K.pairs[k].second);
+            t.segment<6>(6 * i).noalias() = inverse_diag[i] * acc;
+          }
+        q.setZero();
+        double pq = 0.;
         for (int i = 0; i < n; ++i)
-          q.segment<6>(6 * i).noalias() += diag_shift[i] * t.segment<6>(6 * i);
-        forward_sweep(K, q);
-        q += t;
-        const double pq = p.dot(q);
+          {
+            const auto ti = t.segment<6>(6 * i);
+            auto       qi = q.segment<6>(6 * i);
+            Vector6    w  = qi + p.segment<6>(6 * i);
+            w.noalias() += diag_shift[i] * ti;
+            const Vector6 si = inverse_diag[i] * w;
+            qi               = si + ti;
+            pq += p.segment<6>(6 * i).dot(qi);
+            for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+              {
+                const Matrix6 &A = K.off[k];
+                const int      j = K.pairs[k].second;
+                for (int c = 0; c < 6; ++c)
+                  q[6 * j + c] -= A.col(c).dot(si);
+              }
+          }
         if (!(pq > 0.))
           return false;
-        const double alpha = rz / pq;
-        y += alpha * p;
-        r -= alpha * q;
-        times_pivot(r, z);
-        const double rz_new = r.dot(z);
-        p                   = z + (rz_new / rz) * p;
-        rz                  = rz_new;
+        const double alpha  = rz / pq;
+        double       rz_new = 0.;
+        for (int i = 0; i < n; ++i)
+          {
+            y.segment<6>(6 * i) += alpha * p.segment<6>(6 * i);
+            auto ri = r.segment<6>(6 * i);
+            ri -= alpha * q.segment<6>(6 * i);
+            auto zi      = z.segment<6>(6 * i);
+            zi.noalias() = pivot[i] * ri;
+            rz_new += ri.dot(zi);
+          }
+        beta = rz_new / rz;
+        rz   = rz_new;
         if (!std::isfinite(rz))
           return false;
       }

@@ -9,7 +9,6 @@
 #include <rockdda/dda/contact_detection.h>
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace rockdda::dda
@@ -79,9 +78,15 @@ namespace rockdda::dda
     static std::uint64_t
     key(int i, int k, int j, int e);
     static std::uint64_t
-                                               vertex_key(int i, int k, int j);
-    std::unordered_map<std::uint64_t, Contact> stored;
-    std::unordered_map<std::uint64_t, Contact> by_vertex;
+    vertex_key(int i, int k, int j);
+    /// The contact with key @p k in @p index, or nullptr.
+    const Contact *
+    find(const std::vector<std::pair<std::uint64_t, int>> &index,
+         const std::uint64_t                               k) const;
+    /// The stored contacts and their sorted (key, index) tables by
+    /// (vertex, edge) and by vertex.
+    std::vector<Contact>                       stored;
+    std::vector<std::pair<std::uint64_t, int>> by_edge, by_vertex;
   };
 } // namespace rockdda::dda
 

@@ -113,15 +113,13 @@ namespace rockdda::dda
      * previous call (only f changed), and its factorisation (direct) or
      * preconditioner (iterative) is reused. Returns false if the matrix is
      * not positive definite, CG did not converge, or the result is not
-     * finite. @p tolerance > 0 overrides the CG tolerance of the options
-     * for this call (the direct solver ignores it).
+     * finite.
      */
     bool
     solve(const BlockSparseMatrix &matrix,
           const Eigen::VectorXd   &f,
           Eigen::VectorXd         &x,
-          const bool               same_matrix = false,
-          const double             tolerance   = 0.);
+          const bool               same_matrix = false);
 
     /// The solver used for the current pattern (never automatic).
     SolverType
@@ -147,14 +145,12 @@ namespace rockdda::dda
     bool
     jacobi_cg(const BlockSparseMatrix &K,
               const Eigen::VectorXd   &f,
-              Eigen::VectorXd         &x,
-              const double             tolerance);
+              Eigen::VectorXd         &x);
     /// CG on the Eisenstat-transformed system of the block D-ILU.
     bool
     dilu_cg(const BlockSparseMatrix &K,
             const Eigen::VectorXd   &f,
-            Eigen::VectorXd         &x,
-            const double             tolerance);
+            Eigen::VectorXd         &x);
     /// Solve (P + U) t = v, U the strict upper block triangle of K.
     void
     backward_sweep(const BlockSparseMatrix &K,
