@@ -174,13 +174,15 @@ namespace
   }
 
   /// One case: rows x columns wall, dynamic control, solver name
-  /// (automatic, direct, iterative), timed steps; prints ms per step.
+  /// (automatic, direct, iterative, jacobi), timed steps, optional static
+  /// settling steps first; prints ms per step.
   void
   single(int                rows,
          int                columns,
          double             dynamic,
          const std::string &name,
-         int                steps)
+         int                steps,
+         int                settle)
   {
     Controls c;
     c.time_step          = 1e-3;
@@ -193,24 +195,28 @@ namespace
     if (name == "jacobi")
       c.solver.preconditioner = Preconditioner::block_jacobi;
     DdaSystem dda(brick_wall(rows, columns), c);
+    if (settle > 0)
+      dda.settle(settle);
     for (int k = 0; k < 3; ++k)
       dda.step();
     const auto t0 = std::chrono::steady_clock::now();
-    unsigned   it = 0, solver_it = 0;
+    unsigned   it = 0, solver_it = 0, cuts = 0;
     for (int k = 0; k < steps; ++k)
       {
         const StepReport r = dda.step();
         it += r.iterations;
         solver_it += r.solver_iterations;
+        cuts += r.cuts;
       }
     const double t = seconds_since(t0) / steps;
     std::printf("%zu blocks: %.3f ms/step, %.0f block-steps/s, %.2f "
-                "open-close it./step, %.1f solver it./step\n",
+                "open-close it./step, %.1f solver it./step, %u cuts\n",
                 dda.system().blocks.size(),
                 1e3 * t,
                 dda.system().blocks.size() / t,
                 double(it) / steps,
-                double(solver_it) / steps);
+                double(solver_it) / steps,
+                cuts);
   }
 
   /// CG tolerance against cost and accuracy: ms and CG iterations per step
@@ -375,13 +381,14 @@ main(int argc, char **argv)
            std::atoi(argv[3]),
            std::atof(argv[4]),
            argv[5],
-           std::atoi(argv[6]));
+           std::atoi(argv[6]),
+           argc > 7 ? std::atoi(argv[7]) : 0);
   else
     {
       std::fprintf(stderr,
                    "usage: dda_scaling scaling [max_blocks] | accuracy | "
                    "tolerance | single "
-                   "rows columns dynamic solver steps\n");
+                   "rows columns dynamic solver steps [settling_steps]\n");
       return 2;
     }
   return 0;

@@ -250,6 +250,15 @@ namespace rockdda::dda
         if (mode != "none")
           {
             motion.parse_parameters(prm, prm_file);
+            if (motion.polarity == seismic::GroundMotionInput::Polarity::both)
+              throw InputError(prm_file
+                               + ": key 'Ground motion/Polarity' = both is not "
+                                 "supported by dda (one simulation per "
+                                 "file); valid: normal or inverted");
+            if (motion.polarity
+                == seismic::GroundMotionInput::Polarity::inverted)
+              for (auto &a : motion.record.acceleration)
+                a = -a;
             scene.seismic.mode   = mode == "inertial"
                                      ? SeismicInput::Mode::inertial
                                      : SeismicInput::Mode::displacement;
