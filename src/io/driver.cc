@@ -3,7 +3,10 @@
 #include <rockdda/io/parameters.h>
 #include <rockdda/seismic/ground_motion.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -67,9 +70,33 @@ namespace rockdda::io
 
 
 
+  bool
+  started_by_mpi_launcher()
+  {
+    for (const char *name : {"OMPI_COMM_WORLD_SIZE",
+                             "PMI_SIZE",
+                             "PMI_RANK",
+                             "PMIX_RANK",
+                             "MPI_LOCALNRANKS",
+                             "MV2_COMM_WORLD_SIZE"})
+      if (std::getenv(name) != nullptr)
+        return true;
+    const char *force = std::getenv("ROCKDDA_MPI");
+    return force != nullptr && std::string(force) == "1";
+  }
+
+
+
   int
   run_driver(int argc, char **argv)
   {
+    // With MPI, every rank runs the analysis (the heat solver distributes
+    // its work); only rank 0 prints and writes files.
+    const bool root
+      = !dealii::Utilities::MPI::job_supports_mpi()
+        || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    if (!root)
+      std::cout.setstate(std::ios::failbit);
     bool        validate_only = false, print_parameters = false, quiet = false;
     std::string prm_file;
     for (int i = 1; i < argc; ++i)
@@ -133,7 +160,8 @@ namespace rockdda::io
       }
     catch (const InputError &e)
       {
-        std::cerr << "rockdda: error: " << e.what() << std::endl;
+        if (root)
+          std::cerr << "rockdda: error: " << e.what() << std::endl;
         return 1;
       }
 
@@ -145,11 +173,11 @@ namespace rockdda::io
       }
 
     const auto start = std::chrono::steady_clock::now();
-    Log        log(!quiet);
+    Log        log(!quiet && root);
     Summary    summary;
     try
       {
-        OutputDirectory output(output_path);
+        OutputDirectory output(output_path, root);
         {
           std::ostringstream resolved;
           prm.print_parameters(resolved, dealii::ParameterHandler::ShortPRM);
@@ -179,12 +207,14 @@ namespace rockdda::io
       }
     catch (const InputError &e)
       {
-        std::cerr << "rockdda: error: " << e.what() << std::endl;
+        if (root)
+          std::cerr << "rockdda: error: " << e.what() << std::endl;
         return 1;
       }
     catch (const std::exception &e)
       {
-        std::cerr << "rockdda: run failed: " << e.what() << std::endl;
+        if (root)
+          std::cerr << "rockdda: run failed: " << e.what() << std::endl;
         return 3;
       }
     return 0;

@@ -10,9 +10,12 @@
 
 namespace rockdda::io
 {
-  OutputDirectory::OutputDirectory(const std::string &path)
+  OutputDirectory::OutputDirectory(const std::string &path, const bool enabled)
       : folder(path.empty() ? std::string(".") : path)
+      , enabled(enabled)
   {
+    if (!enabled)
+      return;
     std::error_code ec;
     std::filesystem::create_directories(folder, ec);
     if (ec)
@@ -34,6 +37,8 @@ namespace rockdda::io
   OutputDirectory::write(const std::string &name,
                          const std::string &content) const
   {
+    if (!enabled)
+      return;
     const std::string target = file(name);
     const std::string tmp
       = target + ".tmp." + std::to_string(static_cast<long>(::getpid()));

@@ -379,10 +379,14 @@ namespace rockdda::thermal
           prm,
           "Linear solver",
           "direct",
-          Selection("direct|cg"),
+          Selection("direct|cg|amg"),
           "-",
           "'direct' (sparse Cholesky LDL^T, Eigen; factorised once per step "
-          "size) or 'cg' (CG + SSOR, relative tolerance 1e-12).");
+          "size), 'cg' (CG + SSOR, relative tolerance 1e-12) or 'amg' (the "
+          "distributed solver: p4est mesh, Trilinos CG + AMG, also on one "
+          "MPI rank; needs mpirun). With mpirun -np N > 1 the distributed "
+          "solver is used anyway: 'direct' is then Trilinos Amesos KLU and "
+          "'cg'/'amg' CG + AMG.");
         io::declare(prm,
                     "ARKODE relative tolerance",
                     "1e-6",
@@ -650,6 +654,7 @@ namespace rockdda::thermal
       p.rannacher_steps           = prm.get_integer("Rannacher steps");
       p.oscillation_fallback      = prm.get_bool("Oscillation fallback");
       p.direct_solver             = prm.get("Linear solver") == "direct";
+      p.distributed               = prm.get("Linear solver") == "amg";
       p.arkode_relative_tolerance = prm.get_double("ARKODE relative tolerance");
       p.arkode_absolute_tolerance = prm.get_double("ARKODE absolute tolerance");
       prm.leave_subsection();
@@ -831,6 +836,7 @@ namespace rockdda::thermal
       // Build the solver once here to check the geometry (throws
       // InputError with the block names); it is rebuilt in run().
       HeatParameters check = p;
+      check.distributed    = false; // serial check unless run by mpirun
       check.boundary_conditions.clear();
       for (auto bc : p.boundary_conditions)
         {
@@ -948,10 +954,14 @@ namespace rockdda::thermal
       unsigned int n_vtu     = 0;
       const auto   write_vtu = [&]() {
         char name[64];
-        std::snprintf(name, sizeof(name), "temperature-%04u.vtu", n_vtu++);
-        context.output.write(name, solver.vtu());
-        pvd += "<DataSet timestep=\"" + io::format_number(solver.time())
-               + "\" file=\"" + name + "\"/>\n";
+        std::snprintf(name, sizeof(name), "temperature-%04u", n_vtu++);
+        // One .vtu (serial), or a .pvtu with one piece per MPI rank.
+        const auto files = solver.vtu_files(name);
+        for (const auto &f : files)
+          context.output.write(f.first, f.second);
+        if (!files.empty())
+          pvd += "<DataSet timestep=\"" + io::format_number(solver.time())
+                 + "\" file=\"" + files.front().first + "\"/>\n";
       };
 
       record();

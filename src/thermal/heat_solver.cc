@@ -36,6 +36,8 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include "heat_internal.h"
+#include "heat_solver_mpi.h"
 #include <arkode/arkode_arkstep.h>
 #include <cmath>
 #include <limits>
@@ -106,6 +108,237 @@ namespace rockdda::thermal
       std::vector<double>                  weights;
     };
   } // namespace
+
+
+
+  namespace internal
+  {
+    void
+    validate_parameters(const HeatParameters &prm)
+    {
+      if (prm.degree < 1 || prm.degree > 3)
+        throw InputError("heat: FE degree " + std::to_string(prm.degree)
+                         + " is not supported (1, 2 or 3)");
+      if (prm.materials.empty())
+        throw InputError("heat: no material");
+      for (const auto &m : prm.materials)
+        validate(m, "heat");
+      for (const auto &b : prm.blocks)
+        if (b.material >= prm.materials.size())
+          throw InputError("heat: block '" + b.name
+                           + "' refers to a material that does not exist");
+      if (!(prm.time_step > 0.) || !std::isfinite(prm.time_step))
+        throw InputError("heat: the time step must be > 0 s");
+      if (prm.joint_contact == HeatParameters::JointContact::conductance
+          && (!(prm.joint_conductance > 0.)
+              || !std::isfinite(prm.joint_conductance)))
+        throw InputError("heat: the joint conductance "
+                         + io::format_number(prm.joint_conductance, 6)
+                         + " W/(m^2 K) must be > 0 and finite");
+      if (prm.adaptive_refinement)
+        {
+          if (prm.stepper == TimeStepper::arkode)
+            throw InputError("heat: adaptive refinement needs a theta scheme "
+                             "(crank-nicolson or backward-euler), not arkode");
+          if (prm.adaptive_interval < 1)
+            throw InputError("heat: the adaptive interval must be >= 1 step");
+          if (!(prm.refine_fraction >= 0. && prm.refine_fraction <= 1.
+                && prm.coarsen_fraction >= 0. && prm.coarsen_fraction <= 1.
+                && prm.refine_fraction + prm.coarsen_fraction <= 1.))
+            throw InputError("heat: the refine fraction ("
+                             + io::format_number(prm.refine_fraction, 6)
+                             + ") and coarsen fraction ("
+                             + io::format_number(prm.coarsen_fraction, 6)
+                             + ") must lie in [0, 1] with a sum <= 1");
+          if (!(prm.adaptive_min_cell_size >= 0.))
+            throw InputError("heat: the minimum cell size must be >= 0 m");
+        }
+    }
+
+
+
+    double
+    distance_to_segments(const Point<2>                           &c,
+                         const std::vector<std::array<Point2, 2>> &segments)
+    {
+      const Point2 p{{c[0], c[1]}};
+      double       d = std::numeric_limits<double>::max();
+      for (const auto &s : segments)
+        d = std::min(d, distance_to_segment(p, s[0], s[1]));
+      return d;
+    }
+
+
+
+    void
+    build_mesh(Triangulation<2>     &tria,
+               const HeatParameters &prm,
+               MeshInfo             &info)
+    {
+      const bool merge
+        = prm.joint_contact == HeatParameters::JointContact::perfect;
+      const CoarseMesh coarse
+        = mesh_blocks(prm.blocks, prm.coarse_cell_size, merge);
+
+      std::vector<Point<2>> vertices;
+      for (const auto &v : coarse.vertices)
+        vertices.emplace_back(v[0], v[1]);
+      std::vector<CellData<2>> cells(coarse.quads.size());
+      for (unsigned int c = 0; c < coarse.quads.size(); ++c)
+        {
+          const auto &q = coarse.quads[c];
+          // deal.II numbers quadrilateral vertices lexicographically.
+          cells[c].vertices    = {q[0], q[1], q[3], q[2]};
+          cells[c].material_id = coarse.quad_block[c];
+        }
+      GridTools::consistently_order_cells(cells);
+      tria.create_triangulation(vertices, cells, SubCellData());
+
+      // Boundary ids from the polygon edges: the tag of the closest edge of
+      // the cell's block.
+      for (const auto &b : prm.blocks)
+        for (const auto &t : b.edge_tags)
+          if (std::find(info.tags.begin(), info.tags.end(), t)
+              == info.tags.end())
+            info.tags.push_back(t);
+      std::map<std::string, unsigned int> bc_of_tag;
+      for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
+        {
+          const auto &tag = prm.boundary_conditions[k].tag;
+          if (std::find(info.tags.begin(), info.tags.end(), tag)
+              == info.tags.end())
+            {
+              std::string known;
+              for (const auto &t : info.tags)
+                known += (known.empty() ? "" : ", ") + t;
+              throw InputError("heat: boundary condition for unknown boundary "
+                               "tag '"
+                               + tag + "' (the geometry's tags are: " + known
+                               + ")");
+            }
+          if (bc_of_tag.count(tag))
+            throw InputError("heat: two boundary conditions for tag '" + tag
+                             + "'");
+          bc_of_tag[tag] = k;
+        }
+      const unsigned int adiabatic_id = prm.boundary_conditions.size();
+      info.joint_id                   = adiabatic_id + 1;
+      const bool conductance
+        = prm.joint_contact == HeatParameters::JointContact::conductance;
+
+      // Edges shared by two blocks (joints), to detect non-conforming meshes.
+      const auto on_other_block_edge =
+        [&](const Point2 &p, const unsigned int block, const double tol) {
+          for (unsigned int b = 0; b < prm.blocks.size(); ++b)
+            if (b != block)
+              {
+                const auto &v = prm.blocks[b].vertices;
+                for (std::size_t i = 0; i < v.size(); ++i)
+                  if (distance_to_segment(p, v[i], v[(i + 1) % v.size()]) < tol)
+                    return b;
+              }
+          return numbers::invalid_unsigned_int;
+        };
+
+      for (const auto &cell : tria.active_cell_iterators())
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            {
+              const unsigned int block = cell->material_id();
+              const auto        &v     = prm.blocks[block].vertices;
+              const auto         c     = cell->face(f)->center();
+              const Point2       p{{c[0], c[1]}};
+              double             best = std::numeric_limits<double>::max();
+              unsigned int       edge = 0;
+              for (std::size_t i = 0; i < v.size(); ++i)
+                {
+                  const double d
+                    = distance_to_segment(p, v[i], v[(i + 1) % v.size()]);
+                  if (d < best)
+                    best = d, edge = i;
+                }
+              const double       tol   = 1e-6 * cell->face(f)->diameter();
+              const unsigned int other = (merge || conductance)
+                                           ? on_other_block_edge(p, block, tol)
+                                           : numbers::invalid_unsigned_int;
+              if (conductance && other != numbers::invalid_unsigned_int)
+                {
+                  // A joint face: coupled to the other side, its tag unused.
+                  cell->face(f)->set_boundary_id(info.joint_id);
+                  continue;
+                }
+              if (merge)
+                {
+                  if (other != numbers::invalid_unsigned_int)
+                    throw InputError(
+                      "heat: blocks '" + prm.blocks[block].name + "' and '"
+                      + prm.blocks[other].name
+                      + "' touch along an edge that is not shared vertex to "
+                        "vertex; with perfect joint contact, neighbouring "
+                        "blocks must have the same joint end points (split the "
+                        "longer edge), or use insulated joints");
+                }
+              const std::string &tag = prm.blocks[block].edge_tags[edge];
+              const auto         it  = bc_of_tag.find(tag);
+              if (it != bc_of_tag.end())
+                cell->face(f)->set_boundary_id(it->second);
+              else if (tag == "adiabatic")
+                cell->face(f)->set_boundary_id(adiabatic_id);
+              else
+                throw InputError("heat: boundary tag '" + tag + "' of block '"
+                                 + prm.blocks[block].name
+                                 + "' has no boundary condition (give one, or "
+                                   "name the tag 'adiabatic')");
+            }
+
+      // Refine to the target coarse cell size.
+      for (unsigned int cycle = 0; cycle < 30; ++cycle)
+        {
+          bool any = false;
+          for (const auto &cell : tria.active_cell_iterators())
+            if (cell->is_locally_owned()
+                && cell->diameter() > 1.5 * prm.coarse_cell_size)
+              cell->set_refine_flag(), any = true;
+          if (!Utilities::MPI::logical_or(any, tria.get_communicator()))
+            break;
+          tria.execute_coarsening_and_refinement();
+        }
+      if (prm.global_refinements > 0)
+        tria.refine_global(prm.global_refinements);
+
+      // A priori band within band_width of the listed (exposed) tags.
+      info.band_segments.clear();
+      if (prm.band_width > 0. && prm.band_cell_size > 0.)
+        {
+          for (const auto &b : prm.blocks)
+            for (std::size_t i = 0; i < b.vertices.size(); ++i)
+              if (std::find(prm.refine_near_tags.begin(),
+                            prm.refine_near_tags.end(),
+                            b.edge_tags[i])
+                  != prm.refine_near_tags.end())
+                info.band_segments.push_back(std::array<Point2, 2>{
+                  {b.vertices[i], b.vertices[(i + 1) % b.vertices.size()]}});
+          for (unsigned int cycle = 0;
+               cycle < 30 && !info.band_segments.empty();
+               ++cycle)
+            {
+              bool any = false;
+              for (const auto &cell : tria.active_cell_iterators())
+                if (cell->is_locally_owned()
+                    && cell->diameter() > 1.5 * prm.band_cell_size)
+                  {
+                    const double d = distance_to_segments(cell->center(),
+                                                          info.band_segments);
+                    if (d < prm.band_width + 0.5 * cell->diameter())
+                      cell->set_refine_flag(), any = true;
+                  }
+              if (!Utilities::MPI::logical_or(any, tria.get_communicator()))
+                break;
+              tria.execute_coarsening_and_refinement();
+            }
+        }
+    }
+  } // namespace internal
 
 
 
@@ -185,8 +418,6 @@ namespace rockdda::thermal
     distance_to_band_tags(const Point<2> &p) const;
 
   private:
-    void
-    make_mesh();
     /// Pair the faces on both sides of every joint (contact conductance).
     void
     find_joint_pairs();
@@ -215,51 +446,22 @@ namespace rockdda::thermal
 
   HeatSolver::Impl::Impl(const HeatParameters &parameters)
       : prm(parameters)
+      // The 2:1 balance at vertices that p4est enforces in the distributed
+      // solver, so that both solvers build the same meshes.
+      , tria(Triangulation<2>::limit_level_difference_at_vertices)
       , fe(std::max(1u, parameters.degree))
       , timer(timer_stream, TimerOutput::never, TimerOutput::wall_times)
   {
-    if (prm.degree < 1 || prm.degree > 3)
-      throw InputError("heat: FE degree " + std::to_string(prm.degree)
-                       + " is not supported (1, 2 or 3)");
-    if (prm.materials.empty())
-      throw InputError("heat: no material");
-    for (const auto &m : prm.materials)
-      validate(m, "heat");
-    for (const auto &b : prm.blocks)
-      if (b.material >= prm.materials.size())
-        throw InputError("heat: block '" + b.name
-                         + "' refers to a material that does not exist");
-    if (!(prm.time_step > 0.) || !std::isfinite(prm.time_step))
-      throw InputError("heat: the time step must be > 0 s");
-    if (prm.joint_contact == HeatParameters::JointContact::conductance
-        && (!(prm.joint_conductance > 0.)
-            || !std::isfinite(prm.joint_conductance)))
-      throw InputError("heat: the joint conductance "
-                       + io::format_number(prm.joint_conductance, 6)
-                       + " W/(m^2 K) must be > 0 and finite");
+    internal::validate_parameters(prm);
     for (const auto &m : prm.materials)
       kappa_max = std::max(kappa_max, m.diffusivity());
-    if (prm.adaptive_refinement)
-      {
-        if (prm.stepper == TimeStepper::arkode)
-          throw InputError("heat: adaptive refinement needs a theta scheme "
-                           "(crank-nicolson or backward-euler), not arkode");
-        if (prm.adaptive_interval < 1)
-          throw InputError("heat: the adaptive interval must be >= 1 step");
-        if (!(prm.refine_fraction >= 0. && prm.refine_fraction <= 1.
-              && prm.coarsen_fraction >= 0. && prm.coarsen_fraction <= 1.
-              && prm.refine_fraction + prm.coarsen_fraction <= 1.))
-          throw InputError("heat: the refine fraction ("
-                           + io::format_number(prm.refine_fraction, 6)
-                           + ") and coarsen fraction ("
-                           + io::format_number(prm.coarsen_fraction, 6)
-                           + ") must lie in [0, 1] with a sum <= 1");
-        if (!(prm.adaptive_min_cell_size >= 0.))
-          throw InputError("heat: the minimum cell size must be >= 0 m");
-      }
 
     TimerOutput::Scope scope(timer, "setup");
-    make_mesh();
+    internal::MeshInfo mesh_info;
+    internal::build_mesh(tria, prm, mesh_info);
+    tags          = mesh_info.tags;
+    joint_id      = mesh_info.joint_id;
+    band_segments = mesh_info.band_segments;
     dof_handler.reinit(tria);
     setup_system();
     assemble_fixed();
@@ -278,177 +480,10 @@ namespace rockdda::thermal
 
 
 
-  void
-  HeatSolver::Impl::make_mesh()
-  {
-    const bool merge
-      = prm.joint_contact == HeatParameters::JointContact::perfect;
-    const CoarseMesh coarse
-      = mesh_blocks(prm.blocks, prm.coarse_cell_size, merge);
-
-    std::vector<Point<2>> vertices;
-    for (const auto &v : coarse.vertices)
-      vertices.emplace_back(v[0], v[1]);
-    std::vector<CellData<2>> cells(coarse.quads.size());
-    for (unsigned int c = 0; c < coarse.quads.size(); ++c)
-      {
-        const auto &q = coarse.quads[c];
-        // deal.II numbers quadrilateral vertices lexicographically.
-        cells[c].vertices    = {q[0], q[1], q[3], q[2]};
-        cells[c].material_id = coarse.quad_block[c];
-      }
-    GridTools::consistently_order_cells(cells);
-    tria.create_triangulation(vertices, cells, SubCellData());
-
-    // Boundary ids from the polygon edges: the tag of the closest edge of
-    // the cell's block.
-    for (const auto &b : prm.blocks)
-      for (const auto &t : b.edge_tags)
-        if (std::find(tags.begin(), tags.end(), t) == tags.end())
-          tags.push_back(t);
-    std::map<std::string, unsigned int> bc_of_tag;
-    for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
-      {
-        const auto &tag = prm.boundary_conditions[k].tag;
-        if (std::find(tags.begin(), tags.end(), tag) == tags.end())
-          {
-            std::string known;
-            for (const auto &t : tags)
-              known += (known.empty() ? "" : ", ") + t;
-            throw InputError("heat: boundary condition for unknown boundary "
-                             "tag '"
-                             + tag + "' (the geometry's tags are: " + known
-                             + ")");
-          }
-        if (bc_of_tag.count(tag))
-          throw InputError("heat: two boundary conditions for tag '" + tag
-                           + "'");
-        bc_of_tag[tag] = k;
-      }
-    const unsigned int adiabatic_id = prm.boundary_conditions.size();
-    joint_id                        = adiabatic_id + 1;
-    const bool conductance
-      = prm.joint_contact == HeatParameters::JointContact::conductance;
-
-    // Edges shared by two blocks (joints), to detect non-conforming meshes.
-    const auto on_other_block_edge
-      = [&](const Point2 &p, const unsigned int block, const double tol) {
-          for (unsigned int b = 0; b < prm.blocks.size(); ++b)
-            if (b != block)
-              {
-                const auto &v = prm.blocks[b].vertices;
-                for (std::size_t i = 0; i < v.size(); ++i)
-                  if (distance_to_segment(p, v[i], v[(i + 1) % v.size()]) < tol)
-                    return b;
-              }
-          return numbers::invalid_unsigned_int;
-        };
-
-    for (const auto &cell : tria.active_cell_iterators())
-      for (const auto f : cell->face_indices())
-        if (cell->face(f)->at_boundary())
-          {
-            const unsigned int block = cell->material_id();
-            const auto        &v     = prm.blocks[block].vertices;
-            const auto         c     = cell->face(f)->center();
-            const Point2       p{{c[0], c[1]}};
-            double             best = std::numeric_limits<double>::max();
-            unsigned int       edge = 0;
-            for (std::size_t i = 0; i < v.size(); ++i)
-              {
-                const double d
-                  = distance_to_segment(p, v[i], v[(i + 1) % v.size()]);
-                if (d < best)
-                  best = d, edge = i;
-              }
-            const double       tol   = 1e-6 * cell->face(f)->diameter();
-            const unsigned int other = (merge || conductance)
-                                         ? on_other_block_edge(p, block, tol)
-                                         : numbers::invalid_unsigned_int;
-            if (conductance && other != numbers::invalid_unsigned_int)
-              {
-                // A joint face: coupled to the other side, its tag unused.
-                cell->face(f)->set_boundary_id(joint_id);
-                continue;
-              }
-            if (merge)
-              {
-                if (other != numbers::invalid_unsigned_int)
-                  throw InputError(
-                    "heat: blocks '" + prm.blocks[block].name + "' and '"
-                    + prm.blocks[other].name
-                    + "' touch along an edge that is not shared vertex to "
-                      "vertex; with perfect joint contact, neighbouring "
-                      "blocks must have the same joint end points (split the "
-                      "longer edge), or use insulated joints");
-              }
-            const std::string &tag = prm.blocks[block].edge_tags[edge];
-            const auto         it  = bc_of_tag.find(tag);
-            if (it != bc_of_tag.end())
-              cell->face(f)->set_boundary_id(it->second);
-            else if (tag == "adiabatic")
-              cell->face(f)->set_boundary_id(adiabatic_id);
-            else
-              throw InputError("heat: boundary tag '" + tag + "' of block '"
-                               + prm.blocks[block].name
-                               + "' has no boundary condition (give one, or "
-                                 "name the tag 'adiabatic')");
-          }
-
-    // Refine to the target coarse cell size.
-    for (unsigned int cycle = 0; cycle < 30; ++cycle)
-      {
-        bool any = false;
-        for (const auto &cell : tria.active_cell_iterators())
-          if (cell->diameter() > 1.5 * prm.coarse_cell_size)
-            cell->set_refine_flag(), any = true;
-        if (!any)
-          break;
-        tria.execute_coarsening_and_refinement();
-      }
-    if (prm.global_refinements > 0)
-      tria.refine_global(prm.global_refinements);
-
-    // A priori band within band_width of the listed (exposed) tags.
-    band_segments.clear();
-    if (prm.band_width > 0. && prm.band_cell_size > 0.)
-      {
-        for (const auto &b : prm.blocks)
-          for (std::size_t i = 0; i < b.vertices.size(); ++i)
-            if (std::find(prm.refine_near_tags.begin(),
-                          prm.refine_near_tags.end(),
-                          b.edge_tags[i])
-                != prm.refine_near_tags.end())
-              band_segments.push_back(std::array<Point2, 2>{
-                {b.vertices[i], b.vertices[(i + 1) % b.vertices.size()]}});
-        for (unsigned int cycle = 0; cycle < 30 && !band_segments.empty();
-             ++cycle)
-          {
-            bool any = false;
-            for (const auto &cell : tria.active_cell_iterators())
-              if (cell->diameter() > 1.5 * prm.band_cell_size)
-                {
-                  const double d = distance_to_band_tags(cell->center());
-                  if (d < prm.band_width + 0.5 * cell->diameter())
-                    cell->set_refine_flag(), any = true;
-                }
-            if (!any)
-              break;
-            tria.execute_coarsening_and_refinement();
-          }
-      }
-  }
-
-
-
   double
   HeatSolver::Impl::distance_to_band_tags(const Point<2> &c) const
   {
-    const Point2 p{{c[0], c[1]}};
-    double       d = std::numeric_limits<double>::max();
-    for (const auto &s : band_segments)
-      d = std::min(d, distance_to_segment(p, s[0], s[1]));
-    return d;
+    return internal::distance_to_segments(c, band_segments);
   }
 
 
@@ -1361,26 +1396,36 @@ namespace rockdda::thermal
 
   // -------------------------------------------------------------------------
   HeatSolver::HeatSolver(const HeatParameters &parameters)
-      : impl(std::make_unique<Impl>(parameters))
-  {}
+  {
+    if (internal::use_distributed_solver(parameters))
+      distributed = std::make_unique<internal::DistributedHeat>(parameters);
+    else
+      impl = std::make_unique<Impl>(parameters);
+  }
 
   HeatSolver::~HeatSolver() = default;
 
   double
   HeatSolver::time() const
   {
+    if (distributed)
+      return distributed->time();
     return impl->time;
   }
 
   void
   HeatSolver::advance_to(const double end_time)
   {
+    if (distributed)
+      return distributed->advance_to(end_time);
     impl->advance_to(end_time);
   }
 
   double
   HeatSolver::value(const double x, const double y) const
   {
+    if (distributed)
+      return distributed->value(x, y);
     const auto found
       = GridTools::find_active_cell_around_point(impl->mapping,
                                                  impl->dof_handler,
@@ -1399,6 +1444,8 @@ namespace rockdda::thermal
   unsigned int
   HeatSolver::add_probe(const double x, const double y)
   {
+    if (distributed)
+      return distributed->add_probe(x, y);
     impl->probes.push_back(impl->locate_probe(Point<2>(x, y)));
     impl->probe_points.emplace_back(x, y);
     return impl->probes.size() - 1;
@@ -1407,6 +1454,8 @@ namespace rockdda::thermal
   double
   HeatSolver::probe_value(const unsigned int index) const
   {
+    if (distributed)
+      return distributed->probe_value(index);
     const Probe &p = impl->probes.at(index);
     double       v = 0.;
     for (unsigned int i = 0; i < p.dofs.size(); ++i)
@@ -1417,6 +1466,8 @@ namespace rockdda::thermal
   std::vector<BlockMoments>
   HeatSolver::block_moments() const
   {
+    if (distributed)
+      return distributed->block_moments();
     std::vector<BlockMoments> result(impl->block_phi.size());
     for (unsigned int b = 0; b < result.size(); ++b)
       {
@@ -1444,24 +1495,32 @@ namespace rockdda::thermal
   double
   HeatSolver::stored_heat() const
   {
+    if (distributed)
+      return distributed->stored_heat();
     return impl->capacity * impl->solution;
   }
 
   double
   HeatSolver::boundary_heat_in() const
   {
+    if (distributed)
+      return distributed->boundary_heat_in();
     return impl->boundary_heat;
   }
 
   double
   HeatSolver::source_heat_in() const
   {
+    if (distributed)
+      return distributed->source_heat_in();
     return impl->source_heat;
   }
 
   double
   HeatSolver::l2_error(const SpaceTimeFunction &exact) const
   {
+    if (distributed)
+      return distributed->l2_error(exact);
     const QGauss<2>     quadrature(impl->fe.degree + 2);
     FEValues<2>         fe_values(impl->mapping,
                           impl->fe,
@@ -1484,9 +1543,27 @@ namespace rockdda::thermal
     return std::sqrt(sum);
   }
 
+  std::vector<std::pair<std::string, std::string>>
+  HeatSolver::vtu_files(const std::string &name) const
+  {
+    if (distributed)
+      return distributed->vtu_files(name);
+    return {{name + ".vtu", vtu()}};
+  }
+
+  bool
+  HeatSolver::is_output_rank() const
+  {
+    return !Utilities::MPI::job_supports_mpi()
+           || Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  }
+
   std::string
   HeatSolver::vtu() const
   {
+    if (distributed)
+      throw std::logic_error("heat: vtu() of the distributed solver; use "
+                             "vtu_files()");
     DataOut<2> data_out;
     data_out.attach_dof_handler(impl->dof_handler);
     data_out.add_data_vector(impl->solution, "temperature");
@@ -1506,6 +1583,8 @@ namespace rockdda::thermal
   HeatStatistics
   HeatSolver::statistics() const
   {
+    if (distributed)
+      return distributed->statistics();
     HeatStatistics s = impl->stats;
     s.stiffness_ratio
       = impl->prm.time_step * impl->kappa_max / (impl->h_min * impl->h_min);
@@ -1515,6 +1594,8 @@ namespace rockdda::thermal
   std::string
   HeatSolver::method_description() const
   {
+    if (distributed)
+      return distributed->method_description();
     const auto &p = impl->prm;
     std::string s;
     switch (p.stepper)
@@ -1544,6 +1625,8 @@ namespace rockdda::thermal
   std::string
   HeatSolver::timing_summary() const
   {
+    if (distributed)
+      return distributed->timing_summary();
     impl->timer_stream.str("");
     impl->timer.print_summary();
     return impl->timer_stream.str();

@@ -89,6 +89,15 @@ namespace rockdda::io
    */
   int
   run_driver(int argc, char **argv);
+
+  /**
+   * True if this process was started by an MPI launcher (mpirun, mpiexec,
+   * srun: their environment variables are set) or ROCKDDA_MPI=1; the driver
+   * then initialises MPI. A plain serial run does not (MPI start-up costs
+   * ~0.3 s).
+   */
+  bool
+  started_by_mpi_launcher();
 } // namespace rockdda::io
 
 #endif

@@ -20,8 +20,11 @@ namespace rockdda::io
   class OutputDirectory
   {
   public:
-    /// Create the folder (and its parents) if it does not exist.
-    explicit OutputDirectory(const std::string &path);
+    /// Create the folder (and its parents) if it does not exist. A
+    /// disabled folder (@p enabled false, e.g. on MPI ranks other than 0)
+    /// creates and writes nothing.
+    explicit OutputDirectory(const std::string &path,
+                             const bool         enabled = true);
 
     /// The folder's path.
     const std::string &
@@ -40,6 +43,7 @@ namespace rockdda::io
 
   private:
     std::string folder;
+    bool        enabled;
   };
 
   /**

@@ -15,10 +15,16 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rockdda::thermal
 {
+  namespace internal
+  {
+    class DistributedHeat;
+  }
+
   /// A 2D point or vector (m).
   using Point2 = std::array<double, 2>;
 
@@ -133,9 +139,13 @@ namespace rockdda::thermal
     bool   oscillation_fallback      = true;
     double arkode_relative_tolerance = 1e-6;
     double arkode_absolute_tolerance = 1e-6; ///< K
-    /// Linear solver of the theta scheme: direct (UMFPACK) or CG + SSOR.
-    bool   direct_solver = true;
-    double cg_tolerance  = 1e-12; ///< relative residual
+    /// Linear solver of the theta scheme: direct (serial: sparse Cholesky;
+    /// MPI: Trilinos Amesos KLU) or CG (serial: SSOR; MPI: AMG).
+    bool direct_solver = true;
+    /// Use the distributed (p4est + Trilinos, CG + AMG) solver even on one
+    /// MPI rank; it is used anyway when the run has more than one rank.
+    bool   distributed  = false;
+    double cg_tolerance = 1e-12; ///< relative residual
 
     double initial_temperature = 0.; ///< K (or deg C), uniform
     /// Optional initial field (overrides the uniform value).
@@ -244,9 +254,23 @@ namespace rockdda::thermal
     double
     l2_error(const SpaceTimeFunction &exact) const;
 
-    /// The field as VTU text (temperature, block index).
+    /// The field as VTU text (temperature, block index); serial solver.
     std::string
     vtu() const;
+
+    /**
+     * The field as VTU files (file name, content) named after @p name: one
+     * file NAME.vtu from the serial solver; NAME.pvtu and one piece
+     * NAME.RANK.vtu per rank from the distributed solver (all returned on
+     * rank 0, nothing on the others). The first entry is the file to
+     * reference (.vtu or .pvtu). Collective.
+     */
+    std::vector<std::pair<std::string, std::string>>
+    vtu_files(const std::string &name) const;
+
+    /// True on the rank that writes the results (rank 0, or no MPI).
+    bool
+    is_output_rank() const;
 
     /// Mesh and cost counters.
     HeatStatistics
@@ -262,7 +286,8 @@ namespace rockdda::thermal
 
   private:
     class Impl;
-    std::unique_ptr<Impl> impl;
+    std::unique_ptr<Impl>                      impl;
+    std::unique_ptr<internal::DistributedHeat> distributed;
   };
 
   /// Amplitude, phase and mean of a sinusoid fitted to samples.

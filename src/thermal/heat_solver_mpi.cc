@@ -1,0 +1,1137 @@
+/**
+ * @file
+ * The distributed heat solver: parallel::distributed::Triangulation (p4est),
+ * Trilinos matrices and vectors, CG + AMG or Amesos KLU, theta scheme. Same
+ * weak form, boundary data, energy bookkeeping and oscillation indicator as
+ * the serial solver in heat_solver.cc (see doc/theory/heat.md).
+ */
+#include "heat_solver_mpi.h"
+
+#include <rockdda/io/error.h>
+#include <rockdda/io/output.h>
+#include <rockdda/thermal/polygon_mesh.h>
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/grid_refinement.h>
+#include <deal.II/distributed/solution_transfer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/error_estimator.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include "heat_internal.h"
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace rockdda::thermal::internal
+{
+  using namespace dealii;
+  using VectorType = TrilinosWrappers::MPI::Vector;
+
+  namespace
+  {
+    /// Matrices and solver of one theta-scheme step size.
+    struct DistributedOperator
+    {
+      double dt    = 0.;
+      double theta = 0.;
+      /// M + theta dt K with hanging nodes and Dirichlet rows and columns
+      /// condensed (homogeneous): the system for T - g.
+      TrilinosWrappers::SparseMatrix a_hom;
+      /// M + theta dt K (hanging nodes only): lifts the Dirichlet values.
+      TrilinosWrappers::SparseMatrix a_full;
+      /// M - (1 - theta) dt K (hanging nodes only).
+      TrilinosWrappers::SparseMatrix                  b;
+      TrilinosWrappers::PreconditionAMG               amg;
+      SolverControl                                   direct_control;
+      std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
+    };
+
+    /// A probe: the rank that owns the point, its dofs and weights there.
+    struct DistributedProbe
+    {
+      unsigned int                         owner = 0;
+      std::vector<types::global_dof_index> dofs;
+      std::vector<double>                  weights;
+    };
+  } // namespace
+
+
+
+  bool
+  use_distributed_solver(const HeatParameters &parameters)
+  {
+    if (!Utilities::MPI::job_supports_mpi())
+      {
+        if (parameters.distributed)
+          throw InputError(
+            "heat: the distributed solver ('Linear solver = amg') needs "
+            "MPI: run the driver with mpirun -np N (N >= 1)");
+        return false;
+      }
+    return parameters.distributed
+           || Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1;
+  }
+
+
+
+  class DistributedHeat::Impl
+  {
+  public:
+    explicit Impl(const HeatParameters &parameters);
+
+    void
+    advance_to(const double end_time);
+    DistributedProbe
+    locate(const Point<2> &p) const;
+    void
+    update_ghosts() const;
+
+    HeatParameters                                    prm;
+    MPI_Comm                                          comm;
+    unsigned int                                      rank = 0, n_ranks = 1;
+    parallel::distributed::Triangulation<2>           tria;
+    FE_Q<2>                                           fe;
+    DoFHandler<2>                                     dof_handler;
+    MappingQ1<2>                                      mapping;
+    MeshInfo                                          mesh;
+    IndexSet                                          owned, relevant;
+    AffineConstraints<double>                         hanging, constraints_hom;
+    DynamicSparsityPattern                            dsp;
+    std::vector<std::unique_ptr<DistributedOperator>> operators;
+
+    VectorType solution, new_solution, rhs_old, rhs_new, tmp, g_ext,
+      increment_old, robin_weights, capacity;
+    mutable VectorType ghosted;
+    mutable bool       ghosted_valid = false;
+
+    // Locally owned Dirichlet dofs, their support points and conditions.
+    std::vector<types::global_dof_index> dirichlet_dofs;
+    std::vector<Point<2>>                dirichlet_points;
+    std::vector<unsigned int>            dirichlet_bc;
+    bool                                 any_dirichlet = false;
+
+    std::vector<unsigned int> uniform_bc;
+    std::vector<VectorType>   uniform_vectors;
+    std::vector<double>       uniform_rates;
+    bool                      nonuniform = false;
+
+    std::vector<VectorType>            block_phi, block_xphi, block_yphi;
+    std::vector<std::array<double, 6>> block_geometry;
+
+    std::vector<DistributedProbe> probes;
+    std::vector<Point<2>>         probe_points;
+
+    double         time              = 0.;
+    double         boundary_heat     = 0.;
+    double         source_heat       = 0.;
+    double         rate_old          = 0.;
+    double         source_rate_old   = 0.;
+    bool           rhs_old_valid     = false;
+    bool           last_step_flipped = false;
+    unsigned long  steps_taken       = 0;
+    unsigned long  linear_iterations = 0;
+    double         kappa_max         = 0.;
+    double         h_min             = 0.;
+    HeatStatistics stats;
+
+    std::ostringstream timer_stream;
+    TimerOutput        timer;
+
+    void
+    setup_system();
+    /// Cell mass and stiffness (with the Robin term) of @p cell.
+    void
+    cell_matrices(const DoFHandler<2>::active_cell_iterator &cell,
+                  FEValues<2>                               &fe_values,
+                  FEFaceValues<2>                           &fe_face,
+                  FullMatrix<double>                        &cell_mass,
+                  FullMatrix<double>                        &cell_stiff) const;
+    void
+    assemble_fixed();
+    void
+    assemble_rhs(const double t,
+                 VectorType  &f,
+                 double      &boundary_rate,
+                 double      &source_rate) const;
+    DistributedOperator &
+    get_operator(const double dt, const double theta);
+    void
+    theta_step(const double dt, const double theta);
+    void
+    adapt_mesh();
+  };
+
+
+
+  DistributedHeat::Impl::Impl(const HeatParameters &parameters)
+      : prm(parameters)
+      , comm(MPI_COMM_WORLD)
+      , rank(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD))
+      , n_ranks(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD))
+      , tria(MPI_COMM_WORLD)
+      , fe(std::max(1u, parameters.degree))
+      , timer(timer_stream, TimerOutput::never, TimerOutput::wall_times)
+  {
+    validate_parameters(prm);
+    if (prm.stepper == TimeStepper::arkode)
+      throw InputError("heat: ARKODE is not available in the distributed "
+                       "(MPI) solver; use crank-nicolson or backward-euler "
+                       "with mpirun, or run on one rank without 'amg'");
+    if (prm.joint_contact == HeatParameters::JointContact::conductance)
+      throw InputError("heat: 'Joint contact = conductance' is not "
+                       "available in the distributed (MPI) solver; run on "
+                       "one rank without 'amg'");
+    for (const auto &m : prm.materials)
+      kappa_max = std::max(kappa_max, m.diffusivity());
+
+    TimerOutput::Scope scope(timer, "setup");
+    build_mesh(tria, prm, mesh);
+    dof_handler.reinit(tria);
+    setup_system();
+    assemble_fixed();
+
+    std::map<types::global_dof_index, Point<2>> support;
+    DoFTools::map_dofs_to_support_points(mapping, dof_handler, support);
+    for (const auto i : owned)
+      {
+        const Point<2> &x = support.at(i);
+        solution[i]       = prm.initial_field ? prm.initial_field(x[0], x[1])
+                                              : prm.initial_temperature;
+      }
+    solution.compress(VectorOperation::insert);
+    hanging.distribute(solution);
+    time = prm.start_time;
+  }
+
+
+
+  void
+  DistributedHeat::Impl::setup_system()
+  {
+    dof_handler.distribute_dofs(fe);
+    owned    = dof_handler.locally_owned_dofs();
+    relevant = DoFTools::extract_locally_relevant_dofs(dof_handler);
+
+    hanging.clear();
+    hanging.reinit(relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, hanging);
+    hanging.close();
+
+    // Homogeneous Dirichlet constraints on top (the first temperature tag
+    // wins at shared corners: constrained dofs are not overwritten).
+    constraints_hom.clear();
+    constraints_hom.reinit(relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints_hom);
+    for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
+      if (prm.boundary_conditions[k].type
+          == BoundaryCondition::Type::temperature)
+        VectorTools::interpolate_boundary_values(mapping,
+                                                 dof_handler,
+                                                 types::boundary_id(k),
+                                                 Functions::ZeroFunction<2>(),
+                                                 constraints_hom);
+    constraints_hom.close();
+
+    dsp.reinit(relevant.size(), relevant.size(), relevant);
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, hanging, true);
+    SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
+
+    for (VectorType *v : {&solution,
+                          &new_solution,
+                          &rhs_old,
+                          &rhs_new,
+                          &tmp,
+                          &g_ext,
+                          &increment_old,
+                          &robin_weights,
+                          &capacity})
+      v->reinit(owned, comm);
+    ghosted.reinit(owned, relevant, comm);
+    ghosted_valid = false;
+
+    // Locally owned Dirichlet dofs (not hanging), first tag first.
+    dirichlet_dofs.clear();
+    dirichlet_points.clear();
+    dirichlet_bc.clear();
+    std::map<types::global_dof_index, Point<2>> support;
+    DoFTools::map_dofs_to_support_points(mapping, dof_handler, support);
+    std::set<types::global_dof_index> taken;
+    for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
+      if (prm.boundary_conditions[k].type
+          == BoundaryCondition::Type::temperature)
+        {
+          const IndexSet set
+            = DoFTools::extract_boundary_dofs(dof_handler,
+                                              ComponentMask(),
+                                              {types::boundary_id(k)});
+          for (const auto i : set)
+            if (owned.is_element(i) && !hanging.is_constrained(i)
+                && taken.insert(i).second)
+              {
+                dirichlet_dofs.push_back(i);
+                dirichlet_points.push_back(support.at(i));
+                dirichlet_bc.push_back(k);
+              }
+        }
+    any_dirichlet = Utilities::MPI::logical_or(!dirichlet_dofs.empty(), comm);
+
+    stats.n_cells     = tria.n_global_active_cells();
+    stats.n_dofs      = dof_handler.n_dofs();
+    stats.max_n_cells = std::max(stats.max_n_cells, stats.n_cells);
+    double hmin = std::numeric_limits<double>::max(), hmax = 0.;
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          hmin = std::min(hmin, cell->diameter());
+          hmax = std::max(hmax, cell->diameter());
+        }
+    stats.min_cell_size = Utilities::MPI::min(hmin, comm);
+    stats.max_cell_size = Utilities::MPI::max(hmax, comm);
+    h_min               = stats.min_cell_size / std::sqrt(2.) / prm.degree;
+  }
+
+
+
+  void
+  DistributedHeat::Impl::cell_matrices(
+    const DoFHandler<2>::active_cell_iterator &cell,
+    FEValues<2>                               &fe_values,
+    FEFaceValues<2>                           &fe_face,
+    FullMatrix<double>                        &cell_mass,
+    FullMatrix<double>                        &cell_stiff) const
+  {
+    const unsigned int dpc = fe.n_dofs_per_cell();
+    fe_values.reinit(cell);
+    const Material &mat
+      = prm.materials[prm.blocks[cell->material_id()].material];
+    const double rho_c = mat.density * mat.heat_capacity;
+    cell_mass          = 0.;
+    cell_stiff         = 0.;
+    for (const unsigned int q : fe_values.quadrature_point_indices())
+      {
+        const double jxw = fe_values.JxW(q);
+        for (unsigned int i = 0; i < dpc; ++i)
+          for (unsigned int j = 0; j < dpc; ++j)
+            {
+              cell_mass(i, j) += rho_c * fe_values.shape_value(i, q)
+                                 * fe_values.shape_value(j, q) * jxw;
+              cell_stiff(i, j)
+                += mat.conductivity
+                   * (fe_values.shape_grad(i, q) * fe_values.shape_grad(j, q))
+                   * jxw;
+            }
+      }
+    for (const auto f : cell->face_indices())
+      if (cell->face(f)->at_boundary()
+          && cell->face(f)->boundary_id() < prm.boundary_conditions.size())
+        {
+          const auto &bc
+            = prm.boundary_conditions[cell->face(f)->boundary_id()];
+          if (bc.type != BoundaryCondition::Type::convective || !bc.value)
+            continue;
+          fe_face.reinit(cell, f);
+          const double h = bc.heat_transfer_coefficient;
+          for (const unsigned int q : fe_face.quadrature_point_indices())
+            for (unsigned int i = 0; i < dpc; ++i)
+              for (unsigned int j = 0; j < dpc; ++j)
+                cell_stiff(i, j) += h * fe_face.shape_value(i, q)
+                                    * fe_face.shape_value(j, q)
+                                    * fe_face.JxW(q);
+        }
+  }
+
+
+
+  void
+  DistributedHeat::Impl::assemble_fixed()
+  {
+    const QGauss<2>                      quadrature(fe.degree + 1);
+    const QGauss<1>                      face_quadrature(fe.degree + 1);
+    FEValues<2>                          fe_values(mapping,
+                          fe,
+                          quadrature,
+                          update_values | update_quadrature_points
+                            | update_JxW_values);
+    FEFaceValues<2>                      fe_face(mapping,
+                            fe,
+                            face_quadrature,
+                            update_values | update_JxW_values);
+    const unsigned int                   dpc = fe.n_dofs_per_cell();
+    Vector<double>                       cell_vec(dpc);
+    std::vector<types::global_dof_index> dofs(dpc);
+
+    uniform_bc.clear();
+    uniform_vectors.clear();
+    uniform_rates.clear();
+    nonuniform = false;
+    std::vector<int> uniform_slot(prm.boundary_conditions.size(), -1);
+    for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
+      {
+        const auto &bc = prm.boundary_conditions[k];
+        if (!bc.value && bc.type != BoundaryCondition::Type::flux)
+          throw InputError("heat: boundary condition for tag '" + bc.tag
+                           + "' has no value");
+        if (bc.type == BoundaryCondition::Type::convective
+            && !(bc.heat_transfer_coefficient >= 0.))
+          throw InputError("heat: the heat transfer coefficient of tag '"
+                           + bc.tag + "' must be >= 0 W/(m^2 K)");
+        if (bc.type == BoundaryCondition::Type::temperature || !bc.value)
+          continue;
+        if (bc.uniform)
+          {
+            uniform_slot[k] = uniform_bc.size();
+            uniform_bc.push_back(k);
+            uniform_vectors.emplace_back(owned, comm);
+            uniform_rates.push_back(0.);
+          }
+        else
+          nonuniform = true;
+      }
+    if (prm.source)
+      nonuniform = true;
+
+    const unsigned int n_blocks = prm.blocks.size();
+    // (reinit, not assignment: Trilinos vector assignment may keep the old
+    // parallel layout after the mesh has changed.)
+    for (auto *vectors : {&block_phi, &block_xphi, &block_yphi})
+      {
+        vectors->resize(n_blocks);
+        for (auto &v : *vectors)
+          v.reinit(owned, comm);
+      }
+    block_geometry.assign(n_blocks,
+                          std::array<double, 6>{{0., 0., 0., 0., 0., 0.}});
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          const unsigned int block = cell->material_id();
+          const Material    &mat   = prm.materials[prm.blocks[block].material];
+          const double       rho_c = mat.density * mat.heat_capacity;
+          auto              &geo   = block_geometry[block];
+          Vector<double>     v_cap(dpc), v_phi(dpc), v_x(dpc), v_y(dpc);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              const double jxw = fe_values.JxW(q);
+              const auto  &x   = fe_values.quadrature_point(q);
+              geo[0] += jxw;
+              geo[1] += x[0] * jxw;
+              geo[2] += x[1] * jxw;
+              geo[3] += x[0] * x[0] * jxw;
+              geo[4] += x[0] * x[1] * jxw;
+              geo[5] += x[1] * x[1] * jxw;
+              for (unsigned int i = 0; i < dpc; ++i)
+                {
+                  const double phi = fe_values.shape_value(i, q) * jxw;
+                  v_cap(i) += rho_c * phi;
+                  v_phi(i) += phi;
+                  v_x(i) += x[0] * phi;
+                  v_y(i) += x[1] * phi;
+                }
+            }
+          hanging.distribute_local_to_global(v_cap, dofs, capacity);
+          hanging.distribute_local_to_global(v_phi, dofs, block_phi[block]);
+          hanging.distribute_local_to_global(v_x, dofs, block_xphi[block]);
+          hanging.distribute_local_to_global(v_y, dofs, block_yphi[block]);
+
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary()
+                && cell->face(f)->boundary_id()
+                     < prm.boundary_conditions.size())
+              {
+                const unsigned int k  = cell->face(f)->boundary_id();
+                const auto        &bc = prm.boundary_conditions[k];
+                if (bc.type == BoundaryCondition::Type::temperature
+                    || !bc.value)
+                  continue;
+                fe_face.reinit(cell, f);
+                const bool convective
+                  = bc.type == BoundaryCondition::Type::convective;
+                const double h = convective ? bc.heat_transfer_coefficient : 0.;
+                const double w = convective ? h : 1.;
+                double       ds = 0.;
+                Vector<double> v_robin(dpc);
+                cell_vec = 0.;
+                for (const unsigned int q : fe_face.quadrature_point_indices())
+                  {
+                    const double jxw = fe_face.JxW(q);
+                    ds += jxw;
+                    for (unsigned int i = 0; i < dpc; ++i)
+                      {
+                        cell_vec(i) += w * fe_face.shape_value(i, q) * jxw;
+                        v_robin(i) += h * fe_face.shape_value(i, q) * jxw;
+                      }
+                  }
+                hanging.distribute_local_to_global(v_robin,
+                                                   dofs,
+                                                   robin_weights);
+                if (uniform_slot[k] >= 0)
+                  {
+                    hanging.distribute_local_to_global(
+                      cell_vec, dofs, uniform_vectors[uniform_slot[k]]);
+                    uniform_rates[uniform_slot[k]] += w * ds;
+                  }
+              }
+        }
+    capacity.compress(VectorOperation::add);
+    robin_weights.compress(VectorOperation::add);
+    for (auto &v : uniform_vectors)
+      v.compress(VectorOperation::add);
+    for (unsigned int b = 0; b < n_blocks; ++b)
+      {
+        block_phi[b].compress(VectorOperation::add);
+        block_xphi[b].compress(VectorOperation::add);
+        block_yphi[b].compress(VectorOperation::add);
+        for (auto &g : block_geometry[b])
+          g = Utilities::MPI::sum(g, comm);
+      }
+    for (auto &r : uniform_rates)
+      r = Utilities::MPI::sum(r, comm);
+  }
+
+
+
+  void
+  DistributedHeat::Impl::assemble_rhs(const double t,
+                                      VectorType  &f,
+                                      double      &boundary_rate,
+                                      double      &source_rate) const
+  {
+    f             = 0.;
+    boundary_rate = 0.;
+    source_rate   = 0.;
+    for (unsigned int s = 0; s < uniform_bc.size(); ++s)
+      {
+        const auto  &bc = prm.boundary_conditions[uniform_bc[s]];
+        const double g  = bc.value(0., 0., t);
+        if (!std::isfinite(g))
+          throw std::runtime_error("heat: boundary value of tag '" + bc.tag
+                                   + "' is not finite at t = "
+                                   + io::format_number(t, 8) + " s");
+        f.add(g, uniform_vectors[s]);
+        boundary_rate += g * uniform_rates[s];
+      }
+    if (!nonuniform)
+      return;
+
+    const QGauss<2>                      quadrature(fe.degree + 1);
+    const QGauss<1>                      face_quadrature(fe.degree + 1);
+    FEValues<2>                          fe_values(mapping,
+                          fe,
+                          quadrature,
+                          update_values | update_quadrature_points
+                            | update_JxW_values);
+    FEFaceValues<2>                      fe_face(mapping,
+                            fe,
+                            face_quadrature,
+                            update_values | update_quadrature_points
+                              | update_JxW_values);
+    const unsigned int                   dpc = fe.n_dofs_per_cell();
+    Vector<double>                       cell_vec(dpc);
+    std::vector<types::global_dof_index> dofs(dpc);
+    double                               local_boundary = 0., local_source = 0.;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell_vec = 0.;
+          bool any = false;
+          if (prm.source)
+            {
+              any = true;
+              fe_values.reinit(cell);
+              for (const unsigned int q : fe_values.quadrature_point_indices())
+                {
+                  const auto  &x = fe_values.quadrature_point(q);
+                  const double s = prm.source(x[0], x[1], t) * fe_values.JxW(q);
+                  local_source += s;
+                  for (unsigned int i = 0; i < dpc; ++i)
+                    cell_vec(i) += s * fe_values.shape_value(i, q);
+                }
+            }
+          for (const auto fi : cell->face_indices())
+            if (cell->face(fi)->at_boundary()
+                && cell->face(fi)->boundary_id()
+                     < prm.boundary_conditions.size())
+              {
+                const auto &bc
+                  = prm.boundary_conditions[cell->face(fi)->boundary_id()];
+                if (bc.uniform || !bc.value
+                    || bc.type == BoundaryCondition::Type::temperature)
+                  continue;
+                any = true;
+                fe_face.reinit(cell, fi);
+                const double w = bc.type == BoundaryCondition::Type::convective
+                                   ? bc.heat_transfer_coefficient
+                                   : 1.;
+                for (const unsigned int q : fe_face.quadrature_point_indices())
+                  {
+                    const auto  &x = fe_face.quadrature_point(q);
+                    const double g
+                      = w * bc.value(x[0], x[1], t) * fe_face.JxW(q);
+                    local_boundary += g;
+                    for (unsigned int i = 0; i < dpc; ++i)
+                      cell_vec(i) += g * fe_face.shape_value(i, q);
+                  }
+              }
+          if (any)
+            {
+              cell->get_dof_indices(dofs);
+              hanging.distribute_local_to_global(cell_vec, dofs, f);
+            }
+        }
+    f.compress(VectorOperation::add);
+    boundary_rate += Utilities::MPI::sum(local_boundary, comm);
+    source_rate += Utilities::MPI::sum(local_source, comm);
+  }
+
+
+
+  DistributedOperator &
+  DistributedHeat::Impl::get_operator(const double dt, const double theta)
+  {
+    for (auto &op : operators)
+      if (op->dt == dt && op->theta == theta)
+        return *op;
+    if (operators.size() >= 4)
+      operators.erase(operators.begin());
+    TimerOutput::Scope scope(timer, "factorize");
+    auto               op = std::make_unique<DistributedOperator>();
+    op->dt                = dt;
+    op->theta             = theta;
+    op->a_hom.reinit(owned, owned, dsp, comm);
+    op->a_full.reinit(owned, owned, dsp, comm);
+    op->b.reinit(owned, owned, dsp, comm);
+
+    const QGauss<2>    quadrature(fe.degree + 1);
+    const QGauss<1>    face_quadrature(fe.degree + 1);
+    FEValues<2>        fe_values(mapping,
+                          fe,
+                          quadrature,
+                          update_values | update_gradients | update_JxW_values);
+    FEFaceValues<2>    fe_face(mapping,
+                            fe,
+                            face_quadrature,
+                            update_values | update_JxW_values);
+    const unsigned int dpc = fe.n_dofs_per_cell();
+    FullMatrix<double> cell_mass(dpc, dpc), cell_stiff(dpc, dpc),
+      cell_a(dpc, dpc), cell_b(dpc, dpc);
+    std::vector<types::global_dof_index> dofs(dpc);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell_matrices(cell, fe_values, fe_face, cell_mass, cell_stiff);
+          cell_a = cell_mass;
+          cell_a.add(theta * dt, cell_stiff);
+          cell_b = cell_mass;
+          cell_b.add(-(1. - theta) * dt, cell_stiff);
+          cell->get_dof_indices(dofs);
+          constraints_hom.distribute_local_to_global(cell_a, dofs, op->a_hom);
+          hanging.distribute_local_to_global(cell_a, dofs, op->a_full);
+          hanging.distribute_local_to_global(cell_b, dofs, op->b);
+        }
+    op->a_hom.compress(VectorOperation::add);
+    op->a_full.compress(VectorOperation::add);
+    op->b.compress(VectorOperation::add);
+
+    if (prm.direct_solver && !prm.distributed)
+      {
+        op->direct = std::make_unique<TrilinosWrappers::SolverDirect>(
+          op->direct_control,
+          TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
+        op->direct->initialize(op->a_hom);
+      }
+    else
+      {
+        TrilinosWrappers::PreconditionAMG::AdditionalData data;
+        data.elliptic              = true;
+        data.higher_order_elements = fe.degree > 1;
+        data.smoother_sweeps       = 2;
+        data.aggregation_threshold = 0.02;
+        op->amg.initialize(op->a_hom, data);
+      }
+    ++stats.n_factorizations;
+    operators.push_back(std::move(op));
+    return *operators.back();
+  }
+
+
+
+  void
+  DistributedHeat::Impl::theta_step(const double dt, const double theta)
+  {
+    DistributedOperator &op = get_operator(dt, theta);
+    if (!rhs_old_valid)
+      {
+        assemble_rhs(time, rhs_old, rate_old, source_rate_old);
+        rate_old -= robin_weights * solution;
+        rhs_old_valid = true;
+      }
+    double rate_new = 0., source_rate_new = 0.;
+    assemble_rhs(time + dt, rhs_new, rate_new, source_rate_new);
+
+    // (M + theta dt K)(T_new) = B T + dt (theta F_new + (1 - theta) F_old),
+    // solved for u = T_new - g with g the Dirichlet values (zero elsewhere).
+    op.b.vmult(tmp, solution);
+    tmp.add(dt * theta, rhs_new, dt * (1. - theta), rhs_old);
+    g_ext = 0.;
+    if (any_dirichlet)
+      {
+        for (std::size_t d = 0; d < dirichlet_dofs.size(); ++d)
+          {
+            const auto  &p  = dirichlet_points[d];
+            const auto  &bc = prm.boundary_conditions[dirichlet_bc[d]];
+            const double g  = bc.value(p[0], p[1], time + dt);
+            if (!std::isfinite(g))
+              throw std::runtime_error("heat: temperature of tag '" + bc.tag
+                                       + "' is not finite at t = "
+                                       + io::format_number(time + dt, 8)
+                                       + " s");
+            g_ext[dirichlet_dofs[d]] = g;
+          }
+        g_ext.compress(VectorOperation::insert);
+        op.a_full.vmult(new_solution, g_ext);
+        tmp -= new_solution;
+      }
+    constraints_hom.set_zero(tmp);
+
+    {
+      TimerOutput::Scope scope(timer, "linear solve");
+      new_solution = solution;
+      new_solution -= g_ext;
+      constraints_hom.set_zero(new_solution);
+      if (op.direct)
+        op.direct->solve(new_solution, tmp);
+      else
+        {
+          SolverControl        control(10000,
+                                prm.cg_tolerance
+                                  * std::max(tmp.l2_norm(), 1e-300));
+          SolverCG<VectorType> cg(control);
+          cg.solve(op.a_hom, new_solution, tmp, op.amg);
+          linear_iterations += control.last_step();
+        }
+    }
+    constraints_hom.set_zero(new_solution);
+    new_solution += g_ext;
+    hanging.distribute(new_solution);
+
+    rate_new -= robin_weights * new_solution;
+    boundary_heat += dt * (theta * rate_new + (1. - theta) * rate_old);
+    source_heat
+      += dt * (theta * source_rate_new + (1. - theta) * source_rate_old);
+    rate_old        = rate_new;
+    source_rate_old = source_rate_new;
+    rhs_old.swap(rhs_new);
+
+    // Crank-Nicolson oscillation indicator (as in the serial solver).
+    tmp = new_solution;
+    tmp -= solution;
+    const double n_new = tmp.l2_norm(), n_old = increment_old.l2_norm();
+    const bool   flip
+      = steps_taken > 0
+        && tmp.linfty_norm() > 1e-6 * (1. + solution.linfty_norm())
+        && (tmp * increment_old) < -0.5 * n_new * n_old;
+    const bool oscillating = flip && last_step_flipped;
+    last_step_flipped      = flip;
+    if (oscillating)
+      {
+        ++stats.oscillation_steps;
+        if (theta < 1. && prm.oscillation_fallback
+            && std::isnan(stats.fallback_time))
+          stats.fallback_time = time + dt;
+      }
+    increment_old = tmp;
+
+    solution.swap(new_solution);
+    ghosted_valid = false;
+    time += dt;
+    ++steps_taken;
+    ++stats.n_steps;
+  }
+
+
+
+  void
+  DistributedHeat::Impl::update_ghosts() const
+  {
+    if (!ghosted_valid)
+      {
+        ghosted       = solution;
+        ghosted_valid = true;
+      }
+  }
+
+
+
+  void
+  DistributedHeat::Impl::adapt_mesh()
+  {
+    TimerOutput::Scope scope(timer, "adapt mesh");
+    update_ghosts();
+    Vector<float> indicator(tria.n_active_cells());
+    KellyErrorEstimator<2>::estimate(mapping,
+                                     dof_handler,
+                                     QGauss<1>(fe.degree + 1),
+                                     {},
+                                     ghosted,
+                                     indicator,
+                                     ComponentMask(),
+                                     nullptr,
+                                     numbers::invalid_unsigned_int,
+                                     tria.locally_owned_subdomain());
+    if (!(Utilities::MPI::sum(double(indicator.l1_norm()), comm) > 0.))
+      return;
+    parallel::distributed::GridRefinement::refine_and_coarsen_fixed_fraction(
+      tria, indicator, prm.refine_fraction, prm.coarsen_fraction);
+    const bool band = !mesh.band_segments.empty();
+    const bool capped
+      = prm.adaptive_max_cells > 0
+        && tria.n_global_active_cells() >= prm.adaptive_max_cells;
+    bool any = false;
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          if (cell->refine_flag_set()
+              && (capped || cell->diameter() <= 1.5 * prm.adaptive_min_cell_size
+                  || cell->level() >= 24))
+            cell->clear_refine_flag();
+          if (cell->coarsen_flag_set())
+            {
+              const double parent = cell->level() > 0
+                                      ? cell->parent()->diameter()
+                                      : std::numeric_limits<double>::max();
+              if (parent > 1.5 * prm.coarse_cell_size
+                  || (band && parent > 1.5 * prm.band_cell_size
+                      && distance_to_segments(cell->center(),
+                                              mesh.band_segments)
+                           < prm.band_width + 0.5 * parent))
+                cell->clear_coarsen_flag();
+            }
+          any = any || cell->refine_flag_set() || cell->coarsen_flag_set();
+        }
+    if (!Utilities::MPI::logical_or(any, comm))
+      return;
+
+    const double heat_before = capacity * solution;
+    VectorType   old_increment(owned, relevant, comm);
+    old_increment = increment_old;
+    parallel::distributed::SolutionTransfer<2, VectorType> transfer(
+      dof_handler);
+    tria.prepare_coarsening_and_refinement();
+    const std::vector<const VectorType *> in{&ghosted, &old_increment};
+    transfer.prepare_for_coarsening_and_refinement(in);
+    tria.execute_coarsening_and_refinement();
+    setup_system();
+    assemble_fixed();
+    std::vector<VectorType *> out{&solution, &increment_old};
+    transfer.interpolate(out);
+    hanging.distribute(solution);
+    hanging.distribute(increment_old);
+    ghosted_valid = false;
+    operators.clear();
+    rhs_old_valid = false;
+    for (unsigned int k = 0; k < probes.size(); ++k)
+      probes[k] = locate(probe_points[k]);
+    stats.mesh_transfer_heat += capacity * solution - heat_before;
+    ++stats.n_adaptations;
+  }
+
+
+
+  void
+  DistributedHeat::Impl::advance_to(const double end_time)
+  {
+    if (!(end_time >= time - 1e-9 * prm.time_step))
+      throw std::invalid_argument("heat: advance_to() into the past");
+    TimerOutput::Scope scope(timer, "time stepping");
+    const double       theta_cn
+      = prm.stepper == TimeStepper::crank_nicolson ? 0.5 : 1.;
+    const double dt   = prm.time_step;
+    const auto   step = [&](const double h) {
+      const double theta = std::isnan(stats.fallback_time) ? theta_cn : 1.;
+      const bool   rannacher = theta < 1. && steps_taken < prm.rannacher_steps;
+      theta_step(h, rannacher ? 1. : theta);
+      if (prm.adaptive_refinement && steps_taken % prm.adaptive_interval == 0)
+        adapt_mesh();
+    };
+    const double remaining = end_time - time;
+    const long   n_whole   = std::lround(remaining / dt);
+    if (n_whole >= 1 && std::abs(remaining - n_whole * dt) <= 1e-6 * dt)
+      for (long i = 0; i < n_whole; ++i)
+        step(dt);
+    else
+      {
+        const long n = static_cast<long>(std::floor(remaining / dt));
+        for (long i = 0; i < n; ++i)
+          step(dt);
+        if (end_time - time > 1e-6 * dt)
+          step(end_time - time);
+      }
+    time = end_time;
+  }
+
+
+
+  DistributedProbe
+  DistributedHeat::Impl::locate(const Point<2> &point) const
+  {
+    DistributedProbe                                         probe;
+    std::pair<DoFHandler<2>::active_cell_iterator, Point<2>> found;
+    bool                                                     mine = false;
+    try
+      {
+        found = GridTools::find_active_cell_around_point(mapping,
+                                                         dof_handler,
+                                                         point);
+        mine  = found.first.state() == IteratorState::valid
+               && found.first->is_locally_owned();
+      }
+    catch (...)
+      {
+        mine = false;
+      }
+    probe.owner = Utilities::MPI::min(mine ? rank : n_ranks, comm);
+    if (probe.owner == n_ranks)
+      throw InputError("heat: point (" + io::format_number(point[0], 6) + ", "
+                       + io::format_number(point[1], 6)
+                       + ") m is outside the rock");
+    if (probe.owner == rank)
+      {
+        const Quadrature<2> q(
+          GeometryInfo<2>::project_to_unit_cell(found.second));
+        FEValues<2> fe_values(mapping, fe, q, update_values);
+        fe_values.reinit(found.first);
+        probe.dofs.resize(fe.n_dofs_per_cell());
+        found.first->get_dof_indices(probe.dofs);
+        for (unsigned int i = 0; i < probe.dofs.size(); ++i)
+          probe.weights.push_back(fe_values.shape_value(i, 0));
+      }
+    return probe;
+  }
+
+
+
+  // -------------------------------------------------------------------------
+  DistributedHeat::DistributedHeat(const HeatParameters &parameters)
+      : impl(std::make_unique<Impl>(parameters))
+  {}
+
+  DistributedHeat::~DistributedHeat() = default;
+
+  double
+  DistributedHeat::time() const
+  {
+    return impl->time;
+  }
+
+  void
+  DistributedHeat::advance_to(const double end_time)
+  {
+    impl->advance_to(end_time);
+  }
+
+  double
+  DistributedHeat::value(const double x, const double y) const
+  {
+    const DistributedProbe p = impl->locate(Point<2>(x, y));
+    impl->update_ghosts();
+    double v = 0.;
+    for (unsigned int i = 0; i < p.dofs.size(); ++i)
+      v += p.weights[i] * impl->ghosted[p.dofs[i]];
+    return Utilities::MPI::sum(v, impl->comm);
+  }
+
+  unsigned int
+  DistributedHeat::add_probe(const double x, const double y)
+  {
+    impl->probes.push_back(impl->locate(Point<2>(x, y)));
+    impl->probe_points.emplace_back(x, y);
+    return impl->probes.size() - 1;
+  }
+
+  double
+  DistributedHeat::probe_value(const unsigned int index) const
+  {
+    const DistributedProbe &p = impl->probes.at(index);
+    impl->update_ghosts();
+    double v = 0.;
+    for (unsigned int i = 0; i < p.dofs.size(); ++i)
+      v += p.weights[i] * impl->ghosted[p.dofs[i]];
+    return Utilities::MPI::sum(v, impl->comm);
+  }
+
+  std::vector<BlockMoments>
+  DistributedHeat::block_moments() const
+  {
+    std::vector<BlockMoments> result(impl->block_phi.size());
+    for (unsigned int b = 0; b < result.size(); ++b)
+      {
+        const auto   &g  = impl->block_geometry[b];
+        BlockMoments &m  = result[b];
+        m.area           = g[0];
+        m.centroid_x     = g[1] / g[0];
+        m.centroid_y     = g[2] / g[0];
+        const double t0  = impl->block_phi[b] * impl->solution;
+        const double tx  = impl->block_xphi[b] * impl->solution;
+        const double ty  = impl->block_yphi[b] * impl->solution;
+        m.mean           = t0 / g[0];
+        m.moment_x       = tx - m.centroid_x * t0;
+        m.moment_y       = ty - m.centroid_y * t0;
+        const double ixx = g[3] - g[1] * g[1] / g[0];
+        const double ixy = g[4] - g[1] * g[2] / g[0];
+        const double iyy = g[5] - g[2] * g[2] / g[0];
+        const double det = ixx * iyy - ixy * ixy;
+        m.gradient_x     = (iyy * m.moment_x - ixy * m.moment_y) / det;
+        m.gradient_y     = (ixx * m.moment_y - ixy * m.moment_x) / det;
+      }
+    return result;
+  }
+
+  double
+  DistributedHeat::stored_heat() const
+  {
+    return impl->capacity * impl->solution;
+  }
+
+  double
+  DistributedHeat::boundary_heat_in() const
+  {
+    return impl->boundary_heat;
+  }
+
+  double
+  DistributedHeat::source_heat_in() const
+  {
+    return impl->source_heat;
+  }
+
+  double
+  DistributedHeat::l2_error(const SpaceTimeFunction &exact) const
+  {
+    impl->update_ghosts();
+    const QGauss<2>     quadrature(impl->fe.degree + 2);
+    FEValues<2>         fe_values(impl->mapping,
+                          impl->fe,
+                          quadrature,
+                          update_values | update_quadrature_points
+                            | update_JxW_values);
+    std::vector<double> v(quadrature.size());
+    double              sum = 0.;
+    for (const auto &cell : impl->dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(impl->ghosted, v);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              const auto  &x = fe_values.quadrature_point(q);
+              const double e = v[q] - exact(x[0], x[1], impl->time);
+              sum += e * e * fe_values.JxW(q);
+            }
+        }
+    return std::sqrt(Utilities::MPI::sum(sum, impl->comm));
+  }
+
+  std::vector<std::pair<std::string, std::string>>
+  DistributedHeat::vtu_files(const std::string &name) const
+  {
+    impl->update_ghosts();
+    DataOut<2> data_out;
+    data_out.attach_dof_handler(impl->dof_handler);
+    data_out.add_data_vector(impl->ghosted, "temperature");
+    Vector<float> block(impl->tria.n_active_cells()),
+      subdomain(impl->tria.n_active_cells());
+    for (const auto &cell : impl->tria.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          block[cell->active_cell_index()]     = cell->material_id();
+          subdomain[cell->active_cell_index()] = impl->rank;
+        }
+    data_out.add_data_vector(block, "block");
+    data_out.add_data_vector(subdomain, "rank");
+    data_out.build_patches(impl->fe.degree);
+    DataOutBase::VtkFlags flags;
+    flags.time = impl->time;
+    data_out.set_flags(flags);
+    std::ostringstream piece;
+    data_out.write_vtu(piece);
+    const std::vector<std::string> pieces
+      = Utilities::MPI::gather(impl->comm, piece.str(), 0);
+    std::vector<std::pair<std::string, std::string>> files;
+    if (impl->rank == 0)
+      {
+        std::vector<std::string> names;
+        for (unsigned int r = 0; r < pieces.size(); ++r)
+          names.push_back(name + "." + Utilities::int_to_string(r, 4) + ".vtu");
+        std::ostringstream record;
+        data_out.write_pvtu_record(record, names);
+        files.emplace_back(name + ".pvtu", record.str());
+        for (unsigned int r = 0; r < pieces.size(); ++r)
+          files.emplace_back(names[r], pieces[r]);
+      }
+    return files;
+  }
+
+  HeatStatistics
+  DistributedHeat::statistics() const
+  {
+    HeatStatistics s = impl->stats;
+    s.stiffness_ratio
+      = impl->prm.time_step * impl->kappa_max / (impl->h_min * impl->h_min);
+    return s;
+  }
+
+  std::string
+  DistributedHeat::method_description() const
+  {
+    const auto &p = impl->prm;
+    std::string s = p.stepper == TimeStepper::crank_nicolson
+                      ? "Crank-Nicolson (theta = 1/2), dt = "
+                          + io::format_number(p.time_step, 6) + " s, "
+                          + std::to_string(p.rannacher_steps)
+                          + " backward-Euler start-up steps"
+                      : "backward Euler (theta = 1), dt = "
+                          + io::format_number(p.time_step, 6) + " s";
+    s += "; FE_Q(" + std::to_string(p.degree) + "); distributed on "
+         + std::to_string(impl->n_ranks)
+         + " MPI rank(s) (p4est, Trilinos); linear solver "
+         + (p.direct_solver && !p.distributed
+              ? "Amesos KLU (direct)"
+              : "CG + AMG (ML), relative tolerance "
+                  + io::format_number(p.cg_tolerance, 3));
+    return s;
+  }
+
+  std::string
+  DistributedHeat::timing_summary() const
+  {
+    impl->timer_stream.str("");
+    impl->timer.print_summary();
+    return impl->timer_stream.str()
+           + "CG iterations: " + std::to_string(impl->linear_iterations) + "\n";
+  }
+} // namespace rockdda::thermal::internal

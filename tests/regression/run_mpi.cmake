@@ -1,0 +1,71 @@
+# One MPI case: the driver on PRM serially (one process, no MPI) and with
+# MPIEXEC -np RANKS (the distributed heat solver), each in its own folder
+# under OUT; every numeric quantity of the serial summary.csv (except wall
+# times and counters of the method) must be matched by the parallel run
+# within the tolerances of the first '# compare: REL ABS' line of PRM, and
+# the files listed on '# files:' lines must exist in the parallel output.
+get_filename_component(name ${PRM} NAME_WE)
+file(REMOVE_RECURSE ${OUT})
+file(MAKE_DIRECTORY ${OUT}/serial ${OUT}/mpi)
+file(STRINGS ${PRM} compare_lines REGEX "^# compare: ")
+list(GET compare_lines 0 compare)
+string(REGEX REPLACE "^# compare: +" "" compare "${compare}")
+separate_arguments(compare)
+list(GET compare 0 rel)
+list(GET compare 1 abs)
+
+execute_process(COMMAND ${DRIVER} --quiet ${PRM}
+  WORKING_DIRECTORY ${OUT}/serial
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "serial run failed (exit ${rc}):\n${out}\n${err}")
+endif()
+execute_process(COMMAND ${MPIEXEC} --allow-run-as-root --oversubscribe
+    -np ${RANKS} ${DRIVER} --quiet ${PRM}
+  WORKING_DIRECTORY ${OUT}/mpi
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "mpirun -np ${RANKS} failed (exit ${rc}):\n${out}\n${err}")
+endif()
+
+# Reference from the serial summary.
+file(STRINGS ${OUT}/serial/output-${name}/summary.csv rows)
+set(ref "# quantity value rel_tol abs_tol (from the serial run)\n")
+set(n 0)
+foreach(row ${rows})
+  string(REPLACE "," ";" fields "${row}")
+  list(LENGTH fields nf)
+  if(NOT nf EQUAL 3)
+    continue()
+  endif()
+  list(GET fields 0 q)
+  list(GET fields 1 v)
+  if(q MATCHES "^(quantity|method|wall_time|solver_wall_time|factorizations)$")
+    continue()
+  endif()
+  if(NOT v MATCHES "^[-+0-9.eE]+$")
+    continue()
+  endif()
+  string(APPEND ref "${q} ${v} ${rel} ${abs}\n")
+  math(EXPR n "${n} + 1")
+endforeach()
+file(WRITE ${OUT}/serial.ref "${ref}")
+message("comparing ${n} quantities of ${RANKS} ranks against the serial run")
+execute_process(COMMAND ${COMPARE} ${OUT}/mpi/output-${name}/summary.csv
+    ${OUT}/serial.ref
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${RANKS} ranks differ from the serial run")
+endif()
+
+file(STRINGS ${PRM} file_lines REGEX "^# files: ")
+foreach(line ${file_lines})
+  string(REGEX REPLACE "^# files: +" "" files "${line}")
+  separate_arguments(files)
+  foreach(f ${files})
+    if(NOT EXISTS ${OUT}/mpi/output-${name}/${f})
+      message(FATAL_ERROR "missing output file ${f} of the MPI run")
+    endif()
+  endforeach()
+endforeach()
