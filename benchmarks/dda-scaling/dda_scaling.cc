@@ -110,6 +110,33 @@ namespace
       .count();
   }
 
+  /// Controls of the wall cases: dt 1e-3 s, penalty 1e11 N/m, @p dynamic
+  /// control, and the solver by name: direct, jacobi (CG + block-Jacobi),
+  /// dilu (CG + block D-ILU, one thread), dilu2 (two threads).
+  Controls
+  wall_controls(const double dynamic, const std::string &name)
+  {
+    Controls c;
+    c.time_step          = 1e-3;
+    c.dynamic            = dynamic;
+    c.law.normal_penalty = 1e11;
+    c.solver.type
+      = name == "direct" ? SolverType::direct : SolverType::iterative;
+    if (name == "jacobi")
+      c.solver.preconditioner = Preconditioner::block_jacobi;
+    c.solver.threads = name == "dilu2" ? 2 : 1;
+    return c;
+  }
+
+  const char *
+  solver_label(const std::string &name)
+  {
+    return name == "direct"   ? "direct"
+           : name == "jacobi" ? "cg-block-jacobi"
+           : name == "dilu"   ? "cg-block-dilu"
+                              : "cg-block-dilu-2-threads";
+  }
+
   void
   scaling(int max_blocks)
   {
@@ -122,15 +149,15 @@ namespace
         if (rows * columns > max_blocks)
           continue;
         for (double dynamic : {0., 1.})
-          for (const std::string name : {"direct", "jacobi", "iterative"})
+          for (const std::string name : {"direct", "jacobi", "dilu", "dilu2"})
             {
-              const SolverType solver
-                = name == "direct" ? SolverType::direct : SolverType::iterative;
               const int n
                 = static_cast<int>(brick_wall(rows, columns).blocks.size());
               // The simplicial LDL^T takes seconds per step at 10,000
-              // blocks; it is measured up to about 1,000.
-              if (solver == SolverType::direct && n > 5000)
+              // blocks; it is measured up to about 1,000. Below 300 blocks
+              // the D-ILU runs on one thread anyway.
+              if ((name == "direct" && n > 5000)
+                  || (name == "dilu2" && n < 300))
                 continue;
               const int           steps = n > 5000 ? 10 : n > 500 ? 40 : 200;
               std::vector<double> times;
@@ -138,14 +165,8 @@ namespace
               std::size_t         contacts   = 0;
               for (int repeat = 0; repeat < 3; ++repeat)
                 {
-                  Controls c;
-                  c.time_step          = 1e-3;
-                  c.dynamic            = dynamic;
-                  c.law.normal_penalty = 1e11;
-                  c.solver.type        = solver;
-                  if (name == "jacobi")
-                    c.solver.preconditioner = Preconditioner::block_jacobi;
-                  DdaSystem dda(brick_wall(rows, columns), c);
+                  DdaSystem dda(brick_wall(rows, columns),
+                                wall_controls(dynamic, name));
                   for (int k = 0; k < 3; ++k)
                     dda.step();
                   const auto t0 = std::chrono::steady_clock::now();
@@ -161,9 +182,7 @@ namespace
               std::printf("%d,%s,%s,%.4f,%.0f,%.2f,%zu\n",
                           n,
                           dynamic > 0. ? "dynamic" : "static",
-                          name == "direct"   ? "direct"
-                          : name == "jacobi" ? "cg-block-jacobi"
-                                             : "cg-block-dilu",
+                          solver_label(name),
                           1e3 * t,
                           n / t,
                           iterations,
@@ -173,9 +192,9 @@ namespace
       }
   }
 
-  /// One case: rows x columns wall, dynamic control, solver name
-  /// (automatic, direct, iterative, jacobi), timed steps, optional static
-  /// settling steps first; prints ms per step.
+  /// One case: rows x columns wall, dynamic control, solver name (direct,
+  /// jacobi, dilu, dilu2), timed steps, optional static settling steps
+  /// first; prints ms per step.
   void
   single(int                rows,
          int                columns,
@@ -184,17 +203,7 @@ namespace
          int                steps,
          int                settle)
   {
-    Controls c;
-    c.time_step          = 1e-3;
-    c.dynamic            = dynamic;
-    c.law.normal_penalty = 1e11;
-    c.solver.type        = name == "direct" ? SolverType::direct
-                           : name == "iterative" || name == "jacobi"
-                             ? SolverType::iterative
-                             : SolverType::automatic;
-    if (name == "jacobi")
-      c.solver.preconditioner = Preconditioner::block_jacobi;
-    DdaSystem dda(brick_wall(rows, columns), c);
+    DdaSystem dda(brick_wall(rows, columns), wall_controls(dynamic, name));
     if (settle > 0)
       dda.settle(settle);
     for (int k = 0; k < 3; ++k)
@@ -209,14 +218,17 @@ namespace
         cuts += r.cuts;
       }
     const double t = seconds_since(t0) / steps;
-    std::printf("%zu blocks: %.3f ms/step, %.0f block-steps/s, %.2f "
-                "open-close it./step, %.1f solver it./step, %u cuts\n",
+    std::printf("%zu blocks, %s: %.3f ms/step, %.0f block-steps/s, %.2f "
+                "open-close it./step, %.1f solver it./step, %u cuts, "
+                "separator %d blocks\n",
                 dda.system().blocks.size(),
+                solver_label(name),
                 1e3 * t,
                 dda.system().blocks.size() / t,
                 double(it) / steps,
                 double(solver_it) / steps,
-                cuts);
+                cuts,
+                dda.linear_solver().separator_size());
   }
 
   /// CG tolerance against cost and accuracy: ms and CG iterations per step

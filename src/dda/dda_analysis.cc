@@ -141,6 +141,16 @@ namespace rockdda::dda
                     "test; each decade tighter costs ~25 % more CG "
                     "iterations.");
         io::declare(prm,
+                    "Threads",
+                    "0",
+                    Integer(0, 2),
+                    "-",
+                    "Threads of the block-dilu CG from 300 blocks on "
+                    "(the blocks are then ordered as two subdomains and "
+                    "their separator, swept in parallel): 1 or 2; 0 = 2 on "
+                    "a machine with at least two cores. Results do not "
+                    "depend on it.");
+        io::declare(prm,
                     "Settling steps",
                     "0",
                     Integer(0, 100000),
@@ -203,6 +213,7 @@ namespace rockdda::dda
                                    : solver == "iterative" ? SolverType::iterative
                                                            : SolverType::automatic;
         c.solver.tolerance       = prm.get_double("Solver tolerance");
+        c.solver.threads         = prm.get_integer("Threads");
         c.solver.preconditioner  = prm.get("Preconditioner") == "block-jacobi"
                                      ? Preconditioner::block_jacobi
                                      : Preconditioner::block_dilu;
@@ -450,6 +461,18 @@ namespace rockdda::dda
                   dda->system().blocks[mp.block].stress[1],
                   "Pa");
           }
+        const LinearSolver &ls          = dda->linear_solver();
+        std::string         solver_text = ls.type() == SolverType::direct
+                                            ? "sparse LDL^T (direct)"
+                                          : dda->controls().solver.preconditioner
+                                      == Preconditioner::block_jacobi
+                                            ? "CG + block-Jacobi"
+                                            : "CG + block D-ILU";
+        if (ls.separator_size() > 0)
+          solver_text += ", two subdomains and a separator of "
+                         + std::to_string(ls.separator_size()) + " blocks, "
+                         + std::to_string(ls.n_threads()) + " thread(s)";
+        context.log.line("linear solver (last step): " + solver_text);
         context.log.line("DDA finished: " + std::to_string(dda->n_steps)
                          + " steps, " + std::to_string(dda->n_cuts) + " cuts, "
                          + io::format_number(wall, 3) + " s wall");

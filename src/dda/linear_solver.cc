@@ -8,8 +8,10 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include "thread_pair.h"
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 namespace rockdda::dda
 {
@@ -203,6 +205,479 @@ namespace rockdda::dda
 
 
 
+  namespace
+  {
+    /**
+     * Two subdomains and a separator of the block graph (the pairs): BFS
+     * level structure from a pseudo-peripheral block of each connected
+     * component (levels numbered on across components), split at the level
+     * that best balances the blocks below and above it. Edges join equal
+     * or neighbouring levels only, so that level separates the blocks
+     * below it (part 0) from those above (part 1); it is part 2 (George &
+     * Liu 1981, Computer Solution of Large Sparse Positive Definite
+     * Systems, ch. 4 and 8).
+     */
+    std::vector<int>
+    two_subdomains(const int n, const std::vector<std::pair<int, int>> &pairs)
+    {
+      std::vector<int> start(n + 1, 0), adjacent(2 * pairs.size());
+      for (const auto &pr : pairs)
+        {
+          ++start[pr.first + 1];
+          ++start[pr.second + 1];
+        }
+      for (int i = 0; i < n; ++i)
+        start[i + 1] += start[i];
+      std::vector<int> fill(start.begin(), start.end() - 1);
+      for (const auto &pr : pairs)
+        {
+          adjacent[fill[pr.first]++]  = pr.second;
+          adjacent[fill[pr.second]++] = pr.first;
+        }
+      std::vector<int> level(n, -1), probe(n, -1), queue;
+      queue.reserve(n);
+      const auto bfs = [&](const int root, std::vector<int> &depth, int base) {
+        queue.clear();
+        queue.push_back(root);
+        depth[root] = base;
+        for (std::size_t h = 0; h < queue.size(); ++h)
+          {
+            const int u = queue[h];
+            for (int a = start[u]; a < start[u + 1]; ++a)
+              if (depth[adjacent[a]] < 0)
+                {
+                  depth[adjacent[a]] = depth[u] + 1;
+                  queue.push_back(adjacent[a]);
+                }
+          }
+        return depth[queue.back()];
+      };
+      int n_levels = 0;
+      for (int s = 0; s < n; ++s)
+        if (level[s] < 0)
+          {
+            bfs(s, probe, 0);
+            n_levels = bfs(queue.back(), level, n_levels) + 1;
+          }
+      std::vector<int> count(n_levels, 0);
+      for (int i = 0; i < n; ++i)
+        ++count[level[i]];
+      int split = 0, below = 0, best = n + 1;
+      for (int l = 0, b = 0; l < n_levels; b += count[l], ++l)
+        {
+          const int imbalance = std::abs(b - (n - b - count[l]));
+          if (imbalance < best)
+            {
+              best  = imbalance;
+              split = l;
+              below = b;
+            }
+        }
+      (void)below;
+      std::vector<int> part(n);
+      for (int i = 0; i < n; ++i)
+        part[i] = level[i] < split ? 0 : level[i] > split ? 1 : 2;
+      return part;
+    }
+  } // namespace
+
+
+
+  /**
+   * Block D-ILU preconditioned CG with Eisenstat's trick. Large systems are
+   * renumbered as subdomain 0, subdomain 1, separator (each in the
+   * original order): the two subdomains do not couple, so their parts of
+   * the pivot computation and of both sweeps run in parallel, and the
+   * separator is eliminated last. The operations and their order are the
+   * same for one and two threads.
+   */
+  struct LinearSolver::Dilu
+  {
+    /// Renumbered (new -> old), or the natural order.
+    bool             renumbered = false;
+    std::vector<int> order;
+    /// Source pair of each renumbered pair, and whether it is transposed.
+    std::vector<int>  pair_source;
+    std::vector<char> pair_transposed;
+    BlockSparseMatrix renumbered_matrix;
+    /// Subdomain 0 = [0, end0), subdomain 1 = [end0, end1), separator =
+    /// [end1, n).
+    int n = 0, end0 = 0, end1 = 0;
+    /// The matrix the sweeps use (renumbered_matrix or the caller's).
+    const BlockSparseMatrix *M = nullptr;
+    std::vector<int>         row_start;
+    /// Pivots P_i, their inverses and K_ii - 2 P_i.
+    std::vector<Matrix6> pivot, inverse_pivot, diag_shift;
+    /// Contributions of each subdomain to the separator's pivots.
+    std::vector<Matrix6> pivot_update[2];
+    Eigen::VectorXd      f, x, r, z, p, q, t, y;
+    /// Contributions of each subdomain to q on the separator.
+    Eigen::VectorXd q_update[2];
+    double          partial[2] = {0., 0.};
+
+    /// Rows [begin, end) of subdomain @p part (0, 1) or the separator (2).
+    std::pair<int, int>
+    rows(const int part) const
+    {
+      return part == 0   ? std::make_pair(0, end0)
+             : part == 1 ? std::make_pair(end0, end1)
+                         : std::make_pair(end1, n);
+    }
+
+    void
+    new_pattern(const BlockSparseMatrix &K, const int subdomain_limit)
+    {
+      n          = K.n_blocks();
+      renumbered = n >= subdomain_limit && n >= 3;
+      const std::vector<std::pair<int, int>> *pairs = &K.pairs;
+      end0 = end1 = n;
+      if (renumbered)
+        {
+          const std::vector<int> part = two_subdomains(n, K.pairs);
+          order.clear();
+          for (int which = 0; which < 3; ++which)
+            for (int i = 0; i < n; ++i)
+              if (part[i] == which)
+                order.push_back(i);
+          end0 = static_cast<int>(std::count(part.begin(), part.end(), 0));
+          end1
+            = end0 + static_cast<int>(std::count(part.begin(), part.end(), 1));
+          std::vector<int> position(n);
+          for (int i = 0; i < n; ++i)
+            position[order[i]] = i;
+          std::vector<std::pair<std::pair<int, int>, int>> renumbered_pairs;
+          renumbered_pairs.reserve(K.pairs.size());
+          for (std::size_t k = 0; k < K.pairs.size(); ++k)
+            {
+              const int a = position[K.pairs[k].first];
+              const int b = position[K.pairs[k].second];
+              // Source index, negative (-k - 1) when K_ab is transposed.
+              renumbered_pairs.push_back(
+                a < b ? std::make_pair(std::make_pair(a, b), int(k))
+                      : std::make_pair(std::make_pair(b, a), -int(k) - 1));
+            }
+          std::sort(renumbered_pairs.begin(), renumbered_pairs.end());
+          std::vector<std::pair<int, int>> new_pairs;
+          new_pairs.reserve(renumbered_pairs.size());
+          pair_source.resize(renumbered_pairs.size());
+          pair_transposed.resize(renumbered_pairs.size());
+          for (std::size_t k = 0; k < renumbered_pairs.size(); ++k)
+            {
+              new_pairs.push_back(renumbered_pairs[k].first);
+              const int s        = renumbered_pairs[k].second;
+              pair_transposed[k] = s < 0;
+              pair_source[k]     = s < 0 ? -s - 1 : s;
+            }
+          renumbered_matrix.reinit(n, new_pairs);
+          pairs = &renumbered_matrix.pairs;
+        }
+      row_start.assign(n + 1, 0);
+      for (const auto &pr : *pairs)
+        ++row_start[pr.first + 1];
+      for (int i = 0; i < n; ++i)
+        row_start[i + 1] += row_start[i];
+      pivot.resize(n);
+      inverse_pivot.resize(n);
+      diag_shift.resize(n);
+      for (auto &u : pivot_update)
+        u.resize(n - end1);
+      for (auto &v : {&f, &x, &r, &z, &p, &q, &t, &y})
+        v->resize(6 * n);
+      for (auto &u : q_update)
+        u.resize(6 * (n - end1));
+    }
+
+    /// Copy the values of @p K into the renumbered matrix.
+    void
+    gather(const BlockSparseMatrix &K)
+    {
+      if (!renumbered)
+        {
+          M = &K;
+          return;
+        }
+      M = &renumbered_matrix;
+      for (int i = 0; i < n; ++i)
+        renumbered_matrix.diag[i] = K.diag[order[i]];
+      for (std::size_t k = 0; k < pair_source.size(); ++k)
+        if (pair_transposed[k])
+          renumbered_matrix.off[k] = K.off[pair_source[k]].transpose();
+        else
+          renumbered_matrix.off[k] = K.off[pair_source[k]];
+    }
+
+    /// Run f(0), f(1): on two threads when renumbered.
+    template <typename F>
+    void
+    run(internal::ThreadPair &team, F &&f)
+    {
+      if (renumbered)
+        team.run(f);
+      else
+        {
+          f(0);
+          f(1);
+        }
+    }
+
+    /// Pivot of row @p i (its P_i accumulated), then its updates of later
+    /// pivots; those of the separator go to @p separator_update when given.
+    bool
+    eliminate(const int i, std::vector<Matrix6> *separator_update)
+    {
+      const BlockSparseMatrix &K = *M;
+      if (!invert_spd(pivot[i], inverse_pivot[i]))
+        {
+          // Modified pivot not positive definite: fall back to the
+          // diagonal block (symmetric Gauss-Seidel there); M stays SPD.
+          pivot[i] = K.diag[i];
+          if (!invert_spd(pivot[i], inverse_pivot[i]))
+            return false;
+        }
+      diag_shift[i] = K.diag[i] - 2. * pivot[i];
+      for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+        {
+          const Matrix6 &A      = K.off[k];
+          const Matrix6  PiA    = inverse_pivot[i].lazyProduct(A);
+          const int      j      = K.pairs[k].second;
+          Matrix6       &target = (separator_update != nullptr && j >= end1)
+                                    ? (*separator_update)[j - end1]
+                                    : pivot[j];
+          target.noalias() -= A.transpose().lazyProduct(PiA);
+        }
+      return true;
+    }
+
+    /// Pivots P_i = K_ii - sum_{j<i} K_ij P_j^-1 K_ji.
+    bool
+    setup(const BlockSparseMatrix &K_in, internal::ThreadPair &team)
+    {
+      gather(K_in);
+      const BlockSparseMatrix &K     = *M;
+      bool                     ok[2] = {true, true};
+      auto                     part  = [&](const int d) {
+        const auto [begin, end] = rows(d);
+        for (auto &u : pivot_update[d])
+          u.setZero();
+        for (int i = begin; i < end; ++i)
+          pivot[i] = K.diag[i];
+        for (int i = begin; i < end && ok[d]; ++i)
+          ok[d] = eliminate(i, &pivot_update[d]);
+      };
+      run(team, part);
+      if (!ok[0] || !ok[1])
+        return false;
+      for (int i = end1; i < n; ++i)
+        pivot[i]
+          = K.diag[i] + pivot_update[0][i - end1] + pivot_update[1][i - end1];
+      for (int i = end1; i < n; ++i)
+        if (!eliminate(i, nullptr))
+          return false;
+      return true;
+    }
+
+    /// Solve (P + U) out = v, U the strict upper block triangle.
+    void
+    backward_sweep(const Eigen::VectorXd &v, Eigen::VectorXd &out) const
+    {
+      const BlockSparseMatrix &K = *M;
+      for (int i = n - 1; i >= 0; --i)
+        {
+          Vector6 acc = v.segment<6>(6 * i);
+          for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+            acc.noalias() -= K.off[k] * out.segment<6>(6 * K.pairs[k].second);
+          out.segment<6>(6 * i).noalias() = inverse_pivot[i] * acc;
+        }
+    }
+
+    /// Solve (P + L) s = w in place.
+    void
+    forward_sweep(Eigen::VectorXd &w) const
+    {
+      const BlockSparseMatrix &K = *M;
+      for (int i = 0; i < n; ++i)
+        {
+          const Vector6 s     = inverse_pivot[i] * w.segment<6>(6 * i);
+          w.segment<6>(6 * i) = s;
+          for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+            {
+              const Matrix6 &A = K.off[k];
+              const int      j = K.pairs[k].second;
+              for (int c = 0; c < 6; ++c)
+                w[6 * j + c] -= A.col(c).dot(s);
+            }
+        }
+    }
+
+    /// Rows [begin, end) of the backward sweep of the Eisenstat operator
+    /// with p = z + beta p fused in: t = (P + U)^-1 p.
+    void
+    backward_rows(const int begin, const int end, const double beta)
+    {
+      const BlockSparseMatrix &K = *M;
+      for (int i = end - 1; i >= begin; --i)
+        {
+          auto pi     = p.segment<6>(6 * i);
+          pi          = z.segment<6>(6 * i) + beta * pi;
+          Vector6 acc = pi;
+          for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+            acc.noalias() -= K.off[k] * t.segment<6>(6 * K.pairs[k].second);
+          t.segment<6>(6 * i).noalias() = inverse_pivot[i] * acc;
+        }
+    }
+
+    /// Rows [begin, end) of the forward sweep: q = t + (P + L)^-1 (p +
+    /// (D - 2P) t); q must hold the updates from earlier rows. Updates of
+    /// the separator go to @p separator_update when given. Returns the
+    /// rows' part of p.q.
+    double
+    forward_rows(const int        begin,
+                 const int        end,
+                 Eigen::VectorXd *separator_update)
+    {
+      const BlockSparseMatrix &K  = *M;
+      double                   pq = 0.;
+      for (int i = begin; i < end; ++i)
+        {
+          const auto ti = t.segment<6>(6 * i);
+          auto       qi = q.segment<6>(6 * i);
+          Vector6    w  = qi + p.segment<6>(6 * i);
+          w.noalias() += diag_shift[i] * ti;
+          const Vector6 si = inverse_pivot[i] * w;
+          qi               = si + ti;
+          pq += p.segment<6>(6 * i).dot(qi);
+          for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+            {
+              const Matrix6 &A      = K.off[k];
+              const int      j      = K.pairs[k].second;
+              double        *target = (separator_update != nullptr && j >= end1)
+                                        ? separator_update->data() + 6 * (j - end1)
+                                        : q.data() + 6 * j;
+              for (int c = 0; c < 6; ++c)
+                target[c] -= A.col(c).dot(si);
+            }
+        }
+      return pq;
+    }
+
+    /// Rows [begin, end): y += alpha p, r -= alpha q, z = P r; returns
+    /// their part of r.z.
+    double
+    update_rows(const int begin, const int end, const double alpha)
+    {
+      double rz = 0.;
+      for (int i = begin; i < end; ++i)
+        {
+          y.segment<6>(6 * i) += alpha * p.segment<6>(6 * i);
+          auto ri = r.segment<6>(6 * i);
+          ri -= alpha * q.segment<6>(6 * i);
+          auto zi      = z.segment<6>(6 * i);
+          zi.noalias() = pivot[i] * ri;
+          rz += ri.dot(zi);
+        }
+      return rz;
+    }
+
+    /// PCG on K with M = (P + L) P^-1 (P + U) is CG on
+    /// A^ = (P + L)^-1 K (P + U)^-1 (unknown y = (P + U) x) preconditioned
+    /// by multiplication with P. With K = (P + L) + (P + U) + (D - 2 P):
+    /// A^ v = t + (P + L)^-1 (v + (D - 2 P) t), t = (P + U)^-1 v.
+    bool
+    cg(const Eigen::VectorXd &f_in,
+       Eigen::VectorXd       &x_out,
+       internal::ThreadPair  &team,
+       const double           tolerance,
+       const int              max_iterations,
+       int                   &iterations)
+    {
+      const BlockSparseMatrix &K = *M;
+      if (renumbered)
+        for (int i = 0; i < n; ++i)
+          {
+            f.segment<6>(6 * i) = f_in.segment<6>(6 * order[i]);
+            x.segment<6>(6 * i) = x_out.segment<6>(6 * order[i]);
+          }
+      else
+        {
+          f = f_in;
+          x = x_out;
+        }
+      auto times_pivot = [&](const Eigen::VectorXd &in, Eigen::VectorXd &out) {
+        for (int i = 0; i < n; ++i)
+          out.segment<6>(6 * i).noalias() = pivot[i] * in.segment<6>(6 * i);
+      };
+      // Right-hand side norm r^T M^-1 r for the stopping test.
+      r = f;
+      forward_sweep(r);
+      times_pivot(r, z);
+      const double bnorm = r.dot(z);
+      if (!(bnorm > 0.))
+        {
+          x_out.setZero();
+          return std::isfinite(bnorm);
+        }
+      // y0 = (P + U) x0, r^0 = (P + L)^-1 (f - K x0).
+      times_pivot(x, y);
+      for (std::size_t k = 0; k < K.pairs.size(); ++k)
+        y.segment<6>(6 * K.pairs[k].first).noalias()
+          += K.off[k] * x.segment<6>(6 * K.pairs[k].second);
+      K.vmult(x, q);
+      r = f - q;
+      forward_sweep(r);
+      times_pivot(r, z);
+      p.setZero();
+      double       rz   = r.dot(z);
+      double       beta = 0.;
+      const double tol2 = tolerance * tolerance * bnorm;
+      // One pass per sweep, with the vector updates fused into them.
+      // Separator rows first (backward), then both subdomains (backward
+      // and forward, in parallel), then the separator (forward), then the
+      // vector updates (in parallel).
+      while (rz > tol2)
+        {
+          if (iterations >= max_iterations)
+            return false;
+          ++iterations;
+          backward_rows(end1, n, beta);
+          auto sweeps = [&](const int d) {
+            const auto [begin, end] = rows(d);
+            q.segment(6 * begin, 6 * (end - begin)).setZero();
+            q_update[d].setZero();
+            backward_rows(begin, end, beta);
+            partial[d] = forward_rows(begin, end, &q_update[d]);
+          };
+          run(team, sweeps);
+          q.segment(6 * end1, 6 * (n - end1)) = q_update[0] + q_update[1];
+          const double pq
+            = (partial[0] + partial[1]) + forward_rows(end1, n, nullptr);
+          if (!(pq > 0.))
+            return false;
+          const double alpha   = rz / pq;
+          auto         updates = [&](const int d) {
+            const auto [begin, end] = rows(d);
+            partial[d]              = update_rows(begin, end, alpha);
+            if (d == 0)
+              partial[d] += update_rows(end1, n, alpha);
+          };
+          run(team, updates);
+          const double rz_new = partial[0] + partial[1];
+          beta                = rz_new / rz;
+          rz                  = rz_new;
+          if (!std::isfinite(rz))
+            return false;
+        }
+      backward_sweep(y, x);
+      if (renumbered)
+        for (int i = 0; i < n; ++i)
+          x_out.segment<6>(6 * order[i]) = x.segment<6>(6 * i);
+      else
+        x_out = x;
+      return x_out.allFinite();
+    }
+  };
+
+
+
   LinearSolver::LinearSolver(const SolverOptions &options)
       : options(options)
   {}
@@ -210,6 +685,22 @@ namespace rockdda::dda
 
 
   LinearSolver::~LinearSolver() = default;
+
+
+
+  unsigned int
+  LinearSolver::n_threads() const
+  {
+    return team ? team->n_threads() : 1;
+  }
+
+
+
+  int
+  LinearSolver::separator_size() const
+  {
+    return dilu && dilu->renumbered ? dilu->n - dilu->end1 : 0;
+  }
 
 
 
@@ -226,6 +717,20 @@ namespace rockdda::dda
         if (!direct)
           direct = std::make_unique<Direct>();
         direct->analyse(K);
+      }
+    else if (options.preconditioner == Preconditioner::block_dilu)
+      {
+        if (!dilu)
+          dilu = std::make_unique<Dilu>();
+        dilu->new_pattern(K, options.subdomain_limit);
+        if (!team && dilu->renumbered)
+          {
+            const int threads
+              = options.threads > 0
+                  ? options.threads
+                  : (std::thread::hardware_concurrency() >= 2 ? 2 : 1);
+            team = std::make_unique<internal::ThreadPair>(threads >= 2);
+          }
       }
   }
 
@@ -253,17 +758,36 @@ namespace rockdda::dda
         return x.allFinite();
       }
 
+    if (x.size() != f.size() || !x.allFinite())
+      x = Eigen::VectorXd::Zero(f.size());
+    if (options.preconditioner == Preconditioner::block_jacobi)
+      {
+        if (!same_matrix || !factorised)
+          {
+            const int n = K.n_blocks();
+            inverse_diag.resize(n);
+            factorised = true;
+            for (int i = 0; i < n && factorised; ++i)
+              factorised = invert_spd(K.diag[i], inverse_diag[i]);
+            if (!factorised)
+              return false;
+          }
+        return jacobi_cg(K, f, x);
+      }
+    if (!team)
+      team = std::make_unique<internal::ThreadPair>(false);
     if (!same_matrix || !factorised)
       {
-        factorised = setup_preconditioner(K);
+        factorised = dilu->setup(K, *team);
         if (!factorised)
           return false;
       }
-    if (x.size() != f.size() || !x.allFinite())
-      x = Eigen::VectorXd::Zero(f.size());
-    return options.preconditioner == Preconditioner::block_dilu
-             ? dilu_cg(K, f, x)
-             : jacobi_cg(K, f, x);
+    return dilu->cg(f,
+                    x,
+                    *team,
+                    options.tolerance,
+                    iteration_limit(K.n_blocks()),
+                    iterations);
   }
 
 
@@ -273,51 +797,6 @@ namespace rockdda::dda
   {
     return options.max_iterations > 0 ? options.max_iterations
                                       : std::min(20000, 60 * n + 100);
-  }
-
-
-
-  bool
-  LinearSolver::setup_preconditioner(const BlockSparseMatrix &K)
-  {
-    const int n = K.n_blocks();
-    inverse_diag.resize(n);
-    if (options.preconditioner == Preconditioner::block_jacobi)
-      {
-        for (int i = 0; i < n; ++i)
-          if (!invert_spd(K.diag[i], inverse_diag[i]))
-            return false;
-        return true;
-      }
-    // Rows of the upper block triangle.
-    row_start.assign(n + 1, 0);
-    for (const auto &pr : K.pairs)
-      ++row_start[pr.first + 1];
-    for (int i = 0; i < n; ++i)
-      row_start[i + 1] += row_start[i];
-    // Pivots P_i = K_ii - sum_{j<i} K_ij P_j^-1 K_ji, accumulated forward.
-    pivot.assign(K.diag.begin(), K.diag.end());
-    diag_shift.resize(n);
-    for (int i = 0; i < n; ++i)
-      {
-        if (!invert_spd(pivot[i], inverse_diag[i]))
-          {
-            // Modified pivot not positive definite: fall back to the
-            // diagonal block (symmetric Gauss-Seidel there); M stays SPD.
-            pivot[i] = K.diag[i];
-            if (!invert_spd(pivot[i], inverse_diag[i]))
-              return false;
-          }
-        diag_shift[i] = K.diag[i] - 2. * pivot[i];
-        for (int k = row_start[i]; k < row_start[i + 1]; ++k)
-          {
-            const Matrix6 &A   = K.off[k];
-            const Matrix6  PiA = inverse_diag[i].lazyProduct(A);
-            pivot[K.pairs[k].second].noalias()
-              -= A.transpose().lazyProduct(PiA);
-          }
-      }
-    return true;
   }
 
 
@@ -367,147 +846,6 @@ namespace rockdda::dda
         if (!std::isfinite(rz))
           return false;
       }
-    return x.allFinite();
-  }
-
-
-
-  void
-  LinearSolver::backward_sweep(const BlockSparseMatrix &K,
-                               const Eigen::VectorXd   &v,
-                               Eigen::VectorXd         &out) const
-  {
-    const int n = K.n_blocks();
-    out.resize(v.size());
-    for (int i = n - 1; i >= 0; --i)
-      {
-        Vector6 acc = v.segment<6>(6 * i);
-        for (int k = row_start[i]; k < row_start[i + 1]; ++k)
-          acc.noalias() -= K.off[k] * out.segment<6>(6 * K.pairs[k].second);
-        out.segment<6>(6 * i).noalias() = inverse_diag[i] * acc;
-      }
-  }
-
-
-
-  void
-  LinearSolver::forward_sweep(const BlockSparseMatrix &K,
-                              Eigen::VectorXd         &w) const
-  {
-    const int n = K.n_blocks();
-    for (int i = 0; i < n; ++i)
-      {
-        const Vector6 s     = inverse_diag[i] * w.segment<6>(6 * i);
-        w.segment<6>(6 * i) = s;
-        for (int k = row_start[i]; k < row_start[i + 1]; ++k)
-          {
-            const Matrix6 &A = K.off[k];
-            const int      j = K.pairs[k].second;
-            for (int c = 0; c < 6; ++c)
-              w[6 * j + c] -= A.col(c).dot(s);
-          }
-      }
-  }
-
-
-
-  bool
-  LinearSolver::dilu_cg(const BlockSparseMatrix &K,
-                        const Eigen::VectorXd   &f,
-                        Eigen::VectorXd         &x)
-  {
-    // PCG on K with M = (P + L) P^-1 (P + U) is CG on
-    // A^ = (P + L)^-1 K (P + U)^-1 (unknown y = (P + U) x) preconditioned
-    // by multiplication with P. With K = (P + L) + (P + U) + (D - 2 P):
-    // A^ v = t + (P + L)^-1 (v + (D - 2 P) t), t = (P + U)^-1 v.
-    const int n      = K.n_blocks();
-    auto times_pivot = [&](const Eigen::VectorXd &in, Eigen::VectorXd &out) {
-      out.resize(in.size());
-      for (int i = 0; i < n; ++i)
-        out.segment<6>(6 * i).noalias() = pivot[i] * in.segment<6>(6 * i);
-    };
-    // Right-hand side norm r^T M^-1 r for the stopping test.
-    r = f;
-    forward_sweep(K, r);
-    times_pivot(r, z);
-    const double bnorm = r.dot(z);
-    if (!(bnorm > 0.))
-      {
-        x.setZero();
-        return std::isfinite(bnorm);
-      }
-    // y0 = (P + U) x0, r^0 = (P + L)^-1 (f - K x0).
-    Eigen::VectorXd &y = t_y;
-    times_pivot(x, y);
-    for (std::size_t k = 0; k < K.pairs.size(); ++k)
-      y.segment<6>(6 * K.pairs[k].first).noalias()
-        += K.off[k] * x.segment<6>(6 * K.pairs[k].second);
-    K.vmult(x, q);
-    r = f - q;
-    forward_sweep(K, r);
-    times_pivot(r, z);
-    p = Eigen::VectorXd::Zero(f.size());
-    q.resize(f.size());
-    t.resize(f.size());
-    double       rz     = r.dot(z);
-    double       beta   = 0.;
-    const double tol2   = options.tolerance * options.tolerance * bnorm;
-    const int    max_it = iteration_limit(n);
-    // One pass per sweep, with the vector updates fused into them:
-    // p = z + beta p in the backward sweep, q = A^ p and p.q in the forward
-    // sweep, then y, r, z and r.z in one loop.
-    while (rz > tol2)
-      {
-        if (iterations >= max_it)
-          return false;
-        ++iterations;
-        for (int i = n - 1; i >= 0; --i)
-          {
-            auto pi     = p.segment<6>(6 * i);
-            pi          = z.segment<6>(6 * i) + beta * pi;
-            Vector6 acc = pi;
-            for (int k = row_start[i]; k < row_start[i + 1]; ++k)
-              acc.noalias() -= K.off[k] * t.segment<6>(6 * K.pairs[k].second);
-            t.segment<6>(6 * i).noalias() = inverse_diag[i] * acc;
-          }
-        q.setZero();
-        double pq = 0.;
-        for (int i = 0; i < n; ++i)
-          {
-            const auto ti = t.segment<6>(6 * i);
-            auto       qi = q.segment<6>(6 * i);
-            Vector6    w  = qi + p.segment<6>(6 * i);
-            w.noalias() += diag_shift[i] * ti;
-            const Vector6 si = inverse_diag[i] * w;
-            qi               = si + ti;
-            pq += p.segment<6>(6 * i).dot(qi);
-            for (int k = row_start[i]; k < row_start[i + 1]; ++k)
-              {
-                const Matrix6 &A = K.off[k];
-                const int      j = K.pairs[k].second;
-                for (int c = 0; c < 6; ++c)
-                  q[6 * j + c] -= A.col(c).dot(si);
-              }
-          }
-        if (!(pq > 0.))
-          return false;
-        const double alpha  = rz / pq;
-        double       rz_new = 0.;
-        for (int i = 0; i < n; ++i)
-          {
-            y.segment<6>(6 * i) += alpha * p.segment<6>(6 * i);
-            auto ri = r.segment<6>(6 * i);
-            ri -= alpha * q.segment<6>(6 * i);
-            auto zi      = z.segment<6>(6 * i);
-            zi.noalias() = pivot[i] * ri;
-            rz_new += ri.dot(zi);
-          }
-        beta = rz_new / rz;
-        rz   = rz_new;
-        if (!std::isfinite(rz))
-          return false;
-      }
-    backward_sweep(K, y, x);
     return x.allFinite();
   }
 } // namespace rockdda::dda

@@ -157,6 +157,12 @@ namespace rockdda::dda
     {
       return solver.type();
     }
+    /// The linear solver (type, threads and ordering of the last step).
+    const LinearSolver &
+    linear_solver() const
+    {
+      return solver;
+    }
     const Controls &
     controls() const
     {

@@ -2,7 +2,7 @@
  * @file
  * The linear system of 2D DDA: a symmetric sparse matrix of 6x6 blocks
  * with a pattern fixed within a step, and its direct (sparse LDL^T) and
- * iterative (block-Jacobi preconditioned CG) solvers.
+ * iterative (block-Jacobi or block D-ILU preconditioned CG) solvers.
  */
 #ifndef ROCKDDA_DDA_LINEAR_SOLVER_H
 #define ROCKDDA_DDA_LINEAR_SOLVER_H
@@ -91,7 +91,19 @@ namespace rockdda::dda
     int max_iterations = 0;
     /// Automatic choice: direct up to this many blocks.
     int automatic_limit = 60;
+    /// Threads of the D-ILU CG: 1 or 2; 0 = 2 if the machine has at least
+    /// two cores. The result does not depend on it.
+    int threads = 0;
+    /// From this many blocks on, the D-ILU orders the blocks as two
+    /// subdomains and their separator (last), so that the two subdomains
+    /// are swept in parallel.
+    int subdomain_limit = 300;
   };
+
+  namespace internal
+  {
+    class ThreadPair;
+  }
 
   /**
    * Solves K x = f for the block matrix. new_pattern() is called when the
@@ -103,7 +115,8 @@ namespace rockdda::dda
     explicit LinearSolver(const SolverOptions &options = SolverOptions());
     ~LinearSolver();
 
-    /// Analyse the pattern of @p matrix (symbolic factorisation).
+    /// Analyse the pattern of @p matrix (symbolic factorisation, or the
+    /// subdomain ordering of the D-ILU).
     void
     new_pattern(const BlockSparseMatrix &matrix);
 
@@ -135,46 +148,37 @@ namespace rockdda::dda
       return iterations;
     }
 
+    /// Threads the iterative solver runs on (1 or 2).
+    unsigned int
+    n_threads() const;
+
+    /// Blocks in the separator of the D-ILU subdomain ordering (0: the
+    /// natural order is used).
+    int
+    separator_size() const;
+
   private:
     struct Direct;
-    /// Set up the preconditioner of @p K; false if a diagonal block is not
-    /// positive definite.
-    bool
-    setup_preconditioner(const BlockSparseMatrix &K);
+    struct Dilu;
     /// Block-Jacobi preconditioned CG.
     bool
     jacobi_cg(const BlockSparseMatrix &K,
               const Eigen::VectorXd   &f,
               Eigen::VectorXd         &x);
-    /// CG on the Eisenstat-transformed system of the block D-ILU.
-    bool
-    dilu_cg(const BlockSparseMatrix &K,
-            const Eigen::VectorXd   &f,
-            Eigen::VectorXd         &x);
-    /// Solve (P + U) t = v, U the strict upper block triangle of K.
-    void
-    backward_sweep(const BlockSparseMatrix &K,
-                   const Eigen::VectorXd   &v,
-                   Eigen::VectorXd         &t) const;
-    /// Solve (P + L) s = w in place (w is overwritten by s).
-    void
-    forward_sweep(const BlockSparseMatrix &K, Eigen::VectorXd &w) const;
     /// Iteration limit for @p n blocks.
     int
     iteration_limit(const int n) const;
 
-    SolverOptions           options;
-    SolverType              current    = SolverType::direct;
-    int                     iterations = 0;
-    bool                    factorised = false;
-    std::unique_ptr<Direct> direct;
-    /// Inverse diagonal blocks (Jacobi) or inverse pivots P_i^-1 (D-ILU).
+    SolverOptions                         options;
+    SolverType                            current    = SolverType::direct;
+    int                                   iterations = 0;
+    bool                                  factorised = false;
+    std::unique_ptr<Direct>               direct;
+    std::unique_ptr<Dilu>                 dilu;
+    std::unique_ptr<internal::ThreadPair> team;
+    /// Inverse diagonal blocks (block-Jacobi).
     std::vector<Matrix6> inverse_diag;
-    /// Pivots P_i and K_ii - 2 P_i (D-ILU).
-    std::vector<Matrix6> pivot, diag_shift;
-    /// First pair of each block row (pairs are sorted by (i, j)).
-    std::vector<int> row_start;
-    Eigen::VectorXd  r, z, p, q, t, t_y;
+    Eigen::VectorXd      r, z, p, q;
   };
 } // namespace rockdda::dda
 
