@@ -16,7 +16,7 @@ acc = list(csv.DictReader(open(f"{here}/accuracy.csv")))
 fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.8))
 lines = []
 for mode in ("static", "dynamic"):
-    for solver in ("direct", "cg-block-jacobi", "cg-block-dilu"):
+    for solver in ("direct", "cg-block-jacobi", "cg-block-dilu", "cg-block-dilu-2-threads"):
         sel = [r for r in rows if r["mode"] == mode and r["solver"] == solver]
         if not sel:
             continue
