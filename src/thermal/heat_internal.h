@@ -1,8 +1,9 @@
 /**
  * @file
- * Internal to the thermal subsystem (deal.II types): the mesh of the
- * blocks and the parameter checks shared by the serial and the
- * distributed (MPI) heat solvers.
+ * Internal to the thermal subsystem (deal.II types): what the serial and
+ * the distributed (MPI) heat solvers share: the mesh of the blocks, the
+ * parameter checks, the cell loads, the step sequence, the block moments
+ * and the oscillation indicator.
  */
 #ifndef ROCKDDA_THERMAL_HEAT_INTERNAL_H
 #define ROCKDDA_THERMAL_HEAT_INTERNAL_H
@@ -10,9 +11,14 @@
 #include <rockdda/thermal/heat_solver.h>
 
 #include <deal.II/base/point.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/lac/vector.h>
 
 #include <array>
+#include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -47,6 +53,81 @@ namespace rockdda::thermal::internal
   double
   distance_to_segments(const dealii::Point<2>                   &p,
                        const std::vector<std::array<Point2, 2>> &segments);
+  /**
+   * The mean temperature of a block and its linear trend, from its
+   * geometric integrals @p g (int 1, x, y, x^2, xy, y^2 dA) and the
+   * temperature integrals int T, x T, y T dA (@p t0, @p tx, @p ty).
+   */
+  BlockMoments
+  block_moments_from(const std::array<double, 6> &g,
+                     const double                 t0,
+                     const double                 tx,
+                     const double                 ty);
+
+  /**
+   * Add the heat source and the non-uniform flux and convective loads of
+   * @p cell at time @p t to @p cell_vector, and their integrals (W/m) to
+   * @p boundary_rate and @p source_rate. Returns false (and adds nothing)
+   * if the cell has none. @p fe_values and @p fe_face need values,
+   * quadrature points and JxW.
+   */
+  bool
+  add_cell_load(const HeatParameters                              &prm,
+                const dealii::DoFHandler<2>::active_cell_iterator &cell,
+                const double                                       t,
+                dealii::FEValues<2>                               &fe_values,
+                dealii::FEFaceValues<2>                           &fe_face,
+                dealii::Vector<double>                            &cell_vector,
+                double &boundary_rate,
+                double &source_rate);
+
+  /**
+   * Call @p step(h) from @p time (advanced by @p step) to @p end_time:
+   * whole steps of exactly @p dt (an interval within 1e-6 dt of a multiple
+   * of dt counts as that multiple, so that one factorisation serves the
+   * whole run), then one shorter step for a remainder.
+   */
+  void
+  take_steps(const double                      &time,
+             const double                       end_time,
+             const double                       dt,
+             const std::function<void(double)> &step);
+
+  /**
+   * Crank-Nicolson oscillation indicator, after a step from @p solution
+   * with @p increment (new - old): consecutive increments nearly opposite
+   * flip; two flips in a row (the stiff-mode oscillation; a smooth solution
+   * turning at a peak flips once) count as an oscillating step, and set
+   * the fall-back time @p step_end if the scheme (@p theta < 1) should
+   * fall back to backward Euler. @p previous becomes @p increment.
+   */
+  template <typename VectorType>
+  void
+  check_oscillation(const VectorType &increment,
+                    VectorType       &previous,
+                    const VectorType &solution,
+                    const bool        first_step,
+                    const double      theta,
+                    const bool        fallback,
+                    const double      step_end,
+                    bool             &last_step_flipped,
+                    HeatStatistics   &stats)
+  {
+    const double n_new = increment.l2_norm(), n_old = previous.l2_norm();
+    const bool   flip
+      = !first_step
+        && increment.linfty_norm() > 1e-6 * (1. + solution.linfty_norm())
+        && (increment * previous) < -0.5 * n_new * n_old;
+    const bool oscillating = flip && last_step_flipped;
+    last_step_flipped      = flip;
+    if (oscillating)
+      {
+        ++stats.oscillation_steps;
+        if (theta < 1. && fallback && std::isnan(stats.fallback_time))
+          stats.fallback_time = step_end;
+      }
+    previous = increment;
+  }
 } // namespace rockdda::thermal::internal
 
 #endif

@@ -557,46 +557,15 @@ namespace rockdda::thermal::internal
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          cell_vec = 0.;
-          bool any = false;
-          if (prm.source)
-            {
-              any = true;
-              fe_values.reinit(cell);
-              for (const unsigned int q : fe_values.quadrature_point_indices())
-                {
-                  const auto  &x = fe_values.quadrature_point(q);
-                  const double s = prm.source(x[0], x[1], t) * fe_values.JxW(q);
-                  local_source += s;
-                  for (unsigned int i = 0; i < dpc; ++i)
-                    cell_vec(i) += s * fe_values.shape_value(i, q);
-                }
-            }
-          for (const auto fi : cell->face_indices())
-            if (cell->face(fi)->at_boundary()
-                && cell->face(fi)->boundary_id()
-                     < prm.boundary_conditions.size())
-              {
-                const auto &bc
-                  = prm.boundary_conditions[cell->face(fi)->boundary_id()];
-                if (bc.uniform || !bc.value
-                    || bc.type == BoundaryCondition::Type::temperature)
-                  continue;
-                any = true;
-                fe_face.reinit(cell, fi);
-                const double w = bc.type == BoundaryCondition::Type::convective
-                                   ? bc.heat_transfer_coefficient
-                                   : 1.;
-                for (const unsigned int q : fe_face.quadrature_point_indices())
-                  {
-                    const auto  &x = fe_face.quadrature_point(q);
-                    const double g
-                      = w * bc.value(x[0], x[1], t) * fe_face.JxW(q);
-                    local_boundary += g;
-                    for (unsigned int i = 0; i < dpc; ++i)
-                      cell_vec(i) += g * fe_face.shape_value(i, q);
-                  }
-              }
+          cell_vec       = 0.;
+          const bool any = add_cell_load(prm,
+                                         cell,
+                                         t,
+                                         fe_values,
+                                         fe_face,
+                                         cell_vec,
+                                         local_boundary,
+                                         local_source);
           if (any)
             {
               cell->get_dof_indices(dofs);
@@ -750,21 +719,15 @@ namespace rockdda::thermal::internal
     // Crank-Nicolson oscillation indicator (as in the serial solver).
     tmp = new_solution;
     tmp -= solution;
-    const double n_new = tmp.l2_norm(), n_old = increment_old.l2_norm();
-    const bool   flip
-      = steps_taken > 0
-        && tmp.linfty_norm() > 1e-6 * (1. + solution.linfty_norm())
-        && (tmp * increment_old) < -0.5 * n_new * n_old;
-    const bool oscillating = flip && last_step_flipped;
-    last_step_flipped      = flip;
-    if (oscillating)
-      {
-        ++stats.oscillation_steps;
-        if (theta < 1. && prm.oscillation_fallback
-            && std::isnan(stats.fallback_time))
-          stats.fallback_time = time + dt;
-      }
-    increment_old = tmp;
+    internal::check_oscillation(tmp,
+                                increment_old,
+                                solution,
+                                steps_taken == 0,
+                                theta,
+                                prm.oscillation_fallback,
+                                time + dt,
+                                last_step_flipped,
+                                stats);
 
     solution.swap(new_solution);
     ghosted_valid = false;
@@ -878,19 +841,7 @@ namespace rockdda::thermal::internal
       if (prm.adaptive_refinement && steps_taken % prm.adaptive_interval == 0)
         adapt_mesh();
     };
-    const double remaining = end_time - time;
-    const long   n_whole   = std::lround(remaining / dt);
-    if (n_whole >= 1 && std::abs(remaining - n_whole * dt) <= 1e-6 * dt)
-      for (long i = 0; i < n_whole; ++i)
-        step(dt);
-    else
-      {
-        const long n = static_cast<long>(std::floor(remaining / dt));
-        for (long i = 0; i < n; ++i)
-          step(dt);
-        if (end_time - time > 1e-6 * dt)
-          step(end_time - time);
-      }
+    internal::take_steps(time, end_time, dt, step);
     time = end_time;
   }
 
@@ -989,25 +940,11 @@ namespace rockdda::thermal::internal
   {
     std::vector<BlockMoments> result(impl->block_phi.size());
     for (unsigned int b = 0; b < result.size(); ++b)
-      {
-        const auto   &g  = impl->block_geometry[b];
-        BlockMoments &m  = result[b];
-        m.area           = g[0];
-        m.centroid_x     = g[1] / g[0];
-        m.centroid_y     = g[2] / g[0];
-        const double t0  = impl->block_phi[b] * impl->solution;
-        const double tx  = impl->block_xphi[b] * impl->solution;
-        const double ty  = impl->block_yphi[b] * impl->solution;
-        m.mean           = t0 / g[0];
-        m.moment_x       = tx - m.centroid_x * t0;
-        m.moment_y       = ty - m.centroid_y * t0;
-        const double ixx = g[3] - g[1] * g[1] / g[0];
-        const double ixy = g[4] - g[1] * g[2] / g[0];
-        const double iyy = g[5] - g[2] * g[2] / g[0];
-        const double det = ixx * iyy - ixy * ixy;
-        m.gradient_x     = (iyy * m.moment_x - ixy * m.moment_y) / det;
-        m.gradient_y     = (ixx * m.moment_y - ixy * m.moment_x) / det;
-      }
+      result[b]
+        = internal::block_moments_from(impl->block_geometry[b],
+                                       impl->block_phi[b] * impl->solution,
+                                       impl->block_xphi[b] * impl->solution,
+                                       impl->block_yphi[b] * impl->solution);
     return result;
   }
 
