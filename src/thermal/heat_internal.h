@@ -54,6 +54,32 @@ namespace rockdda::thermal::internal
   distance_to_segments(const dealii::Point<2>                   &p,
                        const std::vector<std::array<Point2, 2>> &segments);
   /**
+   * The boundary conditions whose data enter the load vector (flux and
+   * convective ones with a value): the indices of those with a spatially
+   * uniform value (their load is value(t) times a fixed vector), in
+   * order; @p nonuniform says whether any load varies in space (a
+   * non-uniform condition or a heat source). Throws InputError for a
+   * condition without a value or a negative heat transfer coefficient.
+   */
+  std::vector<unsigned int>
+  uniform_loads(const HeatParameters &prm, bool &nonuniform);
+
+  /// Add the area integrals of 1, x, y, x^2, xy, y^2 at quadrature point
+  /// @p x with weight @p jxw to @p geometry.
+  inline void
+  add_geometry(std::array<double, 6>  &geometry,
+               const dealii::Point<2> &x,
+               const double            jxw)
+  {
+    geometry[0] += jxw;
+    geometry[1] += x[0] * jxw;
+    geometry[2] += x[1] * jxw;
+    geometry[3] += x[0] * x[0] * jxw;
+    geometry[4] += x[0] * x[1] * jxw;
+    geometry[5] += x[1] * x[1] * jxw;
+  }
+
+  /**
    * The mean temperature of a block and its linear trend, from its
    * geometric integrals @p g (int 1, x, y, x^2, xy, y^2 dA) and the
    * temperature integrals int T, x T, y T dA (@p t0, @p tx, @p ty).

@@ -170,6 +170,33 @@ namespace rockdda::thermal
 
 
 
+    std::vector<unsigned int>
+    uniform_loads(const HeatParameters &prm, bool &nonuniform)
+    {
+      std::vector<unsigned int> uniform;
+      nonuniform = static_cast<bool>(prm.source);
+      for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
+        {
+          const auto &bc = prm.boundary_conditions[k];
+          if (!bc.value && bc.type != BoundaryCondition::Type::flux)
+            throw InputError("heat: boundary condition for tag '" + bc.tag
+                             + "' has no value");
+          if (bc.type == BoundaryCondition::Type::convective
+              && !(bc.heat_transfer_coefficient >= 0.))
+            throw InputError("heat: the heat transfer coefficient of tag '"
+                             + bc.tag + "' must be >= 0 W/(m^2 K)");
+          if (bc.type == BoundaryCondition::Type::temperature || !bc.value)
+            continue;
+          if (bc.uniform)
+            uniform.push_back(k);
+          else
+            nonuniform = true;
+        }
+      return uniform;
+    }
+
+
+
     BlockMoments
     block_moments_from(const std::array<double, 6> &g,
                        const double                 t0,
@@ -853,36 +880,15 @@ namespace rockdda::thermal
     Vector<double>     cell_vec(dpc), cell_vec2(dpc);
     std::vector<types::global_dof_index> dofs(dpc);
 
-    // Uniform boundary data vectors.
-    uniform_bc.clear();
+    uniform_bc = internal::uniform_loads(prm, nonuniform);
     uniform_vectors.clear();
-    uniform_rates.clear();
-    nonuniform = false;
+    uniform_rates.assign(uniform_bc.size(), 0.);
     std::vector<int> uniform_slot(prm.boundary_conditions.size(), -1);
-    for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
+    for (unsigned int s = 0; s < uniform_bc.size(); ++s)
       {
-        const auto &bc = prm.boundary_conditions[k];
-        if (!bc.value && bc.type != BoundaryCondition::Type::flux)
-          throw InputError("heat: boundary condition for tag '" + bc.tag
-                           + "' has no value");
-        if (bc.type == BoundaryCondition::Type::convective
-            && !(bc.heat_transfer_coefficient >= 0.))
-          throw InputError("heat: the heat transfer coefficient of tag '"
-                           + bc.tag + "' must be >= 0 W/(m^2 K)");
-        if (bc.type == BoundaryCondition::Type::temperature || !bc.value)
-          continue;
-        if (bc.uniform)
-          {
-            uniform_slot[k] = uniform_bc.size();
-            uniform_bc.push_back(k);
-            uniform_vectors.emplace_back(dof_handler.n_dofs());
-            uniform_rates.push_back(0.);
-          }
-        else
-          nonuniform = true;
+        uniform_slot[uniform_bc[s]] = s;
+        uniform_vectors.emplace_back(dof_handler.n_dofs());
       }
-    if (prm.source)
-      nonuniform = true;
 
     const unsigned int n_blocks = prm.blocks.size();
     block_phi.assign(n_blocks, Vector<double>(dof_handler.n_dofs()));
@@ -905,12 +911,7 @@ namespace rockdda::thermal
           {
             const double jxw = fe_values.JxW(q);
             const auto  &x   = fe_values.quadrature_point(q);
-            geo[0] += jxw;
-            geo[1] += x[0] * jxw;
-            geo[2] += x[1] * jxw;
-            geo[3] += x[0] * x[0] * jxw;
-            geo[4] += x[0] * x[1] * jxw;
-            geo[5] += x[1] * x[1] * jxw;
+            internal::add_geometry(geo, x, jxw);
             for (unsigned int i = 0; i < dpc; ++i)
               {
                 const double phi_i = fe_values.shape_value(i, q);
