@@ -11,6 +11,8 @@
 #include <rockdda/thermal/boundary_data.h>
 #include <rockdda/thermal/heat_solver.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -658,6 +660,12 @@ namespace rockdda::thermal
       p.arkode_relative_tolerance = prm.get_double("ARKODE relative tolerance");
       p.arkode_absolute_tolerance = prm.get_double("ARKODE absolute tolerance");
       prm.leave_subsection();
+      if (p.distributed && !dealii::Utilities::MPI::job_supports_mpi())
+        throw InputError(prm_file
+                         + ": key 'Heat/Time stepping/Linear solver' = amg "
+                           "is the distributed solver and needs MPI: run "
+                           "mpirun -np N rockdda FILE.prm (N >= 1), or use "
+                           "direct or cg");
       io::require(p.time_step > 0.,
                   prm_file,
                   "Heat/Time stepping/Time step",
