@@ -8,6 +8,7 @@
 #ifndef ROCKDDA_THERMAL_HEAT_INTERNAL_H
 #define ROCKDDA_THERMAL_HEAT_INTERNAL_H
 
+#include <rockdda/io/output.h>
 #include <rockdda/thermal/heat_solver.h>
 
 #include <deal.II/base/point.h>
@@ -19,6 +20,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -118,6 +120,65 @@ namespace rockdda::thermal::internal
              const double                       end_time,
              const double                       dt,
              const std::function<void(double)> &step);
+
+  /**
+   * The load of the spatially uniform conditions at time @p t: f =
+   * sum_s value_s(t) vectors[s] and boundary_rate = sum_s value_s(t)
+   * rates[s], over the conditions @p uniform (indices into
+   * prm.boundary_conditions). Throws if a value is not finite.
+   */
+  template <typename VectorType>
+  void
+  add_uniform_loads(const HeatParameters            &prm,
+                    const std::vector<unsigned int> &uniform,
+                    const std::vector<VectorType>   &vectors,
+                    const std::vector<double>       &rates,
+                    const double                     t,
+                    VectorType                      &f,
+                    double                          &boundary_rate)
+  {
+    for (unsigned int s = 0; s < uniform.size(); ++s)
+      {
+        const auto  &bc = prm.boundary_conditions[uniform[s]];
+        const double g  = bc.value(0., 0., t);
+        if (!std::isfinite(g))
+          throw std::runtime_error("heat: boundary value of tag '" + bc.tag
+                                   + "' is not finite at t = "
+                                   + io::format_number(t, 8) + " s");
+        f.add(g, vectors[s]);
+        boundary_rate += g * rates[s];
+      }
+  }
+
+  /// The blocks' mean temperatures and linear trends of the field
+  /// @p solution, from the blocks' geometry integrals and the vectors of
+  /// int phi_i, x phi_i, y phi_i dA.
+  template <typename VectorType>
+  std::vector<BlockMoments>
+  block_moments_of(const std::vector<std::array<double, 6>> &geometry,
+                   const std::vector<VectorType>            &phi,
+                   const std::vector<VectorType>            &x_phi,
+                   const std::vector<VectorType>            &y_phi,
+                   const VectorType                         &solution)
+  {
+    std::vector<BlockMoments> result(phi.size());
+    for (unsigned int b = 0; b < result.size(); ++b)
+      result[b] = block_moments_from(geometry[b],
+                                     phi[b] * solution,
+                                     x_phi[b] * solution,
+                                     y_phi[b] * solution);
+    return result;
+  }
+
+  /**
+   * The theta of the next step: 1/2 (Crank-Nicolson) or 1 (backward
+   * Euler) as chosen, but 1 for the first Rannacher start-up steps and
+   * after an oscillation fall-back.
+   */
+  double
+  step_theta(const HeatParameters &prm,
+             const HeatStatistics &stats,
+             const unsigned long   steps_taken);
 
   /**
    * Crank-Nicolson oscillation indicator, after a step from @p solution

@@ -274,6 +274,20 @@ namespace rockdda::thermal
 
 
 
+    double
+    step_theta(const HeatParameters &prm,
+               const HeatStatistics &stats,
+               const unsigned long   steps_taken)
+    {
+      const double chosen
+        = prm.stepper == TimeStepper::crank_nicolson ? 0.5 : 1.;
+      const double theta     = std::isnan(stats.fallback_time) ? chosen : 1.;
+      const bool   rannacher = theta < 1. && steps_taken < prm.rannacher_steps;
+      return rannacher ? 1. : theta;
+    }
+
+
+
     void
     take_steps(const double                      &time,
                const double                       end_time,
@@ -1029,18 +1043,8 @@ namespace rockdda::thermal
     f             = 0.;
     boundary_rate = 0.;
     source_rate   = 0.;
-    for (unsigned int s = 0; s < uniform_bc.size(); ++s)
-      {
-        const double g
-          = prm.boundary_conditions[uniform_bc[s]].value(0., 0., t);
-        if (!std::isfinite(g))
-          throw std::runtime_error("heat: boundary value of tag '"
-                                   + prm.boundary_conditions[uniform_bc[s]].tag
-                                   + "' is not finite at t = "
-                                   + io::format_number(t, 8) + " s");
-        f.add(g, uniform_vectors[s]);
-        boundary_rate += g * uniform_rates[s];
-      }
+    internal::add_uniform_loads(
+      prm, uniform_bc, uniform_vectors, uniform_rates, t, f, boundary_rate);
     if (!nonuniform)
       return;
 
@@ -1252,13 +1256,9 @@ namespace rockdda::thermal
         return;
       }
     TimerOutput::Scope scope(timer, "time stepping");
-    const double       theta_cn
-      = prm.stepper == TimeStepper::crank_nicolson ? 0.5 : 1.;
-    const double dt   = prm.time_step;
-    const auto   step = [&](const double h) {
-      const double theta = std::isnan(stats.fallback_time) ? theta_cn : 1.;
-      const bool   rannacher = theta < 1. && steps_taken < prm.rannacher_steps;
-      theta_step(h, rannacher ? 1. : theta);
+    const double       dt   = prm.time_step;
+    const auto         step = [&](const double h) {
+      theta_step(h, internal::step_theta(prm, stats, steps_taken));
       if (prm.adaptive_refinement && steps_taken % prm.adaptive_interval == 0)
         adapt_mesh();
     };
@@ -1516,14 +1516,11 @@ namespace rockdda::thermal
   {
     if (distributed)
       return distributed->block_moments();
-    std::vector<BlockMoments> result(impl->block_phi.size());
-    for (unsigned int b = 0; b < result.size(); ++b)
-      result[b]
-        = internal::block_moments_from(impl->block_geometry[b],
-                                       impl->block_phi[b] * impl->solution,
-                                       impl->block_xphi[b] * impl->solution,
-                                       impl->block_yphi[b] * impl->solution);
-    return result;
+    return internal::block_moments_of(impl->block_geometry,
+                                      impl->block_phi,
+                                      impl->block_xphi,
+                                      impl->block_yphi,
+                                      impl->solution);
   }
 
   double

@@ -499,17 +499,8 @@ namespace rockdda::thermal::internal
     f             = 0.;
     boundary_rate = 0.;
     source_rate   = 0.;
-    for (unsigned int s = 0; s < uniform_bc.size(); ++s)
-      {
-        const auto  &bc = prm.boundary_conditions[uniform_bc[s]];
-        const double g  = bc.value(0., 0., t);
-        if (!std::isfinite(g))
-          throw std::runtime_error("heat: boundary value of tag '" + bc.tag
-                                   + "' is not finite at t = "
-                                   + io::format_number(t, 8) + " s");
-        f.add(g, uniform_vectors[s]);
-        boundary_rate += g * uniform_rates[s];
-      }
+    internal::add_uniform_loads(
+      prm, uniform_bc, uniform_vectors, uniform_rates, t, f, boundary_rate);
     if (!nonuniform)
       return;
 
@@ -806,13 +797,9 @@ namespace rockdda::thermal::internal
     if (!(end_time >= time - 1e-9 * prm.time_step))
       throw std::invalid_argument("heat: advance_to() into the past");
     TimerOutput::Scope scope(timer, "time stepping");
-    const double       theta_cn
-      = prm.stepper == TimeStepper::crank_nicolson ? 0.5 : 1.;
-    const double dt   = prm.time_step;
-    const auto   step = [&](const double h) {
-      const double theta = std::isnan(stats.fallback_time) ? theta_cn : 1.;
-      const bool   rannacher = theta < 1. && steps_taken < prm.rannacher_steps;
-      theta_step(h, rannacher ? 1. : theta);
+    const double       dt   = prm.time_step;
+    const auto         step = [&](const double h) {
+      theta_step(h, internal::step_theta(prm, stats, steps_taken));
       if (prm.adaptive_refinement && steps_taken % prm.adaptive_interval == 0)
         adapt_mesh();
     };
@@ -913,14 +900,11 @@ namespace rockdda::thermal::internal
   std::vector<BlockMoments>
   DistributedHeat::block_moments() const
   {
-    std::vector<BlockMoments> result(impl->block_phi.size());
-    for (unsigned int b = 0; b < result.size(); ++b)
-      result[b]
-        = internal::block_moments_from(impl->block_geometry[b],
-                                       impl->block_phi[b] * impl->solution,
-                                       impl->block_xphi[b] * impl->solution,
-                                       impl->block_yphi[b] * impl->solution);
-    return result;
+    return internal::block_moments_of(impl->block_geometry,
+                                      impl->block_phi,
+                                      impl->block_xphi,
+                                      impl->block_yphi,
+                                      impl->solution);
   }
 
   double

@@ -53,6 +53,35 @@ namespace
   {
     return std::log(e_coarse / e_fine) / std::log(ratio);
   }
+
+  /// Probe temperatures sampled daily over one year.
+  struct YearOfSamples
+  {
+    std::vector<double>              t;
+    std::vector<std::vector<double>> values; ///< per depth
+  };
+
+  /// Add probes at x = @p x and the given depths below y = 0, spin up for
+  /// 12 years, then sample them daily over the 13th year.
+  YearOfSamples
+  sample_thirteenth_year(HeatSolver                &solver,
+                         const double               x,
+                         const std::vector<double> &depths)
+  {
+    for (const double z : depths)
+      solver.add_probe(x, -z);
+    solver.advance_to(12. * year);
+    YearOfSamples s;
+    s.values.resize(depths.size());
+    for (unsigned int i = 0; i < 365; ++i)
+      {
+        solver.advance_to(12. * year + (i + 1) * year / 365.);
+        s.t.push_back(solver.time());
+        for (unsigned int k = 0; k < depths.size(); ++k)
+          s.values[k].push_back(solver.probe_value(k));
+      }
+    return s;
+  }
 } // namespace
 
 
@@ -86,24 +115,12 @@ TEST(Heat, PeriodicHalfSpaceAmplitudeAndLag)
 
   HeatSolver                solver(p);
   const std::vector<double> depths = {0.5, 1., 2.5, 5.};
-  for (const double z : depths)
-    solver.add_probe(0.125, -z);
-  solver.advance_to(12. * year);
-
-  std::vector<double>              t;
-  std::vector<std::vector<double>> samples(depths.size());
-  for (unsigned int i = 0; i < 365; ++i)
-    {
-      solver.advance_to(12. * year + (i + 1) * year / 365.);
-      t.push_back(solver.time());
-      for (unsigned int k = 0; k < depths.size(); ++k)
-        samples[k].push_back(solver.probe_value(k));
-    }
+  const YearOfSamples       s = sample_thirteenth_year(solver, 0.125, depths);
   const double d = periodic_skin_depth(masada_dolomite().diffusivity(), year);
   EXPECT_NEAR(d, 2.847, 0.001);
   for (unsigned int k = 0; k < depths.size(); ++k)
     {
-      const SinusoidFit fit       = fit_sinusoid(t, samples[k], w);
+      const SinusoidFit fit       = fit_sinusoid(s.t, s.values[k], w);
       const double      z         = depths[k];
       const double      lag_days  = -fit.phase / w / day;
       const double      lag_exact = z / d / w / day;
@@ -722,23 +739,12 @@ namespace
     p.adaptive_min_cell_size = 0.5;
     HeatSolver                solver(p);
     const std::vector<double> depths = {0.5, 1., 2.5, 5.};
-    for (const double z : depths)
-      solver.add_probe(1., -z);
-    solver.advance_to(12. * year);
-    std::vector<double>              t;
-    std::vector<std::vector<double>> samples(depths.size());
-    for (unsigned int i = 0; i < 365; ++i)
-      {
-        solver.advance_to(12. * year + (i + 1) * year / 365.);
-        t.push_back(solver.time());
-        for (unsigned int k = 0; k < depths.size(); ++k)
-          samples[k].push_back(solver.probe_value(k));
-      }
+    const YearOfSamples       s = sample_thirteenth_year(solver, 1., depths);
     const double d = periodic_skin_depth(masada_dolomite().diffusivity(), year);
     HalfSpaceRun r;
     for (unsigned int k = 0; k < depths.size(); ++k)
       {
-        const SinusoidFit fit = fit_sinusoid(t, samples[k], w);
+        const SinusoidFit fit = fit_sinusoid(s.t, s.values[k], w);
         const double      z   = depths[k];
         r.amplitude_error
           = std::max(r.amplitude_error,
