@@ -12,8 +12,10 @@
 #include <rockdda/thermal/heat_solver.h>
 
 #include <deal.II/base/point.h>
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/vector.h>
 
@@ -55,6 +57,30 @@ namespace rockdda::thermal::internal
   double
   distance_to_segments(const dealii::Point<2>                   &p,
                        const std::vector<std::array<Point2, 2>> &segments);
+  /// FEValues and FEFaceValues on (degree + 1)-point Gauss rules, by
+  /// default with values, quadrature points and JxW.
+  struct CellIntegrators
+  {
+    CellIntegrators(const dealii::Mapping<2>       &mapping,
+                    const dealii::FiniteElement<2> &fe,
+                    const dealii::UpdateFlags       cell_flags
+                    = dealii::update_values | dealii::update_quadrature_points
+                      | dealii::update_JxW_values,
+                    const dealii::UpdateFlags face_flags
+                    = dealii::update_values | dealii::update_quadrature_points
+                      | dealii::update_JxW_values)
+        : quadrature(fe.degree + 1)
+        , face_quadrature(fe.degree + 1)
+        , values(mapping, fe, quadrature, cell_flags)
+        , face(mapping, fe, face_quadrature, face_flags)
+    {}
+
+    const dealii::QGauss<2> quadrature;
+    const dealii::QGauss<1> face_quadrature;
+    dealii::FEValues<2>     values;
+    dealii::FEFaceValues<2> face;
+  };
+
   /**
    * The boundary conditions whose data enter the load vector (flux and
    * convective ones with a value): the indices of those with a spatially

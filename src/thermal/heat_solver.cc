@@ -878,20 +878,17 @@ namespace rockdda::thermal
   void
   HeatSolver::Impl::assemble_fixed()
   {
-    const QGauss<2>    quadrature(fe.degree + 1);
-    const QGauss<1>    face_quadrature(fe.degree + 1);
-    FEValues<2>        fe_values(mapping,
-                          fe,
-                          quadrature,
-                          update_values | update_gradients
-                            | update_quadrature_points | update_JxW_values);
-    FEFaceValues<2>    fe_face(mapping,
-                            fe,
-                            face_quadrature,
-                            update_values | update_JxW_values);
-    const unsigned int dpc = fe.n_dofs_per_cell();
-    FullMatrix<double> cell_mass(dpc, dpc), cell_stiff(dpc, dpc);
-    Vector<double>     cell_vec(dpc), cell_vec2(dpc);
+    internal::CellIntegrators integrators(mapping,
+                                          fe,
+                                          update_values | update_gradients
+                                            | update_quadrature_points
+                                            | update_JxW_values,
+                                          update_values | update_JxW_values);
+    FEValues<2>              &fe_values = integrators.values;
+    FEFaceValues<2>          &fe_face   = integrators.face;
+    const unsigned int        dpc       = fe.n_dofs_per_cell();
+    FullMatrix<double>        cell_mass(dpc, dpc), cell_stiff(dpc, dpc);
+    Vector<double>            cell_vec(dpc), cell_vec2(dpc);
     std::vector<types::global_dof_index> dofs(dpc);
 
     uniform_bc = internal::uniform_loads(prm, nonuniform);
@@ -1048,19 +1045,10 @@ namespace rockdda::thermal
     if (!nonuniform)
       return;
 
-    const QGauss<2>                      quadrature(fe.degree + 1);
-    const QGauss<1>                      face_quadrature(fe.degree + 1);
-    FEValues<2>                          fe_values(mapping,
-                          fe,
-                          quadrature,
-                          update_values | update_quadrature_points
-                            | update_JxW_values);
-    FEFaceValues<2>                      fe_face(mapping,
-                            fe,
-                            face_quadrature,
-                            update_values | update_quadrature_points
-                              | update_JxW_values);
-    const unsigned int                   dpc = fe.n_dofs_per_cell();
+    internal::CellIntegrators            integrators(mapping, fe);
+    FEValues<2>                         &fe_values = integrators.values;
+    FEFaceValues<2>                     &fe_face   = integrators.face;
+    const unsigned int                   dpc       = fe.n_dofs_per_cell();
     Vector<double>                       cell_vec(dpc);
     std::vector<types::global_dof_index> dofs(dpc);
     for (const auto &cell : dof_handler.active_cell_iterators())

@@ -367,18 +367,15 @@ namespace rockdda::thermal::internal
   void
   DistributedHeat::Impl::assemble_fixed()
   {
-    const QGauss<2>                      quadrature(fe.degree + 1);
-    const QGauss<1>                      face_quadrature(fe.degree + 1);
-    FEValues<2>                          fe_values(mapping,
-                          fe,
-                          quadrature,
-                          update_values | update_quadrature_points
-                            | update_JxW_values);
-    FEFaceValues<2>                      fe_face(mapping,
-                            fe,
-                            face_quadrature,
-                            update_values | update_JxW_values);
-    const unsigned int                   dpc = fe.n_dofs_per_cell();
+    internal::CellIntegrators            integrators(mapping,
+                                          fe,
+                                          update_values
+                                            | update_quadrature_points
+                                            | update_JxW_values,
+                                          update_values | update_JxW_values);
+    FEValues<2>                         &fe_values = integrators.values;
+    FEFaceValues<2>                     &fe_face   = integrators.face;
+    const unsigned int                   dpc       = fe.n_dofs_per_cell();
     Vector<double>                       cell_vec(dpc);
     std::vector<types::global_dof_index> dofs(dpc);
 
@@ -504,19 +501,10 @@ namespace rockdda::thermal::internal
     if (!nonuniform)
       return;
 
-    const QGauss<2>                      quadrature(fe.degree + 1);
-    const QGauss<1>                      face_quadrature(fe.degree + 1);
-    FEValues<2>                          fe_values(mapping,
-                          fe,
-                          quadrature,
-                          update_values | update_quadrature_points
-                            | update_JxW_values);
-    FEFaceValues<2>                      fe_face(mapping,
-                            fe,
-                            face_quadrature,
-                            update_values | update_quadrature_points
-                              | update_JxW_values);
-    const unsigned int                   dpc = fe.n_dofs_per_cell();
+    internal::CellIntegrators            integrators(mapping, fe);
+    FEValues<2>                         &fe_values = integrators.values;
+    FEFaceValues<2>                     &fe_face   = integrators.face;
+    const unsigned int                   dpc       = fe.n_dofs_per_cell();
     Vector<double>                       cell_vec(dpc);
     std::vector<types::global_dof_index> dofs(dpc);
     double                               local_boundary = 0., local_source = 0.;
@@ -561,18 +549,15 @@ namespace rockdda::thermal::internal
     op->a_full.reinit(owned, owned, dsp, comm);
     op->b.reinit(owned, owned, dsp, comm);
 
-    const QGauss<2>    quadrature(fe.degree + 1);
-    const QGauss<1>    face_quadrature(fe.degree + 1);
-    FEValues<2>        fe_values(mapping,
-                          fe,
-                          quadrature,
-                          update_values | update_gradients | update_JxW_values);
-    FEFaceValues<2>    fe_face(mapping,
-                            fe,
-                            face_quadrature,
-                            update_values | update_JxW_values);
-    const unsigned int dpc = fe.n_dofs_per_cell();
-    FullMatrix<double> cell_mass(dpc, dpc), cell_stiff(dpc, dpc),
+    internal::CellIntegrators integrators(mapping,
+                                          fe,
+                                          update_values | update_gradients
+                                            | update_JxW_values,
+                                          update_values | update_JxW_values);
+    FEValues<2>              &fe_values = integrators.values;
+    FEFaceValues<2>          &fe_face   = integrators.face;
+    const unsigned int        dpc       = fe.n_dofs_per_cell();
+    FullMatrix<double>        cell_mass(dpc, dpc), cell_stiff(dpc, dpc),
       cell_a(dpc, dpc), cell_b(dpc, dpc);
     std::vector<types::global_dof_index> dofs(dpc);
     for (const auto &cell : dof_handler.active_cell_iterators())
