@@ -241,6 +241,54 @@ namespace rockdda::thermal::internal
       }
     previous = increment;
   }
+  /**
+   * One theta step of either solver. @p s is the solver's state (members
+   * prm, stats, time, steps_taken, solution, new_solution, tmp, rhs_old,
+   * rhs_new, rhs_old_valid, rate_old, source_rate_old, robin_weights,
+   * boundary_heat, source_heat, increment_old, last_step_flipped and
+   * assemble_rhs()). The loads at both ends of the step are assembled,
+   * @p solve() computes new_solution from solution, rhs_old and rhs_new,
+   * the heat that entered is booked with the scheme's own theta weights
+   * (so the energy balance holds to round-off), the oscillation indicator
+   * is updated and the state moves to time + dt.
+   */
+  template <typename State, typename Solve>
+  void
+  theta_step(State &s, const double dt, const double theta, Solve &&solve)
+  {
+    if (!s.rhs_old_valid)
+      {
+        s.assemble_rhs(s.time, s.rhs_old, s.rate_old, s.source_rate_old);
+        s.rate_old -= s.robin_weights * s.solution;
+        s.rhs_old_valid = true;
+      }
+    double rate_new = 0., source_rate_new = 0.;
+    s.assemble_rhs(s.time + dt, s.rhs_new, rate_new, source_rate_new);
+    solve();
+    rate_new -= s.robin_weights * s.new_solution;
+    s.boundary_heat += dt * (theta * rate_new + (1. - theta) * s.rate_old);
+    s.source_heat
+      += dt * (theta * source_rate_new + (1. - theta) * s.source_rate_old);
+    s.rate_old        = rate_new;
+    s.source_rate_old = source_rate_new;
+    s.rhs_old.swap(s.rhs_new);
+
+    s.tmp = s.new_solution;
+    s.tmp -= s.solution;
+    check_oscillation(s.tmp,
+                      s.increment_old,
+                      s.solution,
+                      s.steps_taken == 0,
+                      theta,
+                      s.prm.oscillation_fallback,
+                      s.time + dt,
+                      s.last_step_flipped,
+                      s.stats);
+    s.solution.swap(s.new_solution);
+    s.time += dt;
+    ++s.steps_taken;
+    ++s.stats.n_steps;
+  }
 } // namespace rockdda::thermal::internal
 
 #endif

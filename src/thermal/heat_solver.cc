@@ -558,6 +558,14 @@ namespace rockdda::thermal
     double
     distance_to_band_tags(const Point<2> &p) const;
 
+    /// Condensed right-hand side at @p t into @p f; returns the boundary
+    /// data part of the heat rate (without -w.T) and the source rate.
+    void
+    assemble_rhs(const double    t,
+                 Vector<double> &f,
+                 double         &boundary_rate,
+                 double         &source_rate) const;
+
   private:
     /// Pair the faces on both sides of every joint (contact conductance).
     void
@@ -566,13 +574,6 @@ namespace rockdda::thermal
     setup_system();
     void
     assemble_fixed();
-    /// Condensed right-hand side at @p t into @p f; returns the boundary
-    /// data part of the heat rate (without -w.T) and the source rate.
-    void
-    assemble_rhs(const double    t,
-                 Vector<double> &f,
-                 double         &boundary_rate,
-                 double         &source_rate) const;
     StepOperator &
     get_operator(const double dt, const double theta);
     void
@@ -1149,85 +1150,51 @@ namespace rockdda::thermal
   HeatSolver::Impl::theta_step(const double dt, const double theta)
   {
     StepOperator &op = get_operator(dt, theta);
-    if (!rhs_old_valid)
-      {
-        assemble_rhs(time, rhs_old, rate_old, source_rate_old);
-        rate_old -= robin_weights * solution;
-        rhs_old_valid = true;
-      }
-    double rate_new = 0., source_rate_new = 0.;
-    assemble_rhs(time + dt, rhs_new, rate_new, source_rate_new);
+    internal::theta_step(*this, dt, theta, [&]() {
+      // b = B T + dt (theta F_new + (1 - theta) F_old) - A g
+      const unsigned int n = solution.size();
+      using Map            = Eigen::Map<Eigen::VectorXd>;
+      using ConstMap       = Eigen::Map<const Eigen::VectorXd>;
+      if (prm.direct_solver)
+        Map(tmp.begin(), n).noalias()
+          = op.eigen_b * ConstMap(solution.begin(), n);
+      else
+        op.b.vmult(tmp, solution);
+      tmp.add(dt * theta, rhs_new, dt * (1. - theta), rhs_old);
+      if (!dirichlet_dofs.empty())
+        {
+          g_ext = 0.;
+          apply_dirichlet_values(time + dt, g_ext);
+          if (prm.direct_solver)
+            {
+              Eigen::VectorXd g(dirichlet_dofs.size());
+              for (std::size_t d = 0; d < dirichlet_dofs.size(); ++d)
+                g[d] = g_ext[dirichlet_dofs[d]];
+              Map(tmp.begin(), n) -= op.eigen_a_dirichlet * g;
+            }
+          else
+            {
+              op.a.vmult(new_solution, g_ext);
+              tmp -= new_solution;
+            }
+          for (const auto i : dirichlet_dofs)
+            tmp[i] = op.a.diag_element(i) * g_ext[i];
+        }
+      hanging.set_zero(tmp);
 
-    // b = B T + dt (theta F_new + (1 - theta) F_old) - A g
-    const unsigned int n = solution.size();
-    using Map            = Eigen::Map<Eigen::VectorXd>;
-    using ConstMap       = Eigen::Map<const Eigen::VectorXd>;
-    if (prm.direct_solver)
-      Map(tmp.begin(), n).noalias()
-        = op.eigen_b * ConstMap(solution.begin(), n);
-    else
-      op.b.vmult(tmp, solution);
-    tmp.add(dt * theta, rhs_new, dt * (1. - theta), rhs_old);
-    if (!dirichlet_dofs.empty())
-      {
-        g_ext = 0.;
-        apply_dirichlet_values(time + dt, g_ext);
-        if (prm.direct_solver)
-          {
-            Eigen::VectorXd g(dirichlet_dofs.size());
-            for (std::size_t d = 0; d < dirichlet_dofs.size(); ++d)
-              g[d] = g_ext[dirichlet_dofs[d]];
-            Map(tmp.begin(), n) -= op.eigen_a_dirichlet * g;
-          }
-        else
-          {
-            op.a.vmult(new_solution, g_ext);
-            tmp -= new_solution;
-          }
-        for (const auto i : dirichlet_dofs)
-          tmp[i] = op.a.diag_element(i) * g_ext[i];
-      }
-    hanging.set_zero(tmp);
-
-    if (prm.direct_solver)
-      Map(new_solution.begin(), n) = op.ldlt.solve(ConstMap(tmp.begin(), n));
-    else
-      {
-        SolverControl            control(10000,
-                              prm.cg_tolerance
-                                * std::max(tmp.l2_norm(), 1e-300));
-        SolverCG<Vector<double>> cg(control);
-        new_solution = solution;
-        cg.solve(op.a_mod, new_solution, tmp, op.ssor);
-      }
-    hanging.distribute(new_solution);
-
-    // Energy bookkeeping (same theta weights as the scheme).
-    rate_new -= robin_weights * new_solution;
-    boundary_heat += dt * (theta * rate_new + (1. - theta) * rate_old);
-    source_heat
-      += dt * (theta * source_rate_new + (1. - theta) * source_rate_old);
-    rate_old        = rate_new;
-    source_rate_old = source_rate_new;
-    rhs_old.swap(rhs_new);
-
-    // Crank-Nicolson oscillation indicator.
-    tmp = new_solution;
-    tmp -= solution;
-    internal::check_oscillation(tmp,
-                                increment_old,
-                                solution,
-                                steps_taken == 0,
-                                theta,
-                                prm.oscillation_fallback,
-                                time + dt,
-                                last_step_flipped,
-                                stats);
-
-    solution.swap(new_solution);
-    time += dt;
-    ++steps_taken;
-    ++stats.n_steps;
+      if (prm.direct_solver)
+        Map(new_solution.begin(), n) = op.ldlt.solve(ConstMap(tmp.begin(), n));
+      else
+        {
+          SolverControl            control(10000,
+                                prm.cg_tolerance
+                                  * std::max(tmp.l2_norm(), 1e-300));
+          SolverCG<Vector<double>> cg(control);
+          new_solution = solution;
+          cg.solve(op.a_mod, new_solution, tmp, op.ssor);
+        }
+      hanging.distribute(new_solution);
+    });
   }
 
 

@@ -604,87 +604,54 @@ namespace rockdda::thermal::internal
   DistributedHeat::Impl::theta_step(const double dt, const double theta)
   {
     DistributedOperator &op = get_operator(dt, theta);
-    if (!rhs_old_valid)
-      {
-        assemble_rhs(time, rhs_old, rate_old, source_rate_old);
-        rate_old -= robin_weights * solution;
-        rhs_old_valid = true;
-      }
-    double rate_new = 0., source_rate_new = 0.;
-    assemble_rhs(time + dt, rhs_new, rate_new, source_rate_new);
-
-    // (M + theta dt K)(T_new) = B T + dt (theta F_new + (1 - theta) F_old),
-    // solved for u = T_new - g with g the Dirichlet values (zero elsewhere).
-    op.b.vmult(tmp, solution);
-    tmp.add(dt * theta, rhs_new, dt * (1. - theta), rhs_old);
-    g_ext = 0.;
-    if (any_dirichlet)
-      {
-        for (std::size_t d = 0; d < dirichlet_dofs.size(); ++d)
-          {
-            const auto  &p  = dirichlet_points[d];
-            const auto  &bc = prm.boundary_conditions[dirichlet_bc[d]];
-            const double g  = bc.value(p[0], p[1], time + dt);
-            if (!std::isfinite(g))
-              throw std::runtime_error("heat: temperature of tag '" + bc.tag
-                                       + "' is not finite at t = "
-                                       + io::format_number(time + dt, 8)
-                                       + " s");
-            g_ext[dirichlet_dofs[d]] = g;
-          }
-        g_ext.compress(VectorOperation::insert);
-        op.a_full.vmult(new_solution, g_ext);
-        tmp -= new_solution;
-      }
-    constraints_hom.set_zero(tmp);
-
-    {
-      TimerOutput::Scope scope(timer, "linear solve");
-      new_solution = solution;
-      new_solution -= g_ext;
-      constraints_hom.set_zero(new_solution);
-      if (op.direct)
-        op.direct->solve(new_solution, tmp);
-      else
+    internal::theta_step(*this, dt, theta, [&]() {
+      // (M + theta dt K)(T_new) = B T + dt (theta F_new + (1 - theta) F_old),
+      // solved for u = T_new - g with g the Dirichlet values (zero elsewhere).
+      op.b.vmult(tmp, solution);
+      tmp.add(dt * theta, rhs_new, dt * (1. - theta), rhs_old);
+      g_ext = 0.;
+      if (any_dirichlet)
         {
-          SolverControl        control(10000,
-                                prm.cg_tolerance
-                                  * std::max(tmp.l2_norm(), 1e-300));
-          SolverCG<VectorType> cg(control);
-          cg.solve(op.a_hom, new_solution, tmp, op.amg);
-          linear_iterations += control.last_step();
+          for (std::size_t d = 0; d < dirichlet_dofs.size(); ++d)
+            {
+              const auto  &p  = dirichlet_points[d];
+              const auto  &bc = prm.boundary_conditions[dirichlet_bc[d]];
+              const double g  = bc.value(p[0], p[1], time + dt);
+              if (!std::isfinite(g))
+                throw std::runtime_error("heat: temperature of tag '" + bc.tag
+                                         + "' is not finite at t = "
+                                         + io::format_number(time + dt, 8)
+                                         + " s");
+              g_ext[dirichlet_dofs[d]] = g;
+            }
+          g_ext.compress(VectorOperation::insert);
+          op.a_full.vmult(new_solution, g_ext);
+          tmp -= new_solution;
         }
-    }
-    constraints_hom.set_zero(new_solution);
-    new_solution += g_ext;
-    hanging.distribute(new_solution);
+      constraints_hom.set_zero(tmp);
 
-    rate_new -= robin_weights * new_solution;
-    boundary_heat += dt * (theta * rate_new + (1. - theta) * rate_old);
-    source_heat
-      += dt * (theta * source_rate_new + (1. - theta) * source_rate_old);
-    rate_old        = rate_new;
-    source_rate_old = source_rate_new;
-    rhs_old.swap(rhs_new);
-
-    // Crank-Nicolson oscillation indicator (as in the serial solver).
-    tmp = new_solution;
-    tmp -= solution;
-    internal::check_oscillation(tmp,
-                                increment_old,
-                                solution,
-                                steps_taken == 0,
-                                theta,
-                                prm.oscillation_fallback,
-                                time + dt,
-                                last_step_flipped,
-                                stats);
-
-    solution.swap(new_solution);
+      {
+        TimerOutput::Scope scope(timer, "linear solve");
+        new_solution = solution;
+        new_solution -= g_ext;
+        constraints_hom.set_zero(new_solution);
+        if (op.direct)
+          op.direct->solve(new_solution, tmp);
+        else
+          {
+            SolverControl        control(10000,
+                                  prm.cg_tolerance
+                                    * std::max(tmp.l2_norm(), 1e-300));
+            SolverCG<VectorType> cg(control);
+            cg.solve(op.a_hom, new_solution, tmp, op.amg);
+            linear_iterations += control.last_step();
+          }
+      }
+      constraints_hom.set_zero(new_solution);
+      new_solution += g_ext;
+      hanging.distribute(new_solution);
+    });
     ghosted_valid = false;
-    time += dt;
-    ++steps_taken;
-    ++stats.n_steps;
   }
 
 
