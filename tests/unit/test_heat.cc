@@ -48,6 +48,21 @@ namespace
     return bc;
   }
 
+  /// Convective exchange (h = 10 W/(m^2 K)) on tag 'exposed' with air at
+  /// 25 + 8 sin(2 pi t / period) deg C.
+  BoundaryCondition
+  sinusoidal_air(const double period)
+  {
+    BoundaryCondition air;
+    air.tag                       = "exposed";
+    air.type                      = BoundaryCondition::Type::convective;
+    air.heat_transfer_coefficient = 10.;
+    air.value                     = [period](double, double, double t) {
+      return 25. + 8. * std::sin(2. * M_PI * t / period);
+    };
+    return air;
+  }
+
   double
   order(const double e_coarse, const double e_fine, const double ratio)
   {
@@ -312,13 +327,7 @@ TEST(Heat, EnergyBalanceClosedDomain)
       p.time_step           = day;
       p.stepper             = stepper;
       p.initial_temperature = 15.;
-      BoundaryCondition air;
-      air.tag                       = "exposed";
-      air.type                      = BoundaryCondition::Type::convective;
-      air.heat_transfer_coefficient = 10.;
-      air.value                     = [](double, double, double t) {
-        return 25. + 8. * std::sin(2. * M_PI * t / (20. * day));
-      };
+      const BoundaryCondition air = sinusoidal_air(20. * day);
       p.boundary_conditions
         = {air, constant_flux("base", 5.), constant_flux("joint", 0.)};
       HeatSolver   solver(p);
@@ -679,21 +688,15 @@ TEST(Heat, JointConductanceEnergyBalance)
 {
   HeatParameters p = two_block_slab(
     1., 1.5, 1.7, 0.8, 30., 10., HeatParameters::JointContact::conductance, 5.);
-  p.blocks[1].edge_tags = {"adiabatic", "exposed", "adiabatic", "joint"};
-  p.blocks[0].edge_tags = {"adiabatic", "joint", "adiabatic", "base"};
-  BoundaryCondition air;
-  air.tag                       = "exposed";
-  air.type                      = BoundaryCondition::Type::convective;
-  air.heat_transfer_coefficient = 10.;
-  air.value                     = [](double, double, double t) {
-    return 25. + 8. * std::sin(2. * M_PI * t / (5. * day));
-  };
-  p.boundary_conditions = {air, constant_flux("base", 3.)};
-  p.refine_near_tags    = {"exposed"};
-  p.band_width          = 1.2;
-  p.band_cell_size      = 0.07;
-  p.time_step           = day / 4.;
-  p.initial_temperature = 15.;
+  p.blocks[1].edge_tags       = {"adiabatic", "exposed", "adiabatic", "joint"};
+  p.blocks[0].edge_tags       = {"adiabatic", "joint", "adiabatic", "base"};
+  const BoundaryCondition air = sinusoidal_air(5. * day);
+  p.boundary_conditions       = {air, constant_flux("base", 3.)};
+  p.refine_near_tags          = {"exposed"};
+  p.band_width                = 1.2;
+  p.band_cell_size            = 0.07;
+  p.time_step                 = day / 4.;
+  p.initial_temperature       = 15.;
   HeatSolver   solver(p);
   const double e0 = solver.stored_heat();
   solver.advance_to(20. * day);
@@ -803,13 +806,7 @@ TEST(Heat, AdaptiveEnergyBalanceAndMoments)
   HeatParameters p;
   p.materials = {masada_dolomite()};
   p.blocks = {rectangle(0., 0., 4., 2., {"base", "exposed", "exposed", "a"})};
-  BoundaryCondition air;
-  air.tag                       = "exposed";
-  air.type                      = BoundaryCondition::Type::convective;
-  air.heat_transfer_coefficient = 10.;
-  air.value                     = [](double, double, double t) {
-    return 25. + 8. * std::sin(2. * M_PI * t / (2. * day));
-  };
+  const BoundaryCondition air = sinusoidal_air(2. * day);
   p.boundary_conditions
     = {air, constant_flux("base", 5.), constant_flux("a", 0.)};
   p.degree                 = 2;
