@@ -17,6 +17,9 @@ levels=("${@:-5 6 7}")
 levels=(${levels[*]})
 cmake --build "$build" --target rockdda
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# Containers often forbid the cross-memory attach of the shared-memory
+# transport; plain copies work everywhere.
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 csv="$here/timings.csv"
