@@ -217,10 +217,14 @@ namespace
         solver_it += r.solver_iterations;
         cuts += r.cuts;
       }
-    const double t = seconds_since(t0) / steps;
+    const double t     = seconds_since(t0) / steps;
+    double       drift = 0.;
+    for (std::size_t b = 0; b < dda.system().blocks.size(); ++b)
+      drift = std::max(drift, dda.centroid_displacement(b).norm());
     std::printf("%zu blocks, %s: %.3f ms/step, %.0f block-steps/s, %.2f "
                 "open-close it./step, %.1f solver it./step, %u cuts, "
-                "separator %d blocks\n",
+                "separator %d blocks, largest centroid displacement "
+                "%.3e m\n",
                 dda.system().blocks.size(),
                 solver_label(name),
                 1e3 * t,
@@ -228,7 +232,8 @@ namespace
                 double(it) / steps,
                 double(solver_it) / steps,
                 cuts,
-                dda.linear_solver().separator_size());
+                dda.linear_solver().separator_size(),
+                drift);
   }
 
   /// CG tolerance against cost and accuracy: ms and CG iterations per step

@@ -338,6 +338,22 @@ namespace rockdda::dda
                         && old == ContactState::open))
                   {
                     ct.xi_ref = ct.geometry.xi;
+                    if (r.state == ContactState::locked
+                        && old == ContactState::sliding)
+                      {
+                        // Force continuity: the shear spring starts from
+                        // the friction force the contact carried, i.e.
+                        // at displacement dir * strength / p_s from its
+                        // reference, instead of dropping to zero.
+                        const auto &poly
+                          = scene.blocks[ct.geometry.block_j].polygon.vertices;
+                        const double l
+                          = (poly[(ct.geometry.edge + 1) % poly.size()]
+                             - poly[ct.geometry.edge])
+                              .norm();
+                        ct.xi_ref
+                          += r.shear_force / (ctrl.law.shear_penalty() * l);
+                      }
                     assembler.set_shear_reference(scene, c, ct);
                   }
                 else if (r.state == ContactState::open
