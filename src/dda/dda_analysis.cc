@@ -12,15 +12,23 @@
 #include <rockdda/io/progress.h>
 #include <rockdda/seismic/ground_motion.h>
 
+#include "binary_stream.h"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 
 namespace rockdda::dda
 {
   namespace
   {
+    /// First string of a DDA run checkpoint (checkpoint.bin).
+    constexpr char run_magic[] = "rockdda DDA run checkpoint 1";
+
+    using dealii::Patterns::Bool;
     using dealii::Patterns::Double;
     using dealii::Patterns::Integer;
     using dealii::Patterns::Selection;
@@ -151,6 +159,26 @@ namespace rockdda::dda
                     "a machine with at least two cores. Results do not "
                     "depend on it.");
         io::declare(prm,
+                    "Checkpoint interval",
+                    "0",
+                    Double(0.),
+                    "s",
+                    "Model time between checkpoints: checkpoint.bin (the "
+                    "full state, for 'Resume') and statistics.csv so far are "
+                    "written atomically into the output directory, at "
+                    "multiples of this interval (steps land on them, as on "
+                    "output times) and at the End time; 0 = no "
+                    "checkpoints.");
+        io::declare(prm,
+                    "Resume",
+                    "false",
+                    Bool(),
+                    "-",
+                    "Continue from checkpoint.bin in the output directory, "
+                    "written by an earlier run of this parameter file with "
+                    "a 'Checkpoint interval'; the run continues bit for bit "
+                    "(the End time may be raised).");
+        io::declare(prm,
                     "Settling steps",
                     "0",
                     Integer(0, 100000),
@@ -218,6 +246,8 @@ namespace rockdda::dda
                                      ? Preconditioner::block_jacobi
                                      : Preconditioner::block_dilu;
         settling_steps           = prm.get_integer("Settling steps");
+        checkpoint_interval      = prm.get_double("Checkpoint interval");
+        resume                   = prm.get_bool("Resume");
         const double      gravity = prm.get_double("Gravity");
         const std::string mode    = prm.get("Seismic input");
         output_interval           = prm.get_double("Output interval");
@@ -285,6 +315,15 @@ namespace rockdda::dda
           {
             throw InputError("block file '" + path + "': " + e.what());
           }
+        {
+          std::ostringstream f;
+          f.precision(17);
+          f << "blocks " << dda->system().blocks.size() << ", time step "
+            << c.time_step << " s, penalty " << c.law.normal_penalty
+            << " N/m, dynamic control " << c.dynamic << ", settling steps "
+            << settling_steps << ", seismic input " << mode;
+          fingerprint = f.str();
+        }
       }
 
       void
@@ -301,7 +340,7 @@ namespace rockdda::dda
           + " N/m, time step " + io::format_number(dda->controls().time_step, 4)
           + " s, domain " + io::format_number(dda->domain_size(), 4) + " m");
 
-        if (settling_steps > 0)
+        if (settling_steps > 0 && !resume)
           {
             dda->settle(settling_steps);
             context.log.line("settled with " + std::to_string(settling_steps)
@@ -370,12 +409,99 @@ namespace rockdda::dda
         };
 
         StepReport last;
-        add_row(last);
-        if (output_interval > 0.)
-          snapshot();
         double next_output = output_interval, next_row = statistics_interval;
-        unsigned int        max_iterations   = 0;
-        unsigned long       iterations_total = 0;
+        double next_checkpoint             = checkpoint_interval;
+        unsigned int      max_iterations   = 0;
+        unsigned long     iterations_total = 0;
+        const std::string checkpoint_file
+          = context.output.file("checkpoint.bin");
+        // A checkpoint: the engine's state and the run's progress (rows of
+        // statistics.csv, VTU series, next output times, counters).
+        const auto save_checkpoint = [&]() {
+          internal::BinaryWriter w;
+          w.put_string(run_magic);
+          w.put_string(fingerprint);
+          w.put_string(dda->checkpoint());
+          w.put<std::uint64_t>(table.n_rows());
+          for (std::size_t i = 0; i < table.n_rows(); ++i)
+            {
+              w.put<std::uint64_t>(table.row(i).size());
+              for (const double v : table.row(i))
+                w.put(v);
+            }
+          for (const auto *files : {&block_files, &contact_files})
+            {
+              w.put<std::uint64_t>(files->size());
+              for (const auto &[time, name] : *files)
+                {
+                  w.put(time);
+                  w.put_string(name);
+                }
+            }
+          for (const double v : {next_output, next_row, next_checkpoint})
+            w.put(v);
+          w.put<std::uint32_t>(max_iterations);
+          w.put<std::uint64_t>(iterations_total);
+          context.output.write("statistics.csv", table.csv());
+          context.output.write("checkpoint.bin", w.bytes);
+        };
+        const auto load_checkpoint = [&]() {
+          std::ifstream in(checkpoint_file, std::ios::binary);
+          if (!in)
+            throw InputError(
+              "key 'DDA/Resume' is true but there is no checkpoint "
+              + checkpoint_file
+              + " (run once with 'DDA/Checkpoint interval' > 0)");
+          const std::string      bytes((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
+          internal::BinaryReader r(bytes, checkpoint_file);
+          if (r.get_string() != run_magic)
+            throw InputError(checkpoint_file
+                             + ": not a checkpoint of a rockdda DDA run");
+          const std::string saved = r.get_string();
+          if (saved != fingerprint)
+            throw InputError(checkpoint_file + ": written for another run ("
+                             + saved + "); this parameter file has "
+                             + fingerprint);
+          dda->restore(r.get_string(), checkpoint_file);
+          const auto n_rows = r.get<std::uint64_t>();
+          for (std::uint64_t i = 0; i < n_rows; ++i)
+            {
+              std::vector<double> row(r.get<std::uint64_t>());
+              if (row.size() > bytes.size())
+                throw InputError(checkpoint_file + ": damaged statistics");
+              for (double &v : row)
+                v = r.get<double>();
+              table.add_row(row);
+            }
+          for (auto *files : {&block_files, &contact_files})
+            {
+              files->clear();
+              const auto n = r.get<std::uint64_t>();
+              for (std::uint64_t i = 0; i < n; ++i)
+                {
+                  const double time = r.get<double>();
+                  files->emplace_back(time, r.get_string());
+                }
+            }
+          for (double *v : {&next_output, &next_row, &next_checkpoint})
+            *v = r.get<double>();
+          max_iterations   = r.get<std::uint32_t>();
+          iterations_total = r.get<std::uint64_t>();
+          if (!r.at_end())
+            throw InputError(checkpoint_file + ": trailing data");
+          context.log.line("resumed from " + checkpoint_file
+                           + " at t = " + io::format_number(dda->time(), 8)
+                           + " s (step " + std::to_string(dda->n_steps) + ")");
+        };
+        if (resume)
+          load_checkpoint();
+        else
+          {
+            add_row(last);
+            if (output_interval > 0.)
+              snapshot();
+          }
         std::string         failure;
         const auto          start = std::chrono::steady_clock::now();
         const unsigned long step_limit
@@ -393,6 +519,8 @@ namespace rockdda::dda
                     = std::min(end_time, dda->time() + dda->time_step());
                   if (output_interval > 0.)
                     target = std::min(target, next_output);
+                  if (checkpoint_interval > 0.)
+                    target = std::min(target, next_checkpoint);
                   last = dda->run_until(target);
                   if (dda->n_steps > step_limit)
                     throw DdaFailure(
@@ -417,6 +545,13 @@ namespace rockdda::dda
                       snapshot();
                       next_output += output_interval;
                     }
+                  if (checkpoint_interval > 0.
+                      && dda->time() >= next_checkpoint - 1e-12)
+                    {
+                      while (next_checkpoint <= dda->time() + 1e-12)
+                        next_checkpoint += checkpoint_interval;
+                      save_checkpoint();
+                    }
                   progress.update(dda->n_steps, dda->time());
                 }
             }
@@ -428,6 +563,8 @@ namespace rockdda::dda
         const double wall = std::chrono::duration<double>(
                               std::chrono::steady_clock::now() - start)
                               .count();
+        if (checkpoint_interval > 0. && failure.empty())
+          save_checkpoint(); // at the End time: the run can be extended
         context.output.write("statistics.csv", table.csv());
         if (!failure.empty())
           {
@@ -483,7 +620,12 @@ namespace rockdda::dda
       seismic::GroundMotionInput motion;
       std::string                motion_text;
       double end_time = 1., output_interval = 0.1, statistics_interval = 0.;
+      double checkpoint_interval  = 0.;
+      bool   resume               = false;
       unsigned int settling_steps = 0;
+      /// Identifies the run a checkpoint belongs to (controls and scene
+      /// size; End time excluded).
+      std::string fingerprint;
     };
   } // namespace
 

@@ -189,6 +189,23 @@ namespace rockdda::dda
     /// Number of steps and cuts so far.
     unsigned long n_steps = 0, n_cuts = 0;
 
+    /**
+     * The state needed to continue the run bit for bit (block geometry,
+     * velocities, stresses and strains, moving points, contacts with their
+     * states, time, step length, counters and the solver's warm start), as
+     * the bytes of a checkpoint file.
+     */
+    std::string
+    checkpoint() const;
+
+    /**
+     * Continue from the checkpoint() @p bytes of a run of the same scene
+     * (same blocks, vertices and points); throws InputError naming
+     * @p source if they do not belong to it or are damaged.
+     */
+    void
+    restore(const std::string &bytes, const std::string &source);
+
   private:
     StepReport
     advance(const double max_length);

@@ -68,6 +68,13 @@ namespace rockdda::io
       return rows.size();
     }
 
+    /// Row @p i.
+    const std::vector<double> &
+    row(const std::size_t i) const
+    {
+      return rows.at(i);
+    }
+
     /// The CSV text (header line, then one line per row, 12 significant
     /// digits).
     std::string

@@ -1,0 +1,98 @@
+/**
+ * @file
+ * Internal to the dda subsystem: raw binary writing and bounds-checked
+ * reading of plain values for checkpoints (exact doubles, so that a resumed
+ * run continues bit for bit).
+ */
+#ifndef ROCKDDA_DDA_BINARY_STREAM_H
+#define ROCKDDA_DDA_BINARY_STREAM_H
+
+#include <rockdda/io/error.h>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <type_traits>
+
+namespace rockdda::dda::internal
+{
+  /// Appends plain values to a byte string.
+  class BinaryWriter
+  {
+  public:
+    template <typename T>
+    void
+    put(const T &value)
+    {
+      static_assert(std::is_trivially_copyable_v<T>);
+      bytes.append(reinterpret_cast<const char *>(&value), sizeof(T));
+    }
+
+    void
+    put_string(const std::string &s)
+    {
+      put<std::uint64_t>(s.size());
+      bytes += s;
+    }
+
+    /// The bytes written so far.
+    std::string bytes;
+  };
+
+  /// Reads plain values from a byte string; throws InputError naming
+  /// @p source if the data end early.
+  class BinaryReader
+  {
+  public:
+    BinaryReader(const std::string &bytes, const std::string &source)
+        : bytes(bytes)
+        , source(source)
+    {}
+
+    template <typename T>
+    T
+    get()
+    {
+      static_assert(std::is_trivially_copyable_v<T>);
+      require(sizeof(T));
+      T value;
+      std::memcpy(&value, bytes.data() + position, sizeof(T));
+      position += sizeof(T);
+      return value;
+    }
+
+    std::string
+    get_string()
+    {
+      const auto n = get<std::uint64_t>();
+      require(n);
+      std::string s = bytes.substr(position, n);
+      position += n;
+      return s;
+    }
+
+    /// True if every byte has been read.
+    bool
+    at_end() const
+    {
+      return position == bytes.size();
+    }
+
+  private:
+    void
+    require(const std::uint64_t n) const
+    {
+      if (n > bytes.size() - position)
+        throw InputError(source + ": the checkpoint is truncated (needs "
+                         + std::to_string(n) + " more bytes at byte "
+                         + std::to_string(position) + " of "
+                         + std::to_string(bytes.size()) + ")");
+    }
+
+    const std::string &bytes;
+    std::string        source;
+    std::size_t        position = 0;
+  };
+} // namespace rockdda::dda::internal
+
+#endif

@@ -1,0 +1,242 @@
+/**
+ * @file
+ * Checkpoint and restart of the DDA engine: every quantity that evolves
+ * during a run, written as raw doubles and integers so that a resumed run
+ * continues exactly as the uninterrupted one.
+ */
+#include <rockdda/dda/engine.h>
+#include <rockdda/io/error.h>
+
+#include "binary_stream.h"
+#include <cmath>
+#include <cstdint>
+
+namespace rockdda::dda
+{
+  namespace
+  {
+    constexpr char          magic[]        = "rockdda DDA checkpoint";
+    constexpr std::uint32_t format_version = 1;
+    using internal::BinaryReader;
+    using internal::BinaryWriter;
+
+    void
+    put_point(BinaryWriter &w, const geometry::Point &p)
+    {
+      w.put(p.x());
+      w.put(p.y());
+    }
+
+    geometry::Point
+    get_point(BinaryReader &r)
+    {
+      const double x = r.get<double>();
+      const double y = r.get<double>();
+      return geometry::Point(x, y);
+    }
+
+    template <int n>
+    void
+    put_vector(BinaryWriter &w, const Eigen::Matrix<double, n, 1> &v)
+    {
+      for (int i = 0; i < n; ++i)
+        w.put(v[i]);
+    }
+
+    template <int n>
+    void
+    get_vector(BinaryReader &r, Eigen::Matrix<double, n, 1> &v)
+    {
+      for (int i = 0; i < n; ++i)
+        v[i] = r.get<double>();
+    }
+
+    /// Read a count and check it against the scene's.
+    void
+    expect_count(BinaryReader      &r,
+                 const std::size_t  expected,
+                 const std::string &what,
+                 const std::string &source)
+    {
+      const auto n = r.get<std::uint64_t>();
+      if (n != expected)
+        throw InputError(source + ": the checkpoint has " + std::to_string(n)
+                         + " " + what + ", the scene "
+                         + std::to_string(expected)
+                         + ": it belongs to another scene");
+    }
+  } // namespace
+
+
+
+  std::string
+  DdaSystem::checkpoint() const
+  {
+    BinaryWriter w;
+    w.put_string(magic);
+    w.put(format_version);
+    w.put<std::uint64_t>(scene.blocks.size());
+    for (const auto &b : scene.blocks)
+      {
+        w.put<std::uint64_t>(b.polygon.vertices.size());
+        for (const auto &v : b.polygon.vertices)
+          put_point(w, v);
+        put_vector<6>(w, b.velocity);
+        put_vector<3>(w, b.stress);
+        put_vector<3>(w, b.strain);
+        put_point(w, b.initial_centroid);
+        w.put(b.rotation);
+      }
+    w.put<std::uint64_t>(scene.fixed_points.size());
+    for (const auto &f : scene.fixed_points)
+      put_point(w, f.point);
+    w.put<std::uint64_t>(scene.load_points.size());
+    for (const auto &l : scene.load_points)
+      put_point(w, l.point);
+    w.put<std::uint64_t>(scene.measurement_points.size());
+    for (const auto &m : scene.measurement_points)
+      {
+        put_point(w, m.point);
+        put_point(w, m.initial);
+      }
+    w.put<std::uint64_t>(current_contacts.size());
+    for (const auto &c : current_contacts)
+      {
+        const auto &g = c.geometry;
+        for (const int i : {g.block_i, g.vertex, g.block_j, g.edge})
+          w.put<std::int32_t>(i);
+        put_point(w, g.normal);
+        w.put(g.xi);
+        w.put(g.gap);
+        w.put<std::int32_t>(static_cast<std::int32_t>(c.state));
+        w.put<std::int32_t>(static_cast<std::int32_t>(c.state_at_start));
+        w.put(c.xi_ref);
+        w.put(c.normal_force);
+        w.put(c.shear_force);
+        w.put<std::int32_t>(c.slide_direction);
+        w.put<std::uint8_t>(c.broken ? 1 : 0);
+        w.put<std::int32_t>(c.joint);
+      }
+    w.put(t);
+    w.put(dt);
+    w.put<std::uint64_t>(n_steps);
+    w.put<std::uint64_t>(n_cuts);
+    w.put<std::uint64_t>(last_solution.size());
+    for (Eigen::Index i = 0; i < last_solution.size(); ++i)
+      w.put(last_solution[i]);
+    return w.bytes;
+  }
+
+
+
+  void
+  DdaSystem::restore(const std::string &bytes, const std::string &source)
+  {
+    BinaryReader r(bytes, source);
+    if (r.get_string() != magic)
+      throw InputError(source + ": not a rockdda DDA checkpoint");
+    const auto version = r.get<std::uint32_t>();
+    if (version != format_version)
+      throw InputError(source + ": checkpoint format " + std::to_string(version)
+                       + "; this build reads format "
+                       + std::to_string(format_version));
+    // Read into a copy: the engine is untouched if the file is rejected.
+    BlockSystem s = scene;
+    expect_count(r, s.blocks.size(), "blocks", source);
+    for (std::size_t k = 0; k < s.blocks.size(); ++k)
+      {
+        Block &b = s.blocks[k];
+        expect_count(r,
+                     b.polygon.vertices.size(),
+                     "vertices in block " + std::to_string(b.id),
+                     source);
+        for (auto &v : b.polygon.vertices)
+          v = get_point(r);
+        get_vector<6>(r, b.velocity);
+        get_vector<3>(r, b.stress);
+        get_vector<3>(r, b.strain);
+        b.initial_centroid = get_point(r);
+        b.rotation         = r.get<double>();
+      }
+    expect_count(r, s.fixed_points.size(), "fixed points", source);
+    for (auto &f : s.fixed_points)
+      f.point = get_point(r);
+    expect_count(r, s.load_points.size(), "load points", source);
+    for (auto &l : s.load_points)
+      l.point = get_point(r);
+    expect_count(r, s.measurement_points.size(), "measurement points", source);
+    for (auto &m : s.measurement_points)
+      {
+        m.point   = get_point(r);
+        m.initial = get_point(r);
+      }
+    const auto n_contacts = r.get<std::uint64_t>();
+    // Each contact takes 85 bytes: a larger count is a damaged file.
+    if (n_contacts > bytes.size() / 85)
+      throw InputError(source + ": the checkpoint is damaged ("
+                       + std::to_string(n_contacts) + " contacts in "
+                       + std::to_string(bytes.size()) + " bytes)");
+    std::vector<Contact> contacts(n_contacts);
+    for (auto &c : contacts)
+      {
+        auto &g             = c.geometry;
+        g.block_i           = r.get<std::int32_t>();
+        g.vertex            = r.get<std::int32_t>();
+        g.block_j           = r.get<std::int32_t>();
+        g.edge              = r.get<std::int32_t>();
+        g.normal            = get_point(r);
+        g.xi                = r.get<double>();
+        g.gap               = r.get<double>();
+        const auto state    = r.get<std::int32_t>();
+        const auto at_start = r.get<std::int32_t>();
+        if (state < 0 || state > 2 || at_start < 0 || at_start > 2)
+          throw InputError(source
+                           + ": the checkpoint is damaged (contact "
+                             "state "
+                           + std::to_string(state) + ")");
+        c.state            = static_cast<ContactState>(state);
+        c.state_at_start   = static_cast<ContactState>(at_start);
+        c.xi_ref           = r.get<double>();
+        c.normal_force     = r.get<double>();
+        c.shear_force      = r.get<double>();
+        c.slide_direction  = r.get<std::int32_t>();
+        c.broken           = r.get<std::uint8_t>() != 0;
+        c.joint            = r.get<std::int32_t>();
+        const int n_blocks = static_cast<int>(s.blocks.size());
+        if (g.block_i < 0 || g.block_i >= n_blocks || g.block_j < 0
+            || g.block_j >= n_blocks || c.joint < 0
+            || c.joint >= static_cast<int>(s.joints.size()))
+          throw InputError(source
+                           + ": the checkpoint is damaged (contact "
+                             "between blocks "
+                           + std::to_string(g.block_i) + " and "
+                           + std::to_string(g.block_j) + ")");
+      }
+    const double        time  = r.get<double>();
+    const double        step  = r.get<double>();
+    const std::uint64_t steps = r.get<std::uint64_t>();
+    const std::uint64_t cuts  = r.get<std::uint64_t>();
+    const auto          n_x   = r.get<std::uint64_t>();
+    if (n_x != 0 && n_x != 6 * s.blocks.size())
+      throw InputError(source + ": the checkpoint is damaged (warm start of "
+                       + std::to_string(n_x) + " values)");
+    Eigen::VectorXd x(static_cast<Eigen::Index>(n_x));
+    for (Eigen::Index i = 0; i < x.size(); ++i)
+      x[i] = r.get<double>();
+    if (!r.at_end())
+      throw InputError(source + ": the checkpoint has trailing data");
+    if (!(std::isfinite(time) && step > 0.))
+      throw InputError(source + ": the checkpoint is damaged (t = "
+                       + std::to_string(time)
+                       + " s, dt = " + std::to_string(step) + " s)");
+
+    scene            = std::move(s);
+    current_contacts = std::move(contacts);
+    contact_set.store(current_contacts);
+    t             = time;
+    dt            = step;
+    n_steps       = steps;
+    n_cuts        = cuts;
+    last_solution = std::move(x);
+  }
+} // namespace rockdda::dda

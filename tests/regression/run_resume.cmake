@@ -1,0 +1,68 @@
+# Checkpoint / resume check of one parameter file PRM (its '# end times: T1
+# T2' line): a run to T2 at once (folder OUT/full) against a run to T1 that
+# writes checkpoints and a second run of the same file with Resume = true to
+# T2 (folder OUT/resume). summary.csv (except wall times) and
+# statistics.csv must be identical. Resume without a checkpoint must be
+# rejected with a message naming the key.
+get_filename_component(prm_dir ${PRM} DIRECTORY)
+file(STRINGS ${PRM} times REGEX "^# end times: ")
+string(REGEX REPLACE "^# end times: +" "" times "${times}")
+separate_arguments(times)
+list(GET times 0 t1)
+list(GET times 1 t2)
+file(REMOVE_RECURSE ${OUT})
+file(MAKE_DIRECTORY ${OUT})
+file(READ ${PRM} base)
+# The variants are written under OUT, so the block file path is made
+# absolute (relative paths are resolved against the parameter file's
+# folder).
+string(REGEX REPLACE "set Block file( *)= *([^\n]*)" "set Block file = ${prm_dir}/\\2"
+  base "${base}")
+function(variant name end_time resume folder)
+  file(WRITE ${OUT}/${name}.prm "${base}
+set Output directory = ${OUT}/${folder}
+subsection DDA
+  set End time = ${end_time}
+  set Resume   = ${resume}
+end
+")
+endfunction()
+variant(full ${t2} false full)
+variant(part1 ${t1} false resume)
+variant(part2 ${t2} true resume)
+foreach(run full part1 part2)
+  execute_process(COMMAND ${DRIVER} --quiet ${OUT}/${run}.prm
+    WORKING_DIRECTORY ${OUT}
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${run} failed (exit ${rc}):\n${out}\n${err}")
+  endif()
+endforeach()
+if(NOT EXISTS ${OUT}/resume/checkpoint.bin)
+  message(FATAL_ERROR "no checkpoint.bin written")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
+    ${OUT}/full/statistics.csv ${OUT}/resume/statistics.csv
+  RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "statistics.csv of the resumed run differs from the uninterrupted run")
+endif()
+file(STRINGS ${OUT}/full/summary.csv full_rows)
+file(STRINGS ${OUT}/resume/summary.csv resume_rows)
+list(FILTER full_rows EXCLUDE REGEX "wall_time")
+list(FILTER resume_rows EXCLUDE REGEX "wall_time")
+if(NOT "${full_rows}" STREQUAL "${resume_rows}")
+  message(FATAL_ERROR "summary.csv differs:\nfull:   ${full_rows}\nresume: ${resume_rows}")
+endif()
+# Resume without a checkpoint: a clear error naming the key, exit 1.
+variant(missing ${t2} true missing)
+execute_process(COMMAND ${DRIVER} --quiet ${OUT}/missing.prm
+  WORKING_DIRECTORY ${OUT}
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "DDA/Resume' is true but there is no checkpoint")
+  message(FATAL_ERROR "resume without checkpoint: exit ${rc}, message: ${err}")
+endif()
+list(LENGTH full_rows n)
+file(STRINGS ${OUT}/full/statistics.csv stats)
+list(LENGTH stats n_stats)
+message("resumed run identical: ${n} summary rows, ${n_stats} statistics lines")
