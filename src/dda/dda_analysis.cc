@@ -12,7 +12,7 @@
 #include <rockdda/io/progress.h>
 #include <rockdda/seismic/ground_motion.h>
 
-#include "binary_stream.h"
+#include <rockdda/io/binary_stream.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -418,7 +418,7 @@ namespace rockdda::dda
         // A checkpoint: the engine's state and the run's progress (rows of
         // statistics.csv, VTU series, next output times, counters).
         const auto save_checkpoint = [&]() {
-          internal::BinaryWriter w;
+          io::BinaryWriter w;
           w.put_string(run_magic);
           w.put_string(fingerprint);
           w.put_string(dda->checkpoint());
@@ -454,7 +454,7 @@ namespace rockdda::dda
               + " (run once with 'DDA/Checkpoint interval' > 0)");
           const std::string      bytes((std::istreambuf_iterator<char>(in)),
                                   std::istreambuf_iterator<char>());
-          internal::BinaryReader r(bytes, checkpoint_file);
+          io::BinaryReader r(bytes, checkpoint_file);
           if (r.get_string() != run_magic)
             throw InputError(checkpoint_file
                              + ": not a checkpoint of a rockdda DDA run");

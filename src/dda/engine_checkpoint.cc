@@ -7,7 +7,7 @@
 #include <rockdda/dda/engine.h>
 #include <rockdda/io/error.h>
 
-#include "binary_stream.h"
+#include <rockdda/io/binary_stream.h>
 #include <cmath>
 #include <cstdint>
 
@@ -17,8 +17,8 @@ namespace rockdda::dda
   {
     constexpr char          magic[]        = "rockdda DDA checkpoint";
     constexpr std::uint32_t format_version = 1;
-    using internal::BinaryReader;
-    using internal::BinaryWriter;
+    using io::BinaryReader;
+    using io::BinaryWriter;
 
     void
     put_point(BinaryWriter &w, const geometry::Point &p)

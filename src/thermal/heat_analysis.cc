@@ -4,6 +4,7 @@
  * "Heat" parameter sections (geometry, materials, mesh, time stepping,
  * boundary conditions, output and the periodic half-space check).
  */
+#include <rockdda/io/binary_stream.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/parameters.h>
 #include <rockdda/io/progress.h>
@@ -15,6 +16,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <sstream>
 
@@ -23,6 +26,10 @@ namespace rockdda::thermal
   namespace
   {
     using dealii::Patterns::Anything;
+
+    /// First string of a heat run checkpoint (checkpoint.bin).
+    constexpr char heat_run_magic[] = "rockdda heat run checkpoint 1";
+
     using dealii::Patterns::Bool;
     using dealii::Patterns::Double;
     using dealii::Patterns::Integer;
@@ -134,10 +141,12 @@ namespace rockdda::thermal
 
     private:
       HeatParameters           parameters;
-      double                   end_time        = 0.;
-      unsigned int             spin_up_cycles  = 0;
-      double                   spin_up_period  = 0.;
-      double                   output_interval = 0.;
+      double                   end_time            = 0.;
+      unsigned int             spin_up_cycles      = 0;
+      double                   spin_up_period      = 0.;
+      double                   output_interval     = 0.;
+      double                   checkpoint_interval = 0.;
+      bool                     resume              = false;
       std::vector<Point2>      probes;
       std::vector<double>      vtu_times;
       bool                     halfspace_check     = false;
@@ -363,6 +372,25 @@ namespace rockdda::thermal
                     Double(0.),
                     "s",
                     "Length of one spin-up cycle (one year = 31557600 s).");
+        io::declare(prm,
+                    "Checkpoint interval",
+                    "0",
+                    Double(0.),
+                    "s",
+                    "Model time between checkpoints (at output and spin-up "
+                    "cycle boundaries): checkpoint.bin, for 'Resume', and "
+                    "statistics.csv so far are written atomically into the "
+                    "output directory; 0 = none. Serial solver with a fixed "
+                    "mesh only.");
+        io::declare(prm,
+                    "Resume",
+                    "false",
+                    Bool(),
+                    "-",
+                    "Continue from checkpoint.bin in the output directory, "
+                    "written by an earlier run of this parameter file with "
+                    "a 'Checkpoint interval'; the run continues bit for bit "
+                    "(the End time may be raised).");
         io::declare(prm,
                     "Rannacher steps",
                     "2",
@@ -654,6 +682,8 @@ namespace rockdda::thermal
       spin_up_cycles              = prm.get_integer("Spin-up cycles");
       spin_up_period              = prm.get_double("Spin-up period");
       p.rannacher_steps           = prm.get_integer("Rannacher steps");
+      checkpoint_interval         = prm.get_double("Checkpoint interval");
+      resume                      = prm.get_bool("Resume");
       p.oscillation_fallback      = prm.get_bool("Oscillation fallback");
       p.direct_solver             = prm.get("Linear solver") == "direct";
       p.distributed               = prm.get("Linear solver") == "amg";
@@ -895,20 +925,6 @@ namespace rockdda::thermal
         solver.add_probe(q[0], q[1]);
       const double record_start
         = parameters.start_time + spin_up_cycles * spin_up_period;
-      {
-        io::ProgressBar progress("heat spin-up", record_start);
-        for (unsigned int c = 0; c < spin_up_cycles; ++c)
-          {
-            solver.advance_to(parameters.start_time + (c + 1) * spin_up_period);
-            progress.update(c, solver.time());
-          }
-      }
-      if (spin_up_cycles > 0)
-        context.log.line("spin-up: " + std::to_string(spin_up_cycles)
-                         + " cycles of " + io::format_number(spin_up_period, 8)
-                         + " s");
-      const double e0 = solver.stored_heat();
-      const double q0 = solver.boundary_heat_in();
 
       io::Table table;
       table.add_column("time", "s");
@@ -927,9 +943,21 @@ namespace rockdda::thermal
       if (parameters.adaptive_refinement)
         table.add_column("cells", "-");
 
+      // Progress of the run (all of it is in a checkpoint).
+      unsigned int                     spin_up_done = 0;
+      bool                             recording    = false;
+      unsigned long                    n_records    = 0;
+      double                           e0 = 0., q0 = 0.;
       std::vector<std::vector<double>> samples(probes.size());
       std::vector<double>              sample_times;
-      const auto                       record = [&]() {
+      std::vector<double>              vtu_pending = vtu_times;
+      std::sort(vtu_pending.begin(), vtu_pending.end());
+      std::string pvd = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
+                        "version=\"0.1\">\n<Collection>\n";
+      unsigned int n_vtu     = 0;
+      double next_checkpoint = parameters.start_time + checkpoint_interval;
+
+      const auto record = [&]() {
         std::vector<double> row{solver.time()};
         for (std::size_t k = 0; k < probes.size(); ++k)
           {
@@ -954,13 +982,7 @@ namespace rockdda::thermal
                                      + " s");
         table.add_row(row);
       };
-
-      std::vector<double> vtu_pending = vtu_times;
-      std::sort(vtu_pending.begin(), vtu_pending.end());
-      std::string pvd = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
-                        "version=\"0.1\">\n<Collection>\n";
-      unsigned int n_vtu     = 0;
-      const auto   write_vtu = [&]() {
+      const auto write_vtu = [&]() {
         char name[64];
         std::snprintf(name, sizeof(name), "temperature-%04u", n_vtu++);
         // One .vtu (serial), or a .pvtu with one piece per MPI rank.
@@ -972,15 +994,124 @@ namespace rockdda::thermal
                  + "\" file=\"" + files.front().first + "\"/>\n";
       };
 
-      record();
+      // Checkpoints: the solver's state and the run's progress.
+      const std::string checkpoint_file = context.output.file("checkpoint.bin");
+      std::ostringstream fingerprint_text;
+      fingerprint_text.precision(17);
+      fingerprint_text << solver.method_description() << "; " << st0.n_cells
+                       << " cells; start " << parameters.start_time
+                       << " s; spin-up " << spin_up_cycles << " x "
+                       << spin_up_period << " s; output every "
+                       << output_interval << " s";
+      const std::string fingerprint     = fingerprint_text.str();
+      const auto        save_checkpoint = [&]() {
+        io::BinaryWriter w;
+        w.put_string(heat_run_magic);
+        w.put_string(fingerprint);
+        w.put_string(solver.checkpoint());
+        w.put<std::uint32_t>(spin_up_done);
+        w.put<std::uint8_t>(recording ? 1 : 0);
+        w.put<std::uint64_t>(n_records);
+        w.put(e0);
+        w.put(q0);
+        w.put<std::uint64_t>(table.n_rows());
+        for (std::size_t i = 0; i < table.n_rows(); ++i)
+          w.put_doubles(table.row(i));
+        for (const auto &series : samples)
+          w.put_doubles(series);
+        w.put_doubles(sample_times);
+        w.put_doubles(vtu_pending);
+        w.put<std::uint32_t>(n_vtu);
+        w.put_string(pvd);
+        w.put(next_checkpoint);
+        context.output.write("statistics.csv", table.csv());
+        context.output.write("checkpoint.bin", w.bytes);
+      };
+      const auto checkpoint_if_due = [&]() {
+        if (checkpoint_interval > 0. && solver.time() >= next_checkpoint - 1e-9)
+          {
+            while (next_checkpoint <= solver.time() + 1e-9)
+              next_checkpoint += checkpoint_interval;
+            save_checkpoint();
+          }
+      };
+      if (checkpoint_interval > 0.)
+        (void)solver.checkpoint(); // InputError now if not available
+      if (resume)
+        {
+          std::ifstream in(checkpoint_file, std::ios::binary);
+          if (!in)
+            throw InputError(
+              "key 'Heat/Time stepping/Resume' is true but there is no "
+              "checkpoint "
+              + checkpoint_file
+              + " (run once with 'Heat/Time stepping/Checkpoint interval' > "
+                "0)");
+          const std::string bytes((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
+          io::BinaryReader  r(bytes, checkpoint_file);
+          if (r.get_string() != heat_run_magic)
+            throw InputError(checkpoint_file
+                             + ": not a checkpoint of a rockdda heat run");
+          const std::string saved = r.get_string();
+          if (saved != fingerprint)
+            throw InputError(checkpoint_file + ": written for another run ("
+                             + saved + "); this parameter file has "
+                             + fingerprint);
+          solver.restore(r.get_string(), checkpoint_file);
+          spin_up_done      = r.get<std::uint32_t>();
+          recording         = r.get<std::uint8_t>() != 0;
+          n_records         = r.get<std::uint64_t>();
+          e0                = r.get<double>();
+          q0                = r.get<double>();
+          const auto n_rows = r.get<std::uint64_t>();
+          for (std::uint64_t i = 0; i < n_rows; ++i)
+            table.add_row(r.get_doubles());
+          for (auto &series : samples)
+            series = r.get_doubles();
+          sample_times    = r.get_doubles();
+          vtu_pending     = r.get_doubles();
+          n_vtu           = r.get<std::uint32_t>();
+          pvd             = r.get_string();
+          next_checkpoint = r.get<double>();
+          if (!r.at_end())
+            throw InputError(checkpoint_file + ": trailing data");
+          context.log.line("resumed from " + checkpoint_file + " at t = "
+                           + io::format_number(solver.time(), 10) + " s");
+        }
+
+      {
+        io::ProgressBar progress("heat spin-up", record_start);
+        while (spin_up_done < spin_up_cycles)
+          {
+            solver.advance_to(parameters.start_time
+                              + (spin_up_done + 1) * spin_up_period);
+            ++spin_up_done;
+            progress.update(spin_up_done, solver.time());
+            if (spin_up_done < spin_up_cycles)
+              checkpoint_if_due();
+          }
+      }
+      if (spin_up_cycles > 0 && !resume)
+        context.log.line("spin-up: " + std::to_string(spin_up_cycles)
+                         + " cycles of " + io::format_number(spin_up_period, 8)
+                         + " s");
+      if (!recording)
+        {
+          e0        = solver.stored_heat();
+          q0        = solver.boundary_heat_in();
+          recording = true;
+          record();
+          checkpoint_if_due();
+        }
       {
         io::ProgressBar progress("heat", end_time);
-        unsigned long   i = 0;
         while (solver.time() < end_time - 1e-9 * output_interval)
           {
             double next
-              = std::min(end_time, record_start + (i + 1) * output_interval);
-            ++i;
+              = std::min(end_time,
+                         record_start + (n_records + 1) * output_interval);
+            ++n_records;
             while (!vtu_pending.empty() && vtu_pending.front() <= next)
               {
                 if (vtu_pending.front() > solver.time())
@@ -991,9 +1122,12 @@ namespace rockdda::thermal
               }
             solver.advance_to(next);
             record();
-            progress.update(i, solver.time());
+            progress.update(n_records, solver.time());
+            checkpoint_if_due();
           }
       }
+      if (checkpoint_interval > 0.)
+        save_checkpoint(); // at the End time: the run can be extended
       if (n_vtu > 0)
         context.output.write("temperature.pvd",
                              pvd + "</Collection>\n</VTKFile>\n");

@@ -3,6 +3,7 @@
  * The deal.II heat solver (the only translation unit of the thermal
  * subsystem that includes deal.II's finite-element headers).
  */
+#include <rockdda/io/binary_stream.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
 #include <rockdda/thermal/heat_solver.h>
@@ -1543,6 +1544,81 @@ namespace rockdda::thermal
     return !Utilities::MPI::job_supports_mpi()
            || Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   }
+
+  namespace
+  {
+    constexpr char heat_magic[] = "rockdda heat solver checkpoint 1";
+  }
+
+  std::string
+  HeatSolver::checkpoint() const
+  {
+    if (distributed)
+      throw InputError("heat: checkpoints are not available in the "
+                       "distributed (MPI) solver");
+    if (impl->prm.adaptive_refinement)
+      throw InputError("heat: checkpoints are not available with adaptive "
+                       "refinement (the mesh changes during the run)");
+    io::BinaryWriter w;
+    w.put_string(heat_magic);
+    w.put<std::uint64_t>(impl->tria.n_active_cells());
+    w.put_doubles(impl->solution);
+    w.put_doubles(impl->increment_old);
+    w.put(impl->time);
+    w.put(impl->boundary_heat);
+    w.put(impl->source_heat);
+    w.put<std::uint8_t>(impl->last_step_flipped ? 1 : 0);
+    w.put<std::uint64_t>(impl->steps_taken);
+    w.put(impl->stats);
+    return w.bytes;
+  }
+
+
+
+  void
+  HeatSolver::restore(const std::string &bytes, const std::string &source)
+  {
+    if (distributed || impl->prm.adaptive_refinement)
+      (void)checkpoint(); // throws the reason
+    io::BinaryReader r(bytes, source);
+    if (r.get_string() != heat_magic)
+      throw InputError(source + ": not a rockdda heat checkpoint");
+    const auto          cells     = r.get<std::uint64_t>();
+    std::vector<double> solution  = r.get_doubles();
+    std::vector<double> increment = r.get_doubles();
+    const std::size_t   n         = impl->dof_handler.n_dofs();
+    if (cells != impl->tria.n_active_cells() || solution.size() != n
+        || increment.size() != n)
+      throw InputError(source + ": the checkpoint has " + std::to_string(cells)
+                       + " cells and " + std::to_string(solution.size())
+                       + " unknowns, the mesh of this run "
+                       + std::to_string(impl->tria.n_active_cells()) + " and "
+                       + std::to_string(n) + ": it belongs to another mesh");
+    const double time          = r.get<double>();
+    const double boundary_heat = r.get<double>();
+    const double source_heat   = r.get<double>();
+    const bool   flipped       = r.get<std::uint8_t>() != 0;
+    const auto   steps         = r.get<std::uint64_t>();
+    const auto   stats         = r.get<HeatStatistics>();
+    if (!r.at_end())
+      throw InputError(source + ": the checkpoint has trailing data");
+    for (const double v : solution)
+      if (!std::isfinite(v))
+        throw InputError(source
+                         + ": the checkpoint holds non-finite "
+                           "temperatures");
+    std::copy(solution.begin(), solution.end(), impl->solution.begin());
+    std::copy(increment.begin(), increment.end(), impl->increment_old.begin());
+    impl->time              = time;
+    impl->boundary_heat     = boundary_heat;
+    impl->source_heat       = source_heat;
+    impl->last_step_flipped = flipped;
+    impl->steps_taken       = steps;
+    impl->stats             = stats;
+    impl->rhs_old_valid     = false; // reassembled at the restored time
+  }
+
+
 
   std::string
   HeatSolver::vtu() const

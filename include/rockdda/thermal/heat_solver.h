@@ -272,6 +272,24 @@ namespace rockdda::thermal
     bool
     is_output_rank() const;
 
+    /**
+     * The state needed to continue the run bit for bit (field, previous
+     * increment, time, heat balance, counters), as the bytes of a
+     * checkpoint file. Serial solver with a fixed mesh only: throws
+     * InputError with adaptive refinement or under MPI.
+     */
+    std::string
+    checkpoint() const;
+
+    /**
+     * Continue from the checkpoint() @p bytes of a solver built from the
+     * same parameters; throws InputError naming @p source if they belong
+     * to another mesh or are damaged. The time-step operators are rebuilt
+     * (one more factorisation than the uninterrupted run counts).
+     */
+    void
+    restore(const std::string &bytes, const std::string &source);
+
     /// Mesh and cost counters.
     HeatStatistics
     statistics() const;

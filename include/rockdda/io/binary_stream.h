@@ -1,11 +1,11 @@
 /**
  * @file
- * Internal to the dda subsystem: raw binary writing and bounds-checked
+ * Raw binary writing and bounds-checked
  * reading of plain values for checkpoints (exact doubles, so that a resumed
  * run continues bit for bit).
  */
-#ifndef ROCKDDA_DDA_BINARY_STREAM_H
-#define ROCKDDA_DDA_BINARY_STREAM_H
+#ifndef ROCKDDA_IO_BINARY_STREAM_H
+#define ROCKDDA_IO_BINARY_STREAM_H
 
 #include <rockdda/io/error.h>
 
@@ -13,8 +13,9 @@
 #include <cstring>
 #include <string>
 #include <type_traits>
+#include <vector>
 
-namespace rockdda::dda::internal
+namespace rockdda::io
 {
   /// Appends plain values to a byte string.
   class BinaryWriter
@@ -33,6 +34,16 @@ namespace rockdda::dda::internal
     {
       put<std::uint64_t>(s.size());
       bytes += s;
+    }
+
+    /// A sequence of doubles (count, then values).
+    template <typename Sequence>
+    void
+    put_doubles(const Sequence &values)
+    {
+      put<std::uint64_t>(values.size());
+      for (const double v : values)
+        put(v);
     }
 
     /// The bytes written so far.
@@ -71,6 +82,19 @@ namespace rockdda::dda::internal
       return s;
     }
 
+    /// A sequence of doubles written by put_doubles().
+    std::vector<double>
+    get_doubles()
+    {
+      const auto n = get<std::uint64_t>();
+      if (n > (bytes.size() - position) / sizeof(double))
+        require(bytes.size() - position + 1); // throws: truncated
+      std::vector<double> values(n);
+      for (double &v : values)
+        v = get<double>();
+      return values;
+    }
+
     /// True if every byte has been read.
     bool
     at_end() const
@@ -93,6 +117,6 @@ namespace rockdda::dda::internal
     std::string        source;
     std::size_t        position = 0;
   };
-} // namespace rockdda::dda::internal
+} // namespace rockdda::io
 
 #endif
