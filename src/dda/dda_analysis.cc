@@ -7,12 +7,12 @@
 #include <rockdda/dda/block_file.h>
 #include <rockdda/dda/engine.h>
 #include <rockdda/dda/vtu_output.h>
+#include <rockdda/io/checkpoint.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/parameters.h>
 #include <rockdda/io/progress.h>
 #include <rockdda/seismic/ground_motion.h>
 
-#include <rockdda/io/binary_stream.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -25,10 +25,6 @@ namespace rockdda::dda
 {
   namespace
   {
-    /// First string of a DDA run checkpoint (checkpoint.bin).
-    constexpr char run_magic[] = "rockdda DDA run checkpoint 1";
-
-    using dealii::Patterns::Bool;
     using dealii::Patterns::Double;
     using dealii::Patterns::Integer;
     using dealii::Patterns::Selection;
@@ -158,26 +154,10 @@ namespace rockdda::dda
                     "their separator, swept in parallel): 1 or 2; 0 = 2 on "
                     "a machine with at least two cores. Results do not "
                     "depend on it.");
-        io::declare(prm,
-                    "Checkpoint interval",
-                    "0",
-                    Double(0.),
-                    "s",
-                    "Model time between checkpoints: checkpoint.bin (the "
-                    "full state, for 'Resume') and statistics.csv so far are "
-                    "written atomically into the output directory, at "
-                    "multiples of this interval (steps land on them, as on "
-                    "output times) and at the End time; 0 = no "
-                    "checkpoints.");
-        io::declare(prm,
-                    "Resume",
-                    "false",
-                    Bool(),
-                    "-",
-                    "Continue from checkpoint.bin in the output directory, "
-                    "written by an earlier run of this parameter file with "
-                    "a 'Checkpoint interval'; the run continues bit for bit "
-                    "(the End time may be raised).");
+        io::RunCheckpoint::declare_parameters(
+          prm,
+          "at multiples of this interval (steps land on them, as on output "
+          "times) and at the End time");
         io::declare(prm,
                     "Settling steps",
                     "0",
@@ -410,25 +390,19 @@ namespace rockdda::dda
 
         StepReport last;
         double next_output = output_interval, next_row = statistics_interval;
-        double next_checkpoint             = checkpoint_interval;
-        unsigned int      max_iterations   = 0;
-        unsigned long     iterations_total = 0;
-        const std::string checkpoint_file
-          = context.output.file("checkpoint.bin");
+        double next_checkpoint                   = checkpoint_interval;
+        unsigned int            max_iterations   = 0;
+        unsigned long           iterations_total = 0;
+        const io::RunCheckpoint checkpoint_file(context.output,
+                                                "DDA",
+                                                fingerprint,
+                                                "DDA");
         // A checkpoint: the engine's state and the run's progress (rows of
         // statistics.csv, VTU series, next output times, counters).
         const auto save_checkpoint = [&]() {
-          io::BinaryWriter w;
-          w.put_string(run_magic);
-          w.put_string(fingerprint);
+          io::BinaryWriter w = checkpoint_file.begin();
           w.put_string(dda->checkpoint());
-          w.put<std::uint64_t>(table.n_rows());
-          for (std::size_t i = 0; i < table.n_rows(); ++i)
-            {
-              w.put<std::uint64_t>(table.row(i).size());
-              for (const double v : table.row(i))
-                w.put(v);
-            }
+          io::RunCheckpoint::put_rows(w, table);
           for (const auto *files : {&block_files, &contact_files})
             {
               w.put<std::uint64_t>(files->size());
@@ -442,38 +416,13 @@ namespace rockdda::dda
             w.put(v);
           w.put<std::uint32_t>(max_iterations);
           w.put<std::uint64_t>(iterations_total);
-          context.output.write("statistics.csv", table.csv());
-          context.output.write("checkpoint.bin", w.bytes);
+          checkpoint_file.write(w, table);
         };
         const auto load_checkpoint = [&]() {
-          std::ifstream in(checkpoint_file, std::ios::binary);
-          if (!in)
-            throw InputError(
-              "key 'DDA/Resume' is true but there is no checkpoint "
-              + checkpoint_file
-              + " (run once with 'DDA/Checkpoint interval' > 0)");
-          const std::string      bytes((std::istreambuf_iterator<char>(in)),
-                                  std::istreambuf_iterator<char>());
-          io::BinaryReader r(bytes, checkpoint_file);
-          if (r.get_string() != run_magic)
-            throw InputError(checkpoint_file
-                             + ": not a checkpoint of a rockdda DDA run");
-          const std::string saved = r.get_string();
-          if (saved != fingerprint)
-            throw InputError(checkpoint_file + ": written for another run ("
-                             + saved + "); this parameter file has "
-                             + fingerprint);
-          dda->restore(r.get_string(), checkpoint_file);
-          const auto n_rows = r.get<std::uint64_t>();
-          for (std::uint64_t i = 0; i < n_rows; ++i)
-            {
-              std::vector<double> row(r.get<std::uint64_t>());
-              if (row.size() > bytes.size())
-                throw InputError(checkpoint_file + ": damaged statistics");
-              for (double &v : row)
-                v = r.get<double>();
-              table.add_row(row);
-            }
+          const std::string bytes = checkpoint_file.read();
+          io::BinaryReader  r     = checkpoint_file.reader(bytes);
+          dda->restore(r.get_string(), checkpoint_file.file());
+          io::RunCheckpoint::get_rows(r, table);
           for (auto *files : {&block_files, &contact_files})
             {
               files->clear();
@@ -489,8 +438,8 @@ namespace rockdda::dda
           max_iterations   = r.get<std::uint32_t>();
           iterations_total = r.get<std::uint64_t>();
           if (!r.at_end())
-            throw InputError(checkpoint_file + ": trailing data");
-          context.log.line("resumed from " + checkpoint_file
+            throw InputError(checkpoint_file.file() + ": trailing data");
+          context.log.line("resumed from " + checkpoint_file.file()
                            + " at t = " + io::format_number(dda->time(), 8)
                            + " s (step " + std::to_string(dda->n_steps) + ")");
         };

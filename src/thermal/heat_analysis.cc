@@ -4,7 +4,7 @@
  * "Heat" parameter sections (geometry, materials, mesh, time stepping,
  * boundary conditions, output and the periodic half-space check).
  */
-#include <rockdda/io/binary_stream.h>
+#include <rockdda/io/checkpoint.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/parameters.h>
 #include <rockdda/io/progress.h>
@@ -27,8 +27,6 @@ namespace rockdda::thermal
   {
     using dealii::Patterns::Anything;
 
-    /// First string of a heat run checkpoint (checkpoint.bin).
-    constexpr char heat_run_magic[] = "rockdda heat run checkpoint 1";
 
     using dealii::Patterns::Bool;
     using dealii::Patterns::Double;
@@ -372,25 +370,11 @@ namespace rockdda::thermal
                     Double(0.),
                     "s",
                     "Length of one spin-up cycle (one year = 31557600 s).");
-        io::declare(prm,
-                    "Checkpoint interval",
-                    "0",
-                    Double(0.),
-                    "s",
-                    "Model time between checkpoints (at output and spin-up "
-                    "cycle boundaries): checkpoint.bin, for 'Resume', and "
-                    "statistics.csv so far are written atomically into the "
-                    "output directory; 0 = none. Serial solver with a fixed "
-                    "mesh only.");
-        io::declare(prm,
-                    "Resume",
-                    "false",
-                    Bool(),
-                    "-",
-                    "Continue from checkpoint.bin in the output directory, "
-                    "written by an earlier run of this parameter file with "
-                    "a 'Checkpoint interval'; the run continues bit for bit "
-                    "(the End time may be raised).");
+        io::RunCheckpoint::declare_parameters(
+          prm,
+          "at the first output time or spin-up cycle end after each multiple "
+          "of this interval, and at the End time; serial solver with a fixed "
+          "mesh only");
         io::declare(prm,
                     "Rannacher steps",
                     "2",
@@ -995,7 +979,6 @@ namespace rockdda::thermal
       };
 
       // Checkpoints: the solver's state and the run's progress.
-      const std::string checkpoint_file = context.output.file("checkpoint.bin");
       std::ostringstream fingerprint_text;
       fingerprint_text.precision(17);
       fingerprint_text << solver.method_description() << "; " << st0.n_cells
@@ -1003,20 +986,20 @@ namespace rockdda::thermal
                        << " s; spin-up " << spin_up_cycles << " x "
                        << spin_up_period << " s; output every "
                        << output_interval << " s";
-      const std::string fingerprint     = fingerprint_text.str();
-      const auto        save_checkpoint = [&]() {
-        io::BinaryWriter w;
-        w.put_string(heat_run_magic);
-        w.put_string(fingerprint);
+      const std::string       fingerprint = fingerprint_text.str();
+      const io::RunCheckpoint checkpoint_file(context.output,
+                                              "heat",
+                                              fingerprint,
+                                              "Heat/Time stepping");
+      const auto              save_checkpoint = [&]() {
+        io::BinaryWriter w = checkpoint_file.begin();
         w.put_string(solver.checkpoint());
         w.put<std::uint32_t>(spin_up_done);
         w.put<std::uint8_t>(recording ? 1 : 0);
         w.put<std::uint64_t>(n_records);
         w.put(e0);
         w.put(q0);
-        w.put<std::uint64_t>(table.n_rows());
-        for (std::size_t i = 0; i < table.n_rows(); ++i)
-          w.put_doubles(table.row(i));
+        io::RunCheckpoint::put_rows(w, table);
         for (const auto &series : samples)
           w.put_doubles(series);
         w.put_doubles(sample_times);
@@ -1024,8 +1007,7 @@ namespace rockdda::thermal
         w.put<std::uint32_t>(n_vtu);
         w.put_string(pvd);
         w.put(next_checkpoint);
-        context.output.write("statistics.csv", table.csv());
-        context.output.write("checkpoint.bin", w.bytes);
+        checkpoint_file.write(w, table);
       };
       const auto checkpoint_if_due = [&]() {
         if (checkpoint_interval > 0. && solver.time() >= next_checkpoint - 1e-9)
@@ -1039,34 +1021,15 @@ namespace rockdda::thermal
         (void)solver.checkpoint(); // InputError now if not available
       if (resume)
         {
-          std::ifstream in(checkpoint_file, std::ios::binary);
-          if (!in)
-            throw InputError(
-              "key 'Heat/Time stepping/Resume' is true but there is no "
-              "checkpoint "
-              + checkpoint_file
-              + " (run once with 'Heat/Time stepping/Checkpoint interval' > "
-                "0)");
-          const std::string bytes((std::istreambuf_iterator<char>(in)),
-                                  std::istreambuf_iterator<char>());
-          io::BinaryReader  r(bytes, checkpoint_file);
-          if (r.get_string() != heat_run_magic)
-            throw InputError(checkpoint_file
-                             + ": not a checkpoint of a rockdda heat run");
-          const std::string saved = r.get_string();
-          if (saved != fingerprint)
-            throw InputError(checkpoint_file + ": written for another run ("
-                             + saved + "); this parameter file has "
-                             + fingerprint);
-          solver.restore(r.get_string(), checkpoint_file);
-          spin_up_done      = r.get<std::uint32_t>();
-          recording         = r.get<std::uint8_t>() != 0;
-          n_records         = r.get<std::uint64_t>();
-          e0                = r.get<double>();
-          q0                = r.get<double>();
-          const auto n_rows = r.get<std::uint64_t>();
-          for (std::uint64_t i = 0; i < n_rows; ++i)
-            table.add_row(r.get_doubles());
+          const std::string bytes = checkpoint_file.read();
+          io::BinaryReader  r     = checkpoint_file.reader(bytes);
+          solver.restore(r.get_string(), checkpoint_file.file());
+          spin_up_done = r.get<std::uint32_t>();
+          recording    = r.get<std::uint8_t>() != 0;
+          n_records    = r.get<std::uint64_t>();
+          e0           = r.get<double>();
+          q0           = r.get<double>();
+          io::RunCheckpoint::get_rows(r, table);
           for (auto &series : samples)
             series = r.get_doubles();
           sample_times    = r.get_doubles();
@@ -1075,8 +1038,8 @@ namespace rockdda::thermal
           pvd             = r.get_string();
           next_checkpoint = r.get<double>();
           if (!r.at_end())
-            throw InputError(checkpoint_file + ": trailing data");
-          context.log.line("resumed from " + checkpoint_file + " at t = "
+            throw InputError(checkpoint_file.file() + ": trailing data");
+          context.log.line("resumed from " + checkpoint_file.file() + " at t = "
                            + io::format_number(solver.time(), 10) + " s");
         }
 
