@@ -22,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -80,6 +81,39 @@ namespace rockdda::thermal::internal
     dealii::FEValues<2>     values;
     dealii::FEFaceValues<2> face;
   };
+
+  /**
+   * Clear the adaptation flags of @p cell that would break the limits: no
+   * refinement below 'Minimum cell size' (or at all when @p capped, the
+   * cell budget being used up), no coarsening above the coarse cell size,
+   * nor above the band cell size inside the a priori band of
+   * @p band_segments. Returns true if a flag remains.
+   */
+  template <typename CellIterator>
+  bool
+  limit_adaptation_flags(
+    const CellIterator                       &cell,
+    const HeatParameters                     &prm,
+    const std::vector<std::array<Point2, 2>> &band_segments,
+    const bool                                capped)
+  {
+    if (cell->refine_flag_set()
+        && (capped || cell->diameter() <= 1.5 * prm.adaptive_min_cell_size
+            || cell->level() >= 24))
+      cell->clear_refine_flag();
+    if (cell->coarsen_flag_set())
+      {
+        const double parent = cell->level() > 0
+                                ? cell->parent()->diameter()
+                                : std::numeric_limits<double>::max();
+        if (parent > 1.5 * prm.coarse_cell_size
+            || (!band_segments.empty() && parent > 1.5 * prm.band_cell_size
+                && distance_to_segments(cell->center(), band_segments)
+                     < prm.band_width + 0.5 * parent))
+          cell->clear_coarsen_flag();
+      }
+    return cell->refine_flag_set() || cell->coarsen_flag_set();
+  }
 
   /**
    * The boundary conditions whose data enter the load vector (flux and

@@ -555,9 +555,6 @@ namespace rockdda::thermal
     /// Kelly estimate, refine and coarsen, transfer the field, rebuild.
     void
     adapt_mesh();
-    /// Distance from @p p to the nearest face listed in refine_near_tags, m.
-    double
-    distance_to_band_tags(const Point<2> &p) const;
 
     /// Condensed right-hand side at @p t into @p f; returns the boundary
     /// data part of the heat rate (without -w.T) and the source rate.
@@ -623,14 +620,6 @@ namespace rockdda::thermal
 
 
 
-  double
-  HeatSolver::Impl::distance_to_band_tags(const Point<2> &c) const
-  {
-    return internal::distance_to_segments(c, band_segments);
-  }
-
-
-
   Probe
   HeatSolver::Impl::locate_probe(const Point<2> &point) const
   {
@@ -682,27 +671,10 @@ namespace rockdda::thermal
                                  : std::numeric_limits<unsigned int>::max());
     // Limits: no cell finer than the minimum size; no cell coarser than the
     // coarse size, nor than the band size inside the a priori band.
-    const bool band = !band_segments.empty();
-    bool       any  = false;
+    bool any = false;
     for (const auto &cell : tria.active_cell_iterators())
-      {
-        if (cell->refine_flag_set()
-            && (cell->diameter() <= 1.5 * prm.adaptive_min_cell_size
-                || cell->level() >= 24))
-          cell->clear_refine_flag();
-        if (cell->coarsen_flag_set())
-          {
-            const double parent = cell->level() > 0
-                                    ? cell->parent()->diameter()
-                                    : std::numeric_limits<double>::max();
-            if (parent > 1.5 * prm.coarse_cell_size
-                || (band && parent > 1.5 * prm.band_cell_size
-                    && distance_to_band_tags(cell->center())
-                         < prm.band_width + 0.5 * parent))
-              cell->clear_coarsen_flag();
-          }
-        any = any || cell->refine_flag_set() || cell->coarsen_flag_set();
-      }
+      any = internal::limit_adaptation_flags(cell, prm, band_segments, false)
+            || any;
     if (!any)
       return;
 

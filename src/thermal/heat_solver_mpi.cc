@@ -688,32 +688,14 @@ namespace rockdda::thermal::internal
       return;
     parallel::distributed::GridRefinement::refine_and_coarsen_fixed_fraction(
       tria, indicator, prm.refine_fraction, prm.coarsen_fraction);
-    const bool band = !mesh.band_segments.empty();
     const bool capped
       = prm.adaptive_max_cells > 0
         && tria.n_global_active_cells() >= prm.adaptive_max_cells;
     bool any = false;
     for (const auto &cell : tria.active_cell_iterators())
       if (cell->is_locally_owned())
-        {
-          if (cell->refine_flag_set()
-              && (capped || cell->diameter() <= 1.5 * prm.adaptive_min_cell_size
-                  || cell->level() >= 24))
-            cell->clear_refine_flag();
-          if (cell->coarsen_flag_set())
-            {
-              const double parent = cell->level() > 0
-                                      ? cell->parent()->diameter()
-                                      : std::numeric_limits<double>::max();
-              if (parent > 1.5 * prm.coarse_cell_size
-                  || (band && parent > 1.5 * prm.band_cell_size
-                      && distance_to_segments(cell->center(),
-                                              mesh.band_segments)
-                           < prm.band_width + 0.5 * parent))
-                cell->clear_coarsen_flag();
-            }
-          any = any || cell->refine_flag_set() || cell->coarsen_flag_set();
-        }
+        any = limit_adaptation_flags(cell, prm, mesh.band_segments, capped)
+              || any;
     if (!Utilities::MPI::logical_or(any, comm))
       return;
 
