@@ -373,8 +373,8 @@ namespace rockdda::thermal
         io::RunCheckpoint::declare_parameters(
           prm,
           "at the first output time or spin-up cycle end after each multiple "
-          "of this interval, and at the End time; serial solver with a fixed "
-          "mesh only");
+          "of this interval, and at the End time (an adaptive mesh is stored "
+          "too); serial solver only");
         io::declare(prm,
                     "Rannacher steps",
                     "2",

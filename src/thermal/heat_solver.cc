@@ -40,6 +40,8 @@
 #include "heat_internal.h"
 #include "heat_solver_mpi.h"
 #include <arkode/arkode_arkstep.h>
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -555,6 +557,13 @@ namespace rockdda::thermal
     /// Kelly estimate, refine and coarsen, transfer the field, rebuild.
     void
     adapt_mesh();
+    /// The mesh as bytes (boost binary archive of the triangulation).
+    std::string
+    saved_mesh() const;
+    /// Replace the mesh by saved_mesh() @p bytes and rebuild the system
+    /// (dofs, matrices, probes) on it; the field must be set afterwards.
+    void
+    load_mesh(const std::string &bytes);
 
     /// Condensed right-hand side at @p t into @p f; returns the boundary
     /// data part of the heat rate (without -w.T) and the source rate.
@@ -699,6 +708,33 @@ namespace rockdda::thermal
       probes[k] = locate_probe(probe_points[k]);
     stats.mesh_transfer_heat += capacity * solution - heat_before;
     ++stats.n_adaptations;
+  }
+
+
+
+  std::string
+  HeatSolver::Impl::saved_mesh() const
+  {
+    std::ostringstream              out;
+    boost::archive::binary_oarchive archive(out);
+    archive << tria;
+    return out.str();
+  }
+
+
+
+  void
+  HeatSolver::Impl::load_mesh(const std::string &bytes)
+  {
+    std::istringstream              in(bytes);
+    boost::archive::binary_iarchive archive(in);
+    archive >> tria;
+    setup_system();
+    assemble_fixed();
+    operators.clear();
+    rhs_old_valid = false;
+    for (unsigned int k = 0; k < probes.size(); ++k)
+      probes[k] = locate_probe(probe_points[k]);
   }
 
 
@@ -1528,11 +1564,11 @@ namespace rockdda::thermal
     if (distributed)
       throw InputError("heat: checkpoints are not available in the "
                        "distributed (MPI) solver");
-    if (impl->prm.adaptive_refinement)
-      throw InputError("heat: checkpoints are not available with adaptive "
-                       "refinement (the mesh changes during the run)");
     io::BinaryWriter w;
     w.put_string(heat_magic);
+    // An adaptive mesh changes during the run: it is stored too.
+    w.put_string(impl->prm.adaptive_refinement ? impl->saved_mesh()
+                                               : std::string());
     w.put<std::uint64_t>(impl->tria.n_active_cells());
     w.put_doubles(impl->solution);
     w.put_doubles(impl->increment_old);
@@ -1550,11 +1586,31 @@ namespace rockdda::thermal
   void
   HeatSolver::restore(const std::string &bytes, const std::string &source)
   {
-    if (distributed || impl->prm.adaptive_refinement)
+    if (distributed)
       (void)checkpoint(); // throws the reason
     io::BinaryReader r(bytes, source);
     if (r.get_string() != heat_magic)
       throw InputError(source + ": not a rockdda heat checkpoint");
+    const std::string mesh = r.get_string();
+    if (mesh.empty() == impl->prm.adaptive_refinement)
+      throw InputError(source + ": the checkpoint was written "
+                       + (mesh.empty()
+                            ? "without adaptive refinement, this run uses it"
+                            : "with adaptive refinement, this run does not"));
+    if (!mesh.empty())
+      try
+        {
+          impl->load_mesh(mesh);
+        }
+      catch (const InputError &)
+        {
+          throw;
+        }
+      catch (const std::exception &e)
+        {
+          throw InputError(source + ": the stored mesh cannot be read ("
+                           + e.what() + ")");
+        }
     const auto          cells     = r.get<std::uint64_t>();
     std::vector<double> solution  = r.get_doubles();
     std::vector<double> increment = r.get_doubles();
@@ -1579,6 +1635,8 @@ namespace rockdda::thermal
         throw InputError(source
                          + ": the checkpoint holds non-finite "
                            "temperatures");
+    impl->solution.reinit(n);
+    impl->increment_old.reinit(n);
     std::copy(solution.begin(), solution.end(), impl->solution.begin());
     std::copy(increment.begin(), increment.end(), impl->increment_old.begin());
     impl->time              = time;

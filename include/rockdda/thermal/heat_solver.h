@@ -275,8 +275,8 @@ namespace rockdda::thermal
     /**
      * The state needed to continue the run bit for bit (field, previous
      * increment, time, heat balance, counters), as the bytes of a
-     * checkpoint file. Serial solver with a fixed mesh only: throws
-     * InputError with adaptive refinement or under MPI.
+     * checkpoint file, with the mesh when it is adaptive. Serial solver
+     * only: throws InputError under MPI.
      */
     std::string
     checkpoint() const;
