@@ -374,7 +374,8 @@ namespace rockdda::thermal
           prm,
           "at the first output time or spin-up cycle end after each multiple "
           "of this interval, and at the End time (an adaptive mesh is stored "
-          "too); serial solver only");
+          "too; under MPI the mesh and field go to checkpoint-mesh-0.* or "
+          "-1.*)");
         io::declare(prm,
                     "Rannacher steps",
                     "2",
@@ -991,9 +992,11 @@ namespace rockdda::thermal
                                               "heat",
                                               fingerprint,
                                               "Heat/Time stepping");
-      const auto              save_checkpoint = [&]() {
+      // The distributed solver's mesh and field (p4est files).
+      const std::string mesh_files = context.output.file("checkpoint-mesh");
+      const auto        save_checkpoint = [&]() {
         io::BinaryWriter w = checkpoint_file.begin();
-        w.put_string(solver.checkpoint());
+        w.put_string(solver.checkpoint(mesh_files));
         w.put<std::uint32_t>(spin_up_done);
         w.put<std::uint8_t>(recording ? 1 : 0);
         w.put<std::uint64_t>(n_records);
@@ -1017,8 +1020,6 @@ namespace rockdda::thermal
             save_checkpoint();
           }
       };
-      if (checkpoint_interval > 0.)
-        (void)solver.checkpoint(); // InputError now if not available
       if (resume)
         {
           const std::string bytes = checkpoint_file.read();

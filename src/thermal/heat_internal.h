@@ -47,12 +47,14 @@ namespace rockdda::thermal::internal
    * quadrilaterals, boundary ids from the tags (index into
    * prm.boundary_conditions; adiabatic and joint faces after them), then
    * refinement to the coarse cell size, global refinements and the a
-   * priori band (only locally owned cells are flagged).
+   * priori band (only locally owned cells are flagged); with
+   * @p coarse_only, the coarse quadrilaterals and their ids only.
    */
   void
   build_mesh(dealii::Triangulation<2> &tria,
              const HeatParameters     &prm,
-             MeshInfo                 &info);
+             MeshInfo                 &info,
+             const bool                coarse_only = false);
 
   /// Distance from @p p to the nearest of @p segments, m.
   double

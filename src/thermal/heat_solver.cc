@@ -317,7 +317,8 @@ namespace rockdda::thermal
     void
     build_mesh(Triangulation<2>     &tria,
                const HeatParameters &prm,
-               MeshInfo             &info)
+               MeshInfo             &info,
+               const bool            coarse_only)
     {
       const bool merge
         = prm.joint_contact == HeatParameters::JointContact::perfect;
@@ -434,6 +435,9 @@ namespace rockdda::thermal
                                  + "' has no boundary condition (give one, or "
                                    "name the tag 'adiabatic')");
             }
+
+      if (coarse_only)
+        return;
 
       // Refine to the target coarse cell size.
       for (unsigned int cycle = 0; cycle < 30; ++cycle)
@@ -1559,11 +1563,10 @@ namespace rockdda::thermal
   }
 
   std::string
-  HeatSolver::checkpoint() const
+  HeatSolver::checkpoint(const std::string &mesh_files) const
   {
     if (distributed)
-      throw InputError("heat: checkpoints are not available in the "
-                       "distributed (MPI) solver");
+      return distributed->checkpoint(mesh_files);
     io::BinaryWriter w;
     w.put_string(heat_magic);
     // An adaptive mesh changes during the run: it is stored too.
@@ -1587,7 +1590,10 @@ namespace rockdda::thermal
   HeatSolver::restore(const std::string &bytes, const std::string &source)
   {
     if (distributed)
-      (void)checkpoint(); // throws the reason
+      {
+        distributed->restore(bytes, source);
+        return;
+      }
     io::BinaryReader r(bytes, source);
     if (r.get_string() != heat_magic)
       throw InputError(source + ": not a rockdda heat checkpoint");

@@ -7,6 +7,7 @@
  */
 #include "heat_solver_mpi.h"
 
+#include <rockdda/io/binary_stream.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
 #include <rockdda/thermal/polygon_mesh.h>
@@ -39,6 +40,7 @@
 
 #include "heat_internal.h"
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <set>
@@ -143,17 +145,19 @@ namespace rockdda::thermal::internal
     std::vector<DistributedProbe> probes;
     std::vector<Point<2>>         probe_points;
 
-    double         time              = 0.;
-    double         boundary_heat     = 0.;
-    double         source_heat       = 0.;
-    double         rate_old          = 0.;
-    double         source_rate_old   = 0.;
-    bool           rhs_old_valid     = false;
-    bool           last_step_flipped = false;
-    unsigned long  steps_taken       = 0;
-    unsigned long  linear_iterations = 0;
-    double         kappa_max         = 0.;
-    double         h_min             = 0.;
+    double        time              = 0.;
+    double        boundary_heat     = 0.;
+    double        source_heat       = 0.;
+    double        rate_old          = 0.;
+    double        source_rate_old   = 0.;
+    bool          rhs_old_valid     = false;
+    bool          last_step_flipped = false;
+    unsigned long steps_taken       = 0;
+    unsigned long linear_iterations = 0;
+    /// Checkpoints written (selects the file set of the next one).
+    unsigned long  checkpoints_written = 0;
+    double         kappa_max           = 0.;
+    double         h_min               = 0.;
     HeatStatistics stats;
 
     std::ostringstream timer_stream;
@@ -751,11 +755,18 @@ namespace rockdda::thermal::internal
     bool                                                     mine = false;
     try
       {
-        found = GridTools::find_active_cell_around_point(mapping,
-                                                         dof_handler,
-                                                         point);
-        mine  = found.first.state() == IteratorState::valid
-               && found.first->is_locally_owned();
+        // A point on a vertex or face shared by cells of several ranks:
+        // take a locally owned one of the cells around it (the field is
+        // continuous, so any of them gives the same value).
+        for (const auto &candidate :
+             GridTools::find_all_active_cells_around_point(
+               mapping, dof_handler, point, 1e-10))
+          if (candidate.first->is_locally_owned())
+            {
+              found = candidate;
+              mine  = true;
+              break;
+            }
       }
     catch (...)
       {
@@ -955,6 +966,103 @@ namespace rockdda::thermal::internal
                   + io::format_number(p.cg_tolerance, 3));
     return s;
   }
+
+  namespace
+  {
+    constexpr char distributed_magic[]
+      = "rockdda distributed heat checkpoint 1";
+  }
+
+  std::string
+  DistributedHeat::checkpoint(const std::string &mesh_files) const
+  {
+    Impl &d = *impl;
+    if (mesh_files.empty())
+      throw std::invalid_argument(
+        "heat: the distributed solver needs a file prefix for checkpoints");
+    // Alternate between two file sets: a save interrupted half-way leaves
+    // the set named by the previous checkpoint.bin intact.
+    const std::string name
+      = mesh_files + "-" + std::to_string(d.checkpoints_written++ % 2);
+    d.update_ghosts();
+    VectorType increment(d.owned, d.relevant, d.comm);
+    increment = d.increment_old;
+    parallel::distributed::SolutionTransfer<2, VectorType> transfer(
+      d.dof_handler);
+    transfer.prepare_for_serialization(
+      std::vector<const VectorType *>{&d.ghosted, &increment});
+    d.tria.save(name);
+    io::BinaryWriter w;
+    w.put_string(distributed_magic);
+    w.put_string(name);
+    w.put<std::uint64_t>(d.tria.n_global_active_cells());
+    w.put(d.time);
+    w.put(d.boundary_heat);
+    w.put(d.source_heat);
+    w.put<std::uint8_t>(d.last_step_flipped ? 1 : 0);
+    w.put<std::uint64_t>(d.steps_taken);
+    w.put<std::uint64_t>(d.linear_iterations);
+    w.put(d.stats);
+    return w.bytes;
+  }
+
+
+
+  void
+  DistributedHeat::restore(const std::string &bytes, const std::string &source)
+  {
+    Impl            &d = *impl;
+    io::BinaryReader r(bytes, source);
+    if (r.get_string() != distributed_magic)
+      throw InputError(source
+                       + ": not a checkpoint of the distributed heat solver "
+                         "(written by a serial run?)");
+    const std::string name   = r.get_string();
+    const auto        cells  = r.get<std::uint64_t>();
+    const double      time   = r.get<double>();
+    const double      q_in   = r.get<double>();
+    const double      s_in   = r.get<double>();
+    const bool        flip   = r.get<std::uint8_t>() != 0;
+    const auto        steps  = r.get<std::uint64_t>();
+    const auto        linear = r.get<std::uint64_t>();
+    const auto        stats  = r.get<HeatStatistics>();
+    if (!r.at_end())
+      throw InputError(source + ": the checkpoint has trailing data");
+    if (!std::ifstream(name + ".info"))
+      throw InputError(source + ": the mesh files " + name
+                       + ".* of the checkpoint are missing");
+    // p4est loads into a triangulation holding only the coarse mesh.
+    d.tria.clear();
+    MeshInfo coarse;
+    build_mesh(d.tria, d.prm, coarse, true);
+    d.tria.load(name);
+    if (d.tria.n_global_active_cells() != cells)
+      throw InputError(source + ": the mesh files " + name + ".* hold "
+                       + std::to_string(d.tria.n_global_active_cells())
+                       + " cells, the checkpoint " + std::to_string(cells));
+    d.setup_system();
+    d.assemble_fixed();
+    parallel::distributed::SolutionTransfer<2, VectorType> transfer(
+      d.dof_handler);
+    std::vector<VectorType *> targets{&d.solution, &d.increment_old};
+    transfer.deserialize(targets);
+    d.hanging.distribute(d.solution);
+    d.hanging.distribute(d.increment_old);
+    d.time              = time;
+    d.boundary_heat     = q_in;
+    d.source_heat       = s_in;
+    d.last_step_flipped = flip;
+    d.steps_taken       = steps;
+    d.linear_iterations = linear;
+    d.stats             = stats;
+    d.operators.clear();
+    d.rhs_old_valid = false;
+    d.ghosted_valid = false;
+    for (unsigned int k = 0; k < d.probes.size(); ++k)
+      d.probes[k] = d.locate(d.probe_points[k]);
+  }
+
+
 
   std::string
   DistributedHeat::timing_summary() const

@@ -55,6 +55,12 @@ namespace rockdda::thermal::internal
     method_description() const;
     std::string
     timing_summary() const;
+    /// See HeatSolver::checkpoint() (collective).
+    std::string
+    checkpoint(const std::string &mesh_files) const;
+    /// See HeatSolver::restore() (collective).
+    void
+    restore(const std::string &bytes, const std::string &source);
 
   private:
     class Impl;

@@ -275,17 +275,20 @@ namespace rockdda::thermal
     /**
      * The state needed to continue the run bit for bit (field, previous
      * increment, time, heat balance, counters), as the bytes of a
-     * checkpoint file, with the mesh when it is adaptive. Serial solver
-     * only: throws InputError under MPI.
+     * checkpoint file, with the mesh when it is adaptive. The distributed
+     * solver writes its mesh and field into the files @p mesh_files-0.* or
+     * -1.* (alternately, so that an interrupted save keeps the previous
+     * set) and names them in the bytes; collective.
      */
     std::string
-    checkpoint() const;
+    checkpoint(const std::string &mesh_files = std::string()) const;
 
     /**
      * Continue from the checkpoint() @p bytes of a solver built from the
      * same parameters; throws InputError naming @p source if they belong
      * to another mesh or are damaged. The time-step operators are rebuilt
      * (one more factorisation than the uninterrupted run counts).
+     * Collective.
      */
     void
     restore(const std::string &bytes, const std::string &source);
