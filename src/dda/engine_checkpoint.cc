@@ -5,9 +5,9 @@
  * continues exactly as the uninterrupted one.
  */
 #include <rockdda/dda/engine.h>
+#include <rockdda/io/binary_stream.h>
 #include <rockdda/io/error.h>
 
-#include <rockdda/io/binary_stream.h>
 #include <cmath>
 #include <cstdint>
 
