@@ -17,8 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
+#include <limits>
 #include <sstream>
 
 namespace rockdda::dda
@@ -397,6 +396,7 @@ namespace rockdda::dda
                                                 "DDA",
                                                 fingerprint,
                                                 "DDA");
+        double saved_at = std::numeric_limits<double>::quiet_NaN();
         // A checkpoint: the engine's state and the run's progress (rows of
         // statistics.csv, VTU series, next output times, counters).
         const auto save_checkpoint = [&]() {
@@ -417,6 +417,7 @@ namespace rockdda::dda
           w.put<std::uint32_t>(max_iterations);
           w.put<std::uint64_t>(iterations_total);
           checkpoint_file.write(w, table);
+          saved_at = dda->time();
         };
         const auto load_checkpoint = [&]() {
           const std::string bytes = checkpoint_file.read();
@@ -512,9 +513,13 @@ namespace rockdda::dda
         const double wall = std::chrono::duration<double>(
                               std::chrono::steady_clock::now() - start)
                               .count();
-        if (checkpoint_interval > 0. && failure.empty())
-          save_checkpoint(); // at the End time: the run can be extended
-        context.output.write("statistics.csv", table.csv());
+        // At the End time, unless just taken there (the run can be
+        // extended); a checkpoint writes statistics.csv too.
+        if (checkpoint_interval > 0. && failure.empty()
+            && saved_at != dda->time())
+          save_checkpoint();
+        else if (checkpoint_interval <= 0. || !failure.empty())
+          context.output.write("statistics.csv", table.csv());
         if (!failure.empty())
           {
             context.log.line("DDA stopped: " + failure);

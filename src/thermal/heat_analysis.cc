@@ -16,8 +16,7 @@
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
-#include <iterator>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -994,6 +993,7 @@ namespace rockdda::thermal
                                               "Heat/Time stepping");
       // The distributed solver's mesh and field (p4est files).
       const std::string mesh_files = context.output.file("checkpoint-mesh");
+      double            saved_at   = std::numeric_limits<double>::quiet_NaN();
       const auto        save_checkpoint = [&]() {
         io::BinaryWriter w = checkpoint_file.begin();
         w.put_string(solver.checkpoint(mesh_files));
@@ -1011,6 +1011,7 @@ namespace rockdda::thermal
         w.put_string(pvd);
         w.put(next_checkpoint);
         checkpoint_file.write(w, table);
+        saved_at = solver.time();
       };
       const auto checkpoint_if_due = [&]() {
         if (checkpoint_interval > 0. && solver.time() >= next_checkpoint - 1e-9)
@@ -1090,12 +1091,15 @@ namespace rockdda::thermal
             checkpoint_if_due();
           }
       }
-      if (checkpoint_interval > 0.)
-        save_checkpoint(); // at the End time: the run can be extended
+      // At the End time, unless just taken there (the run can be
+      // extended); a checkpoint writes statistics.csv too.
+      if (checkpoint_interval > 0. && saved_at != solver.time())
+        save_checkpoint();
+      else if (checkpoint_interval <= 0.)
+        context.output.write("statistics.csv", table.csv());
       if (n_vtu > 0)
         context.output.write("temperature.pvd",
                              pvd + "</Collection>\n</VTKFile>\n");
-      context.output.write("statistics.csv", table.csv());
 
       const auto st = solver.statistics();
       if (parameters.adaptive_refinement)
