@@ -262,7 +262,7 @@ namespace rockdda::dda
       std::vector<int> count(n_levels, 0);
       for (int i = 0; i < n; ++i)
         ++count[level[i]];
-      int split = 0, below = 0, best = n + 1;
+      int split = 0, best = n + 1;
       for (int l = 0, b = 0; l < n_levels; b += count[l], ++l)
         {
           const int imbalance = std::abs(b - (n - b - count[l]));
@@ -270,10 +270,8 @@ namespace rockdda::dda
             {
               best  = imbalance;
               split = l;
-              below = b;
             }
         }
-      (void)below;
       std::vector<int> part(n);
       for (int i = 0; i < n; ++i)
         part[i] = level[i] < split ? 0 : level[i] > split ? 1 : 2;
