@@ -27,6 +27,7 @@ namespace rockdda::dda
     const double           l  = E.norm();
     ContactKinematics      k;
     k.tangent                  = E / l;
+    k.edge_length              = l;
     k.tolerance                = tolerance;
     const geometry::Point P0   = Q0 + c.xi * E;
     const geometry::Point Pref = Q0 + xi_ref * E;

@@ -345,14 +345,9 @@ namespace rockdda::dda
                         // the friction force the contact carried, i.e.
                         // at displacement dir * strength / p_s from its
                         // reference, instead of dropping to zero.
-                        const auto &poly
-                          = scene.blocks[ct.geometry.block_j].polygon.vertices;
-                        const double l
-                          = (poly[(ct.geometry.edge + 1) % poly.size()]
-                             - poly[ct.geometry.edge])
-                              .norm();
                         ct.xi_ref
-                          += r.shear_force / (ctrl.law.shear_penalty() * l);
+                          += r.shear_force
+                             / (ctrl.law.shear_penalty() * kin.edge_length);
                       }
                     assembler.set_shear_reference(scene, c, ct);
                   }

@@ -39,8 +39,9 @@ namespace rockdda::dda
   {
     double  g0 = 0., s0 = 0., length = 0.;
     Vector6 en, hn, es, hs;
-    /// Unit tangent of the edge (m/m).
+    /// Unit tangent of the edge (m/m) and the edge's length (m).
     geometry::Point tangent;
+    double          edge_length = 0.;
     /// Gap and shear displacements below this are round-off (m).
     double tolerance = 0.;
     /// Hysteresis of the state switches (m): a sliding contact locks only
