@@ -5,20 +5,19 @@
 #include <rockdda/dda/assembler.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 namespace rockdda::dda
 {
   ContactKinematics
-  Assembler::contact_kinematics_of(const BlockSystem               &system,
-                                   const std::vector<BlockMoments> &moments,
-                                   const ContactCandidate          &c,
-                                   const double                     xi_ref,
-                                   const double                     tolerance)
+  Assembler::contact_kinematics_of(const BlockSystem      &system,
+                                   const ContactCandidate &c,
+                                   const double            xi_ref) const
   {
     const auto            &vi = system.blocks[c.block_i].polygon.vertices;
     const auto            &vj = system.blocks[c.block_j].polygon.vertices;
-    const int              ni = static_cast<int>(vi.size());
     const int              nj = static_cast<int>(vj.size());
     const geometry::Point &P  = vi[c.vertex];
     const geometry::Point &Q0 = vj[c.edge];
@@ -28,28 +27,99 @@ namespace rockdda::dda
     ContactKinematics      k;
     k.tangent                  = E / l;
     k.edge_length              = l;
-    k.tolerance                = tolerance;
     const geometry::Point P0   = Q0 + c.xi * E;
     const geometry::Point Pref = Q0 + xi_ref * E;
-    const auto Ti  = displacement_matrix(moments[c.block_i].centroid, P);
-    const auto Tj0 = displacement_matrix(moments[c.block_j].centroid, P0);
-    const auto Tjr = displacement_matrix(moments[c.block_j].centroid, Pref);
-    k.g0           = c.gap;
-    k.en           = Ti.transpose() * c.normal;
-    k.hn           = -(Tj0.transpose() * c.normal);
-    k.s0           = k.tangent.dot(P - Pref);
-    k.es           = Ti.transpose() * k.tangent;
-    k.hs           = -(Tjr.transpose() * k.tangent);
-    // Contact length: half of the shorter of the edge and the vertex's
-    // adjacent edge that is most nearly parallel to it.
-    const geometry::Point a1 = vi[(c.vertex + ni - 1) % ni] - P;
-    const geometry::Point a2 = vi[(c.vertex + 1) % ni] - P;
-    const double          p1 = std::abs(c.normal.dot(a1)) / a1.norm();
-    const double          p2 = std::abs(c.normal.dot(a2)) / a2.norm();
-    const double          la = p1 < p2 ? a1.norm() : a2.norm();
-    k.length                 = 0.5 * std::min(l, la);
+    const auto Ti = displacement_matrix(block_moments_[c.block_i].centroid, P);
+    const auto Tj0
+      = displacement_matrix(block_moments_[c.block_j].centroid, P0);
+    const auto Tjr
+      = displacement_matrix(block_moments_[c.block_j].centroid, Pref);
+    k.g0 = c.gap;
+    k.en = Ti.transpose() * c.normal;
+    k.hn = -(Tj0.transpose() * c.normal);
+    k.s0 = k.tangent.dot(P - Pref);
+    k.es = Ti.transpose() * k.tangent;
+    k.hs = -(Tjr.transpose() * k.tangent);
+    // Round-off of this contact: relative to the smaller block, plus the
+    // representation error of the coordinates in the local frame.
+    const double scale = std::min(block_size[c.block_i], block_size[c.block_j]);
+    k.tolerance
+      = 1e-12 * scale
+        + 4. * std::numeric_limits<double>::epsilon() * (P.norm() + Q0.norm());
+    // Force scale: the weight of the lighter block.
+    const double weight = std::min(mass[c.block_i](0, 0), mass[c.block_j](0, 0))
+                          * params.body_acceleration.norm();
+    k.force_tolerance
+      = std::max(1e-4 * weight, params.law.normal_penalty * k.tolerance);
     return k;
   }
+
+
+
+  double
+  Assembler::gap(const int c, const Eigen::VectorXd &x) const
+  {
+    const auto &k = contact_kinematics[c];
+    return k.g0 + k.en.dot(x.segment<6>(6 * contact_blocks[c].first))
+           + k.hn.dot(x.segment<6>(6 * contact_blocks[c].second));
+  }
+
+
+
+  double
+  Assembler::shear_displacement(const int c, const Eigen::VectorXd &x) const
+  {
+    const auto &k = contact_kinematics[c];
+    return k.s0 + k.es.dot(x.segment<6>(6 * contact_blocks[c].first))
+           + k.hs.dot(x.segment<6>(6 * contact_blocks[c].second));
+  }
+
+
+
+  namespace
+  {
+    /**
+     * The length over which a vertex contact's face overlaps the edge it
+     * touches (m), and the key of that pair of faces: the vertex's adjacent
+     * edge most nearly parallel to the touched edge, if within ~6 degrees;
+     * otherwise a corner touches a face and the length is 0.
+     */
+    std::pair<double, std::array<int, 4>>
+    face_overlap(const BlockSystem &system, const ContactCandidate &c)
+    {
+      const auto  &vi       = system.blocks[c.block_i].polygon.vertices;
+      const auto  &vj       = system.blocks[c.block_j].polygon.vertices;
+      const int    ni       = static_cast<int>(vi.size());
+      const int    nj       = static_cast<int>(vj.size());
+      const auto  &Q0       = vj[c.edge];
+      const auto   E        = vj[(c.edge + 1) % nj] - Q0;
+      const double l        = E.norm();
+      const auto   t        = E / l;
+      double       best_sin = 1.;
+      int          face     = -1;
+      for (const int f : {(c.vertex + ni - 1) % ni, c.vertex})
+        {
+          const auto   F = vi[(f + 1) % ni] - vi[f];
+          const double s = std::abs(t.x() * F.y() - t.y() * F.x()) / F.norm();
+          if (s < best_sin)
+            {
+              best_sin = s;
+              face     = f;
+            }
+        }
+      if (best_sin > 0.1)
+        return {0., {-1, -1, -1, -1}};
+      const double       u1      = t.dot(vi[face] - Q0);
+      const double       u2      = t.dot(vi[(face + 1) % ni] - Q0);
+      const double       overlap = std::max(0.,
+                                      std::min(std::max(u1, u2), l)
+                                        - std::max(std::min(u1, u2), 0.));
+      std::array<int, 4> key     = {c.block_i, face, c.block_j, c.edge};
+      if (c.block_j < c.block_i)
+        key = {c.block_j, c.edge, c.block_i, face};
+      return {overlap, key};
+    }
+  } // namespace
 
 
 
@@ -64,6 +134,7 @@ namespace rockdda::dda
     const int    n  = static_cast<int>(system.blocks.size());
     const double dt = params.dt;
     block_moments_.resize(n);
+    block_size.resize(n);
     mass.resize(n);
     base_matrix.resize(n);
     base_rhs.resize(n);
@@ -73,6 +144,8 @@ namespace rockdda::dda
         const BlockMaterial &mat   = system.materials[block.material];
         const BlockMoments   m     = block_moments(block.polygon);
         block_moments_[b]          = m;
+        const Eigen::Vector4d bb   = block.polygon.bounding_box();
+        block_size[b]              = std::max(bb[2] - bb[0], bb[3] - bb[1]);
         mass[b]                    = mass_matrix(m, mat.density);
         Matrix6 &K                 = base_matrix[b];
         Vector6 &F                 = base_rhs[b];
@@ -97,19 +170,45 @@ namespace rockdda::dda
                               * (params.fixed_targets[f] - fp.point);
       }
 
-    // Contacts: kinematics and the block pattern.
+    // Contacts: kinematics, contact lengths and the block pattern.
     contact_kinematics.resize(contacts.size());
     contact_pair.resize(contacts.size());
+    contact_blocks.resize(contacts.size());
     std::vector<std::pair<int, int>> pairs;
     pairs.reserve(contacts.size());
+    std::vector<std::pair<std::array<int, 4>, int>> faces;
+    std::vector<double>                             overlap(contacts.size());
     for (std::size_t c = 0; c < contacts.size(); ++c)
       {
-        const auto &g         = contacts[c].geometry;
-        contact_kinematics[c] = contact_kinematics_of(
-          system, block_moments_, g, contacts[c].xi_ref, params.gap_tolerance);
-        contact_kinematics[c].reversal_tolerance = params.reversal_tolerance;
+        const auto &g     = contacts[c].geometry;
+        contact_blocks[c] = {g.block_i, g.block_j};
+        contact_kinematics[c]
+          = contact_kinematics_of(system, g, contacts[c].xi_ref);
         pairs.emplace_back(std::min(g.block_i, g.block_j),
                            std::max(g.block_i, g.block_j));
+        const auto [o, key] = face_overlap(system, g);
+        overlap[c]          = o;
+        if (o > 0.)
+          faces.emplace_back(key, static_cast<int>(c));
+      }
+    // The vertex contacts of one pair of faces share its overlap.
+    std::sort(faces.begin(), faces.end());
+    contact_group.assign(contacts.size(), -1);
+    int n_groups = 0;
+    for (std::size_t a = 0; a < faces.size();)
+      {
+        std::size_t b = a;
+        while (b < faces.size() && faces[b].first == faces[a].first)
+          ++b;
+        for (std::size_t k = a; k < b; ++k)
+          {
+            contact_kinematics[faces[k].second].length
+              = overlap[faces[k].second] / static_cast<double>(b - a);
+            if (b - a > 1)
+              contact_group[faces[k].second] = n_groups;
+          }
+        n_groups += b - a > 1 ? 1 : 0;
+        a = b;
       }
     std::vector<std::pair<int, int>> unique_pairs = pairs;
     std::sort(unique_pairs.begin(), unique_pairs.end());
@@ -129,12 +228,10 @@ namespace rockdda::dda
                                  const int          index,
                                  const Contact     &contact)
   {
-    contact_kinematics[index]                    = contact_kinematics_of(system,
-                                                      block_moments_,
-                                                      contact.geometry,
-                                                      contact.xi_ref,
-                                                      params.gap_tolerance);
-    contact_kinematics[index].reversal_tolerance = params.reversal_tolerance;
+    const double length = contact_kinematics[index].length;
+    contact_kinematics[index]
+      = contact_kinematics_of(system, contact.geometry, contact.xi_ref);
+    contact_kinematics[index].length = length;
   }
 
 

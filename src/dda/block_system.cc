@@ -47,7 +47,7 @@ namespace rockdda::dda
   void
   validate_and_prepare(BlockSystem              &system,
                        std::vector<std::string> &warnings,
-                       const double              overlap_tolerance)
+                       const double              overlap_fraction)
   {
     const int n_mat = static_cast<int>(system.materials.size());
     for (auto &b : system.blocks)
@@ -129,10 +129,18 @@ namespace rockdda::dda
     polys.reserve(system.blocks.size());
     for (const auto &b : system.blocks)
       polys.push_back(b.polygon);
+    std::vector<double> sizes;
+    for (const auto &p : polys)
+      {
+        const Eigen::Vector4d bb = p.bounding_box();
+        sizes.push_back(std::max(bb[2] - bb[0], bb[3] - bb[1]));
+      }
     for (const auto &[i, j] : candidate_pairs(polys, 0.))
       for (int pass = 0; pass < 2; ++pass)
         {
-          const int a = pass == 0 ? i : j, c = pass == 0 ? j : i;
+          const int    a = pass == 0 ? i : j, c = pass == 0 ? j : i;
+          const double overlap_tolerance
+            = overlap_fraction * std::min(sizes[i], sizes[j]);
           std::vector<geometry::Point> probes = polys[a].vertices;
           probes.push_back(system.blocks[a].initial_centroid);
           for (const auto &p : probes)
@@ -154,16 +162,32 @@ namespace rockdda::dda
                          + ", but there are " + std::to_string(n_blocks)
                          + " blocks");
     };
+    // A point must lie in its block (on its boundary within 1e-6 of the
+    // block's size).
+    auto check_inside
+      = [&](const int b, const geometry::Point &p, const std::string &what) {
+          check_block(b, what);
+          const auto &poly = system.blocks[b].polygon;
+          if (!p.allFinite()
+              || (!poly.contains(p)
+                  && distance_to_boundary(poly, p) > 1e-6 * sizes[b]))
+            throw InputError(
+              what + " at (" + io::format_number(p.x(), 8) + ", "
+              + io::format_number(p.y(), 8) + ") m lies outside "
+              + block_name(system.blocks[b]) + " ("
+              + io::format_number(distance_to_boundary(poly, p), 4)
+              + " m from it); valid: inside the block or on its boundary");
+        };
     for (auto &f : system.fixed_points)
       {
-        check_block(f.block, "a fixed point");
+        check_inside(f.block, f.point, "a fixed point");
         f.anchor = f.point;
       }
     for (const auto &l : system.load_points)
-      check_block(l.block, "a load point");
+      check_inside(l.block, l.point, "a load point");
     for (auto &m : system.measurement_points)
       {
-        check_block(m.block, "a measurement point");
+        check_inside(m.block, m.point, "a measurement point");
         m.initial = m.point;
       }
   }

@@ -17,6 +17,17 @@ namespace rockdda::dda
   candidate_pairs(const std::vector<geometry::Polygon> &polygons,
                   const double                          distance)
   {
+    return candidate_pairs(polygons,
+                           std::vector<double>(polygons.size(),
+                                               0.5 * distance));
+  }
+
+
+
+  std::vector<std::pair<int, int>>
+  candidate_pairs(const std::vector<geometry::Polygon> &polygons,
+                  const std::vector<double>            &grow)
+  {
     const int                        n = static_cast<int>(polygons.size());
     std::vector<std::pair<int, int>> result;
     if (n < 2)
@@ -27,10 +38,7 @@ namespace rockdda::dda
     for (int i = 0; i < n; ++i)
       {
         box[i] = polygons[i].bounding_box();
-        box[i] += Eigen::Vector4d(-0.5 * distance,
-                                  -0.5 * distance,
-                                  0.5 * distance,
-                                  0.5 * distance);
+        box[i] += Eigen::Vector4d(-grow[i], -grow[i], grow[i], grow[i]);
         extent[i] = std::max(box[i][2] - box[i][0], box[i][3] - box[i][1]);
         all[0]    = std::min(all[0], box[i][0]);
         all[1]    = std::min(all[1], box[i][1]);
@@ -95,108 +103,327 @@ namespace rockdda::dda
 
   namespace
   {
+    using geometry::Point;
+
     double
-    cross(const geometry::Point &a, const geometry::Point &b)
+    cross(const Point &a, const Point &b)
     {
       return a.x() * b.y() - a.y() * b.x();
     }
 
-    struct Scored
+    /// A vertex with its two edges (vectors from the vertex to its
+    /// neighbours).
+    struct Corner
     {
-      ContactCandidate c;
-      double           score;
-      /// Coincident vertex of the edge's block (-1 if none).
-      int other_vertex;
+      Point P, a1, a2;
+      bool  convex = false;
     };
 
-    /// Candidates of the convex vertices of block a against the edges of b.
-    void
-    vertices_on_edges(const std::vector<geometry::Polygon> &polys,
-                      const int                             a,
-                      const int                             b,
-                      const DetectionOptions               &opt,
-                      std::vector<Scored>                  &out)
+    Corner
+    corner(const geometry::Polygon &poly, const int k)
     {
-      const auto     &va = polys[a].vertices;
-      const auto     &vb = polys[b].vertices;
-      const int       na = static_cast<int>(va.size());
-      const int       nb = static_cast<int>(vb.size());
-      const double    d0 = opt.search_distance;
-      Eigen::Vector4d bb = polys[b].bounding_box();
-      for (int k = 0; k < na; ++k)
-        {
-          const geometry::Point &P = va[k];
-          if (P.x() < bb[0] - d0 || P.x() > bb[2] + d0 || P.y() < bb[1] - d0
-              || P.y() > bb[3] + d0)
-            continue;
-          const geometry::Point a1  = va[(k + na - 1) % na] - P;
-          const geometry::Point a2  = va[(k + 1) % na] - P;
-          const double          la1 = a1.norm(), la2 = a2.norm();
-          // Convex vertex: turning left from (P - prev) to (next - P).
-          if (cross(-a1, a2) <= 1e-6 * la1 * la2)
-            continue;
-          for (int e = 0; e < nb; ++e)
-            {
-              const geometry::Point &Q0 = vb[e];
-              const geometry::Point &Q1 = vb[(e + 1) % nb];
-              const geometry::Point  E  = Q1 - Q0;
-              const double           l  = E.norm();
-              if (l <= 0.)
-                continue;
-              const geometry::Point t = E / l;
-              const geometry::Point nn(t.y(), -t.x());
-              const geometry::Point r   = P - Q0;
-              const double          gap = nn.dot(r);
-              if (gap > d0 || gap < -opt.penetration_limit)
-                continue;
-              const double xi_raw = t.dot(r) / l;
-              // A penetrated vertex must lie over the edge.
-              if (gap < 0. && (xi_raw < 0. || xi_raw > 1.))
-                continue;
-              // Entrance rule: the vertex's wedge must not lie behind the
-              // edge.
-              const double s1 = nn.dot(a1) / la1, s2 = nn.dot(a2) / la2;
-              if (s1 < -opt.angle_tolerance || s2 < -opt.angle_tolerance)
-                continue;
-              const double ctol = std::min(opt.coincidence_tolerance, 0.05 * l);
-              int          other = -1;
-              double       xi    = xi_raw;
-              if (xi_raw < 0. || xi_raw > 1.)
-                {
-                  // Beyond an end of the edge: a vertex-vertex situation.
-                  // Keep the edge only if the vertex lies closer to this
-                  // edge's normal than to the neighbouring edge's normal.
-                  const bool             at_end = xi_raw > 1.;
-                  const geometry::Point &Q      = at_end ? Q1 : Q0;
-                  const geometry::Point  d      = P - Q;
-                  if (d.norm() > d0)
-                    continue;
-                  const geometry::Point N  = at_end ? vb[(e + 2) % nb] - Q1
-                                                    : Q0 - vb[(e + nb - 1) % nb];
-                  const double          ln = N.norm();
-                  const geometry::Point nn2(N.y() / ln, -N.x() / ln);
-                  if (nn.dot(d) < nn2.dot(d) - 1e-12 * d.norm())
-                    continue;
-                  xi = at_end ? 1. : 0.;
-                }
-              if ((P - Q0).norm() < ctol)
-                other = e;
-              else if ((P - Q1).norm() < ctol)
-                other = (e + 1) % nb;
-              Scored s;
-              s.c.block_i    = a;
-              s.c.vertex     = k;
-              s.c.block_j    = b;
-              s.c.edge       = e;
-              s.c.normal     = nn;
-              s.c.xi         = xi;
-              s.c.gap        = gap;
-              s.score        = std::min(s1, s2);
-              s.other_vertex = other;
-              out.push_back(s);
-            }
-        }
+      const auto &v = poly.vertices;
+      const int   n = static_cast<int>(v.size());
+      Corner      c;
+      c.P  = v[k];
+      c.a1 = v[(k + n - 1) % n] - c.P;
+      c.a2 = v[(k + 1) % n] - c.P;
+      // A left turn: any interior angle below 180 degrees, however sharp
+      // (the vertices of slivers are contact vertices too).
+      c.convex = cross(-c.a1, c.a2) > 1e-14 * c.a1.norm() * c.a2.norm();
+      return c;
     }
+
+    /// Entrance score of a vertex against an edge with outward unit normal
+    /// @p n: min over the vertex's edges of n . a / |a|; >= 0 when its wedge
+    /// lies on the outer side of the edge's line.
+    double
+    entrance_score(const Corner &c, const Point &n)
+    {
+      return std::min(n.dot(c.a1) / c.a1.norm(), n.dot(c.a2) / c.a2.norm());
+    }
+
+    /// Vertex @p k of block @p a against edge @p e of block @p b.
+    ContactCandidate
+    vertex_edge(const std::vector<geometry::Polygon> &polys,
+                const int                             a,
+                const int                             k,
+                const int                             b,
+                const int                             e)
+    {
+      const auto      &vb = polys[b].vertices;
+      const int        nb = static_cast<int>(vb.size());
+      const Point     &Q0 = vb[e];
+      const Point      E  = vb[(e + 1) % nb] - Q0;
+      const double     l  = E.norm();
+      const Point      t  = E / l;
+      const Point      r  = polys[a].vertices[k] - Q0;
+      ContactCandidate c;
+      c.block_i = a;
+      c.vertex  = k;
+      c.block_j = b;
+      c.edge    = e;
+      c.normal  = Point(t.y(), -t.x());
+      c.gap     = c.normal.dot(r);
+      c.xi      = std::clamp(t.dot(r) / l, 0., 1.);
+      return c;
+    }
+
+    /// Narrow phase of one pair of blocks.
+    class PairDetector
+    {
+    public:
+      PairDetector(const std::vector<geometry::Polygon> &polys,
+                   const DetectionOptions               &opt,
+                   const int                             i,
+                   const int                             j,
+                   std::vector<ContactCandidate>        &out)
+          : polys(polys)
+          , opt(opt)
+          , i(i)
+          , j(j)
+          , d(opt.pair_distance(i, j))
+          , out(out)
+      {}
+
+      void
+      run()
+      {
+        const std::size_t first = out.size();
+        corners[0]              = corners_of(i);
+        corners[1]              = corners_of(j);
+        consumed[0].assign(corners[0].size(), false);
+        consumed[1].assign(corners[1].size(), false);
+        find_vertex_vertex();
+        vertices_on_edges(0);
+        vertices_on_edges(1);
+        // One candidate per (vertex, edge).
+        std::sort(out.begin() + first,
+                  out.end(),
+                  [](const ContactCandidate &x, const ContactCandidate &y) {
+                    return std::tie(x.block_i, x.vertex, x.block_j, x.edge)
+                           < std::tie(y.block_i, y.vertex, y.block_j, y.edge);
+                  });
+        out.erase(
+          std::unique(out.begin() + first,
+                      out.end(),
+                      [](const ContactCandidate &x, const ContactCandidate &y) {
+                        return x.block_i == y.block_i && x.vertex == y.vertex
+                               && x.block_j == y.block_j && x.edge == y.edge;
+                      }),
+          out.end());
+      }
+
+    private:
+      std::vector<Corner>
+      corners_of(const int b) const
+      {
+        std::vector<Corner> c;
+        for (int k = 0; k < static_cast<int>(polys[b].vertices.size()); ++k)
+          c.push_back(corner(polys[b], k));
+        return c;
+      }
+
+      int
+      block(const int side) const
+      {
+        return side == 0 ? i : j;
+      }
+
+      Point
+      predicted(const int side, const int k) const
+      {
+        const int b = block(side);
+        return opt.predicted.empty() || opt.predicted[b].empty()
+                 ? Point::Zero()
+                 : opt.predicted[b][k];
+      }
+
+      /// Whether P lies beyond both edges of the convex corner Q (in the
+      /// region where Q itself is the nearest point of its block).
+      static bool
+      beyond_corner(const Point &P, const Corner &Q)
+      {
+        const Point d = P - Q.P;
+        return Q.a1.dot(d) <= 0. && Q.a2.dot(d) <= 0.;
+      }
+
+      void
+      find_vertex_vertex()
+      {
+        for (std::size_t k = 0; k < corners[0].size(); ++k)
+          for (std::size_t m = 0; m < corners[1].size(); ++m)
+            {
+              const Corner &P = corners[0][k], &Q = corners[1][m];
+              if (!P.convex || !Q.convex)
+                continue;
+              const double dist       = (P.P - Q.P).norm();
+              const double ctol       = std::min({opt.coincidence_fraction * d,
+                                                  0.05 * P.a1.norm(),
+                                                  0.05 * P.a2.norm(),
+                                                  0.05 * Q.a1.norm(),
+                                                  0.05 * Q.a2.norm()});
+              const bool   coincident = dist <= ctol;
+              if (coincident
+                  || (dist <= d
+                      && (beyond_corner(P.P, Q) || beyond_corner(Q.P, P))))
+                {
+                  resolve_vertex_vertex(static_cast<int>(k),
+                                        static_cast<int>(m));
+                  if (coincident)
+                    consumed[0][k] = consumed[1][m] = true;
+                }
+            }
+      }
+
+      /**
+       * Shi's rule for two convex vertices in contact: of the four
+       * entrances (each vertex across either edge of the other), those
+       * whose entering wedge lies outside the edge are admissible; the one
+       * with the largest predicted separation at the end of the step, i.e.
+       * the shortest penetration path, is the contact.
+       */
+      void
+      resolve_vertex_vertex(const int k, const int m)
+      {
+        struct Option
+        {
+          ContactCandidate c;
+          double           score, separation;
+        };
+        std::vector<Option> options;
+        const int           nk[2] = {static_cast<int>(corners[0].size()),
+                                     static_cast<int>(corners[1].size())};
+        for (int side = 0; side < 2; ++side)
+          {
+            // Vertex v of 'side' entering an edge at vertex w of 'other'.
+            const int     other = 1 - side;
+            const int     v = side == 0 ? k : m, w = side == 0 ? m : k;
+            const Corner &X  = corners[side][v];
+            const Point   dX = X.P + predicted(side, v);
+            const Point   dW = corners[other][w].P + predicted(other, w);
+            for (const int e : {(w + nk[other] - 1) % nk[other], w})
+              {
+                Option o;
+                o.c     = vertex_edge(polys, block(side), v, block(other), e);
+                o.score = entrance_score(X, o.c.normal);
+                o.separation = o.c.normal.dot(dX - dW);
+                options.push_back(o);
+              }
+          }
+        const double  tie_length = 1e-9 * d, tie_angle = 1e-6;
+        const Option *best = nullptr;
+        for (const auto &o : options)
+          {
+            if (best == nullptr)
+              {
+                best = &o;
+                continue;
+              }
+            const bool ok = o.score >= -1e-9, best_ok = best->score >= -1e-9;
+            bool       better;
+            if (ok != best_ok)
+              better = ok;
+            else if (!ok)
+              better = o.score > best->score;
+            else if (std::abs(o.separation - best->separation) > tie_length)
+              better = o.separation > best->separation;
+            else if (std::abs(o.score - best->score) > tie_angle)
+              better = o.score > best->score;
+            else
+              better = o.c.block_i < best->c.block_i;
+            if (better)
+              best = &o;
+          }
+        out.push_back(best->c);
+      }
+
+      /// Convex vertices of 'side' against the edges of the other block.
+      void
+      vertices_on_edges(const int side)
+      {
+        const int                a = block(side), b = block(1 - side);
+        const geometry::Polygon &pb = polys[b];
+        const int                nb = static_cast<int>(pb.vertices.size());
+        const Eigen::Vector4d    bb = pb.bounding_box();
+        for (int k = 0; k < static_cast<int>(corners[side].size()); ++k)
+          {
+            const Corner &P = corners[side][k];
+            if (!P.convex || consumed[side][k] || P.P.x() < bb[0] - d
+                || P.P.x() > bb[2] + d || P.P.y() < bb[1] - d
+                || P.P.y() > bb[3] + d)
+              continue;
+            if (!pb.contains(P.P))
+              {
+                // Outside: every edge the vertex projects onto within the
+                // search distance (both edges of a reflex corner).
+                for (int e = 0; e < nb; ++e)
+                  {
+                    const ContactCandidate c = vertex_edge(polys, a, k, b, e);
+                    const Point  E = pb.vertices[(e + 1) % nb] - pb.vertices[e];
+                    const double xr
+                      = E.dot(P.P - pb.vertices[e]) / E.squaredNorm();
+                    if (xr >= 0. && xr <= 1. && c.gap <= d
+                        && c.gap >= -1e-9 * d)
+                      out.push_back(c);
+                  }
+                continue;
+              }
+            // Penetrated: the admissible edge of shortest exit, and the
+            // other edge of a reflex corner next to it.
+            const double min_score = -std::sin(opt.entrance_angle);
+            int          best = -1, fallback = -1;
+            double       best_depth = 1e300, fallback_depth = 1e300;
+            std::vector<ContactCandidate> c(nb);
+            std::vector<char>             ok(nb, 0);
+            for (int e = 0; e < nb; ++e)
+              {
+                c[e]            = vertex_edge(polys, a, k, b, e);
+                const Point  E  = pb.vertices[(e + 1) % nb] - pb.vertices[e];
+                const double xr = E.dot(P.P - pb.vertices[e]) / E.squaredNorm();
+                const double dep = -c[e].gap;
+                // (A vertex on the boundary may be found inside or outside by
+                // round-off.)
+                if (dep < -1e-9 * d || dep > d || xr < -1e-12
+                    || xr > 1. + 1e-12)
+                  continue;
+                if (dep < fallback_depth)
+                  {
+                    fallback_depth = dep;
+                    fallback       = e;
+                  }
+                if (entrance_score(P, c[e].normal) < min_score)
+                  continue;
+                ok[e] = 1;
+                if (dep < best_depth)
+                  {
+                    best_depth = dep;
+                    best       = e;
+                  }
+              }
+            if (best < 0)
+              best = fallback;
+            if (best < 0)
+              continue;
+            out.push_back(c[best]);
+            // Reflex corners at either end of the chosen edge.
+            const Corner &end   = corners[1 - side][(best + 1) % nb];
+            const Corner &start = corners[1 - side][best];
+            if (!end.convex && ok[(best + 1) % nb])
+              out.push_back(c[(best + 1) % nb]);
+            if (!start.convex && ok[(best + nb - 1) % nb])
+              out.push_back(c[(best + nb - 1) % nb]);
+          }
+      }
+
+      const std::vector<geometry::Polygon> &polys;
+      const DetectionOptions               &opt;
+      const int                             i, j;
+      const double                          d;
+      std::vector<ContactCandidate>        &out;
+      std::vector<Corner>                   corners[2];
+      std::vector<bool>                     consumed[2];
+    };
   } // namespace
 
 
@@ -205,57 +432,12 @@ namespace rockdda::dda
   detect_contacts(const std::vector<geometry::Polygon> &polygons,
                   const DetectionOptions               &options)
   {
+    std::vector<double> grow(polygons.size(), 0.5 * options.search_distance);
+    if (!options.reach.empty())
+      grow = options.reach;
     std::vector<ContactCandidate> result;
-    std::vector<Scored>           local;
-    for (const auto &[i, j] :
-         candidate_pairs(polygons, options.search_distance))
-      {
-        local.clear();
-        vertices_on_edges(polygons, i, j, options, local);
-        vertices_on_edges(polygons, j, i, options, local);
-        // Coincident vertex pairs: keep one candidate per pair of vertices.
-        std::map<std::pair<int, int>, int> best; // (vertex of i, vertex of j)
-        for (int c = 0; c < static_cast<int>(local.size()); ++c)
-          {
-            const Scored &s = local[c];
-            if (s.other_vertex < 0)
-              continue;
-            const std::pair<int, int> key
-              = s.c.block_i == i ? std::make_pair(s.c.vertex, s.other_vertex)
-                                 : std::make_pair(s.other_vertex, s.c.vertex);
-            auto it = best.find(key);
-            if (it == best.end())
-              {
-                best[key] = c;
-                continue;
-              }
-            const Scored &o = local[it->second];
-            // The most open wedge wins; on a tie (within the angle
-            // tolerance) the vertex of the lower block (i).
-            const bool better
-              = s.score > o.score + options.angle_tolerance
-                || (std::abs(s.score - o.score) <= options.angle_tolerance
-                    && s.c.block_i < o.c.block_i)
-                || (std::abs(s.score - o.score) <= options.angle_tolerance
-                    && s.c.block_i == o.c.block_i && s.c.gap > o.c.gap);
-            if (better)
-              it->second = c;
-          }
-        for (int c = 0; c < static_cast<int>(local.size()); ++c)
-          {
-            const Scored &s = local[c];
-            if (s.other_vertex >= 0)
-              {
-                const std::pair<int, int> key
-                  = s.c.block_i == i
-                      ? std::make_pair(s.c.vertex, s.other_vertex)
-                      : std::make_pair(s.other_vertex, s.c.vertex);
-                if (best[key] != c)
-                  continue;
-              }
-            result.push_back(s.c);
-          }
-      }
+    for (const auto &[i, j] : candidate_pairs(polygons, grow))
+      PairDetector(polygons, options, i, j, result).run();
     return result;
   }
 } // namespace rockdda::dda

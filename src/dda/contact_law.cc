@@ -24,8 +24,11 @@ namespace rockdda::dda
         last_mu  = std::tan(joint.friction_deg * M_PI / 180.);
       }
     const double mu = last_mu;
-    return std::max(0., n) * mu
-           + (contact.broken ? 0. : joint.cohesion * length);
+    // An intact joint: Mohr-Coulomb with the cohesion, where tension
+    // lowers the strength; once broken or sliding: residual friction.
+    if (!contact.broken && contact.state != ContactState::sliding)
+      return std::max(0., n * mu + joint.cohesion * length);
+    return std::max(0., n) * mu;
   }
 
 
@@ -45,23 +48,20 @@ namespace rockdda::dda
     r.shear_force     = 0.;
     const double p    = law.normal_penalty;
     const double ps   = law.shear_penalty();
-    // Tolerance below which a gap or shear displacement is round-off.
-    const double tol = kin.tolerance;
+    const double f    = kin.force_tolerance;
 
     if (contact.state == ContactState::open)
       {
-        // Hysteresis: close only on a penetration beyond the reversal
-        // tolerance (opening is strict), so contacts at zero force do not
-        // chatter.
-        if (g < -kin.reversal_tolerance)
+        const double n = -p * g;
+        if (n > f)
           {
             // Closing: lock it, or let it slide at once if the shear spring
             // would already exceed the strength (saves an iteration).
+            Contact locked = contact;
+            locked.state   = ContactState::locked;
             r.state        = ContactState::locked;
-            const double n = -p * g;
-            const double strength
-              = shear_strength(contact, n, kin.length, joint);
-            if (std::abs(ps * s) > strength + ps * tol)
+            if (std::abs(ps * s)
+                > shear_strength(locked, n, kin.length, joint) + f)
               {
                 r.state           = ContactState::sliding;
                 r.slide_direction = s > 0. ? 1 : -1;
@@ -72,12 +72,14 @@ namespace rockdda::dda
     else
       {
         const double tension_limit
-          = contact.broken ? 0. : joint.tensile * kin.length;
-        if (p * g > tension_limit + p * tol)
+          = !contact.broken && contact.state == ContactState::locked
+              ? joint.tensile * kin.length
+              : 0.;
+        const double n = -p * g;
+        if (-n > tension_limit + f)
           r.state = ContactState::open;
         else
           {
-            const double n = -p * g;
             const double strength
               = shear_strength(contact, n, kin.length, joint);
             r.normal_force = n;
@@ -91,7 +93,7 @@ namespace rockdda::dda
               }
             else if (contact.state == ContactState::locked)
               {
-                if (std::abs(ps * s) > strength + ps * tol)
+                if (std::abs(ps * s) > strength + f)
                   {
                     r.state           = ContactState::sliding;
                     r.slide_direction = s > 0. ? 1 : -1;
@@ -102,8 +104,7 @@ namespace rockdda::dda
               r.state = ContactState::locked;
             else // sliding
               {
-                if (s * contact.slide_direction
-                    < -std::max(tol, kin.reversal_tolerance))
+                if (ps * s * contact.slide_direction < -f)
                   r.state = ContactState::locked;
                 r.shear_force = -strength * contact.slide_direction;
               }

@@ -28,10 +28,17 @@ namespace rockdda::dda
 
 
   std::vector<Contact>
-  ContactSet::transfer(const std::vector<ContactCandidate> &candidates,
-                       const double                         closed_gap) const
+  ContactSet::transfer(
+    const std::vector<ContactCandidate>                   &candidates,
+    const std::function<double(const ContactCandidate &)> &closed_gap,
+    const bool                                             intact) const
   {
-    std::vector<Contact> result(candidates.size());
+    std::vector<Contact>       result(candidates.size());
+    std::vector<std::uint64_t> present;
+    present.reserve(candidates.size());
+    for (const auto &g : candidates)
+      present.push_back(key(g.block_i, g.vertex, g.block_j, g.edge));
+    std::sort(present.begin(), present.end());
     for (std::size_t c = 0; c < candidates.size(); ++c)
       {
         const ContactCandidate &g = candidates[c];
@@ -55,7 +62,15 @@ namespace rockdda::dda
           {
             const Contact *v
               = find(by_vertex, vertex_key(g.block_i, g.vertex, g.block_j));
-            if (v != nullptr && v->state != ContactState::open)
+            // Only if the vertex has left its previous edge (near a reflex
+            // corner it touches both, each with its own state).
+            if (v != nullptr && v->state != ContactState::open
+                && !std::binary_search(present.begin(),
+                                       present.end(),
+                                       key(v->geometry.block_i,
+                                           v->geometry.vertex,
+                                           v->geometry.block_j,
+                                           v->geometry.edge)))
               {
                 // The vertex moved onto another edge of the same block.
                 const Contact &o  = *v;
@@ -65,8 +80,11 @@ namespace rockdda::dda
                 r.broken          = o.broken;
               }
             else
-              r.state = g.gap < closed_gap ? ContactState::locked
-                                           : ContactState::open;
+              {
+                r.state  = g.gap <= closed_gap(g) ? ContactState::locked
+                                                  : ContactState::open;
+                r.broken = !intact;
+              }
           }
         r.state_at_start = r.state;
       }

@@ -38,23 +38,48 @@ namespace rockdda::dda
       throw InputError("the scene has no blocks");
     if (scene.joints.empty())
       scene.joints.push_back(JointMaterial());
-    // Domain size from the raw coordinates (finite ones), for tolerances.
+    // Domain size from the raw coordinates (finite ones).
     Eigen::Vector4d box(1e300, 1e300, -1e300, -1e300);
-    double          max_coordinate = 0.;
     for (const auto &b : scene.blocks)
       for (const auto &p : b.polygon.vertices)
         if (p.allFinite())
           {
-            box[0]         = std::min(box[0], p.x());
-            box[1]         = std::min(box[1], p.y());
-            box[2]         = std::max(box[2], p.x());
-            box[3]         = std::max(box[3], p.y());
-            max_coordinate = std::max(max_coordinate, p.cwiseAbs().maxCoeff());
+            box[0] = std::min(box[0], p.x());
+            box[1] = std::min(box[1], p.y());
+            box[2] = std::max(box[2], p.x());
+            box[3] = std::max(box[3], p.y());
           }
     domain = std::max(box[2] - box[0], box[3] - box[1]);
     if (!(domain > 0.) || !std::isfinite(domain))
       throw InputError("the scene's blocks have no extent");
-    validate_and_prepare(scene, warning_list, 1e-6 * domain);
+    validate_and_prepare(scene, warning_list, 1e-6);
+    // Work in coordinates relative to the centre of the scene, so that the
+    // round-off does not depend on where the scene sits.
+    const geometry::Point centre(0.5 * (box[0] + box[2]),
+                                 0.5 * (box[1] + box[3]));
+    for (auto &b : scene.blocks)
+      {
+        for (auto &p : b.polygon.vertices)
+          p -= centre;
+        b.initial_centroid -= centre;
+      }
+    for (auto &f : scene.fixed_points)
+      {
+        f.point -= centre;
+        f.anchor -= centre;
+      }
+    for (auto &l : scene.load_points)
+      l.point -= centre;
+    for (auto &m : scene.measurement_points)
+      {
+        m.point -= centre;
+        m.initial -= centre;
+      }
+    scene.origin += centre;
+    const double dn = scene.seismic.direction.norm();
+    if (!(dn > 0.) || !std::isfinite(dn))
+      throw InputError("the seismic direction has no length");
+    scene.seismic.direction /= dn;
     if (!(ctrl.time_step > 0.) || !std::isfinite(ctrl.time_step))
       throw InputError("time step " + num(ctrl.time_step)
                        + " s; valid: dt > 0");
@@ -77,20 +102,15 @@ namespace rockdda::dda
       ctrl.fixed_penalty = 10. * ctrl.law.normal_penalty;
     dt_min
       = ctrl.min_time_step > 0. ? ctrl.min_time_step : 1e-6 * ctrl.time_step;
-    dt            = ctrl.time_step;
-    gap_tolerance = 1e-12 * (domain + max_coordinate);
-    std::vector<double> sizes;
+    dt = ctrl.time_step;
     for (const auto &b : scene.blocks)
       {
         const Eigen::Vector4d bb = b.polygon.bounding_box();
-        sizes.push_back(std::max(bb[2] - bb[0], bb[3] - bb[1]));
+        block_size.push_back(std::max(bb[2] - bb[0], bb[3] - bb[1]));
+        allowed_step.push_back(
+          std::min(ctrl.max_displacement_ratio * domain,
+                   ctrl.max_displacement_block_ratio * block_size.back()));
       }
-    std::nth_element(sizes.begin(),
-                     sizes.begin() + sizes.size() / 2,
-                     sizes.end());
-    allowed_step
-      = std::min(ctrl.max_displacement_ratio * domain,
-                 ctrl.max_displacement_block_ratio * sizes[sizes.size() / 2]);
     if (scene.seismic.mode != SeismicInput::Mode::none)
       ground = GroundMotionIntegral(scene.seismic.record, scene.seismic.g);
   }
@@ -122,6 +142,8 @@ namespace rockdda::dda
     scene.seismic.mode = mode;
     t                  = 0.;
     n_steps            = 0;
+    friction_work      = 0.;
+    load_work          = 0.;
     dt                 = ctrl.time_step;
     last_solution.setZero();
     for (auto &b : scene.blocks)
@@ -180,11 +202,35 @@ namespace rockdda::dda
     for (const auto &b : scene.blocks)
       polys.push_back(b.polygon);
     DetectionOptions detection;
-    detection.search_distance       = ctrl.search_factor * allowed_step;
-    detection.penetration_limit     = allowed_step;
-    detection.coincidence_tolerance = 0.2 * detection.search_distance;
+    detection.reach.resize(polys.size());
+    for (std::size_t b = 0; b < polys.size(); ++b)
+      detection.reach[b] = ctrl.search_factor * allowed_step[b];
+    // Shortest-path rule of vertex-vertex contacts: the vertices move on as
+    // in the previous step.
+    if (last_solution.size() == static_cast<long>(6 * polys.size()))
+      {
+        detection.predicted.resize(polys.size());
+        for (std::size_t b = 0; b < polys.size(); ++b)
+          {
+            const Vector6 D = last_solution.segment<6>(6 * b);
+            const auto    c = block_moments(polys[b]).centroid;
+            for (const auto &p : polys[b].vertices)
+              detection.predicted[b].push_back(displacement_matrix(c, p) * D);
+          }
+      }
+    // A new contact touching within round-off starts closed.
+    const auto touching = [&](const ContactCandidate &c) {
+      const double size
+        = std::min(block_size[c.block_i], block_size[c.block_j]);
+      return 1e-12 * size
+             + 4. * std::numeric_limits<double>::epsilon()
+                 * polys[c.block_i].vertices[c.vertex].norm();
+    };
     std::vector<Contact> start
-      = contact_set.transfer(detect_contacts(polys, detection), gap_tolerance);
+      = contact_set.transfer(detect_contacts(polys, detection),
+                             touching,
+                             first_detection);
+    first_detection = false;
     for (auto &c : start)
       {
         // A tagged edge carries its own joint material; otherwise the weaker
@@ -234,16 +280,16 @@ namespace rockdda::dda
   {
     std::vector<Contact> contacts = start;
     StepParameters       par;
-    par.dt                 = h;
-    par.dynamic            = ctrl.dynamic;
-    par.law                = ctrl.law;
-    par.fixed_penalty      = ctrl.fixed_penalty;
-    par.gap_tolerance      = gap_tolerance;
-    par.reversal_tolerance = 1e-6 * allowed_step;
-    par.body_acceleration  = scene.gravity;
-    const auto mode        = scene.seismic.mode;
-    if (mode == SeismicInput::Mode::inertial)
-      par.body_acceleration.x() -= ground.acceleration(t + 0.5 * h);
+    par.dt                = h;
+    par.dynamic           = ctrl.dynamic;
+    par.law               = ctrl.law;
+    par.fixed_penalty     = ctrl.fixed_penalty;
+    par.body_acceleration = scene.gravity;
+    const auto   mode     = scene.seismic.mode;
+    const double a_ground = mode == SeismicInput::Mode::inertial
+                              ? ground.acceleration(t + 0.5 * h)
+                              : 0.;
+    par.body_acceleration -= a_ground * scene.seismic.direction;
     const double ug = mode == SeismicInput::Mode::displacement
                         ? ground.displacement(t + h)
                         : 0.;
@@ -252,7 +298,8 @@ namespace rockdda::dda
       {
         const auto &fp = scene.fixed_points[f];
         par.fixed_targets[f]
-          = fp.anchor + geometry::Point(fp.moves_with_ground ? ug : 0., 0.);
+          = fp.anchor
+            + (fp.moves_with_ground ? ug : 0.) * scene.seismic.direction;
       }
     assembler.prepare_step(scene, contacts, par, matrix);
     solver.new_pattern(matrix);
@@ -263,8 +310,8 @@ namespace rockdda::dda
     Eigen::VectorXd F;
     report.solver_iterations = 0;
     bool     converged       = false;
-    unsigned changes         = 0;
-    unsigned it              = 0;
+    unsigned changes = 0, friction_changes = 0;
+    unsigned it = 0;
     while (it < ctrl.max_iterations)
       {
         ++it;
@@ -292,8 +339,8 @@ namespace rockdda::dda
             why = "the displacement increment is not finite";
             return false;
           }
-        changes                   = 0;
-        unsigned friction_changes = 0;
+        changes          = 0;
+        friction_changes = 0;
         // Force scale of the friction iteration: the mean normal force of
         // the closed contacts (previous iteration).
         double   force_sum = 0.;
@@ -304,19 +351,23 @@ namespace rockdda::dda
               force_sum += std::abs(ct.normal_force);
               ++n_closed;
             }
-        const double friction_tolerance
-          = 1e-3 * (n_closed > 0 ? force_sum / n_closed : 0.)
-            + gap_tolerance * ctrl.law.normal_penalty;
+        const double mean_force = n_closed > 0 ? force_sum / n_closed : 0.;
+        std::vector<StateCheck> checks(contacts.size());
+        for (std::size_t c = 0; c < contacts.size(); ++c)
+          checks[c]
+            = check_state(contacts[c],
+                          assembler.kinematics()[c],
+                          assembler.gap(static_cast<int>(c), x),
+                          assembler.shear_displacement(static_cast<int>(c), x),
+                          ctrl.law,
+                          scene.joints[contacts[c].joint]);
+        check_face_groups(contacts, x, checks);
         for (std::size_t c = 0; c < contacts.size(); ++c)
           {
             Contact                 &ct  = contacts[c];
             const ContactKinematics &kin = assembler.kinematics()[c];
-            const auto               Di = x.segment<6>(6 * ct.geometry.block_i);
-            const auto               Dj = x.segment<6>(6 * ct.geometry.block_j);
-            const double     g = kin.g0 + kin.en.dot(Di) + kin.hn.dot(Dj);
-            const double     s = kin.s0 + kin.es.dot(Di) + kin.hs.dot(Dj);
-            const StateCheck r
-              = check_state(ct, kin, g, s, ctrl.law, scene.joints[ct.joint]);
+            const int                ci  = static_cast<int>(c);
+            const StateCheck        &r   = checks[c];
             // The friction of a sliding contact used the normal force of
             // the previous iteration; iterate until it agrees (implicit
             // friction), which suppresses a rocking instability when the
@@ -324,7 +375,8 @@ namespace rockdda::dda
             if (ct.state == ContactState::sliding
                 && r.state == ContactState::sliding
                 && std::abs(r.normal_force - ct.normal_force)
-                     > 1e-3 * std::abs(r.normal_force) + friction_tolerance)
+                     > 1e-3 * (std::abs(r.normal_force) + mean_force)
+                         + kin.force_tolerance)
               ++friction_changes;
             ct.normal_force = r.normal_force;
             ct.shear_force  = r.shear_force;
@@ -349,21 +401,15 @@ namespace rockdda::dda
                           += r.shear_force
                              / (ctrl.law.shear_penalty() * kin.edge_length);
                       }
-                    assembler.set_shear_reference(scene, c, ct);
+                    assembler.set_shear_reference(scene, ci, ct);
                   }
-                else if (r.state == ContactState::open
-                         && old != ContactState::open)
-                  ct.broken = true;
-                if (r.state == ContactState::sliding)
-                  ct.broken = true;
               }
             if (r.state == ContactState::sliding)
               ct.slide_direction = r.slide_direction;
           }
-        // States settled; the friction force is iterated further while
-        // the budget lasts (never a reason to cut the step).
-        if (changes == 0
-            && (friction_changes == 0 || it + 1 >= ctrl.max_iterations))
+        // Converged when no contact changes state and the friction forces
+        // agree with the normal forces; otherwise the step is cut.
+        if (changes == 0 && friction_changes == 0)
           {
             converged = true;
             break;
@@ -373,12 +419,14 @@ namespace rockdda::dda
       {
         why = "the open-close iteration did not converge in "
               + std::to_string(ctrl.max_iterations) + " iterations ("
-              + std::to_string(changes) + " contacts still changing state)";
+              + std::to_string(changes) + " contacts changing state, "
+              + std::to_string(friction_changes)
+              + " sliding contacts whose friction force has not converged)";
         return false;
       }
 
-    // Largest vertex displacement.
-    double max_d = 0.;
+    // Largest vertex displacement, relative to each block's allowance.
+    double max_d = 0., worst_ratio = 0.;
     int    worst = 0;
     for (std::size_t b = 0; b < scene.blocks.size(); ++b)
       {
@@ -387,23 +435,52 @@ namespace rockdda::dda
         for (const auto &p : scene.blocks[b].polygon.vertices)
           {
             const double d = (displacement_matrix(c, p) * D).norm();
-            if (d > max_d)
+            max_d          = std::max(max_d, d);
+            if (d / allowed_step[b] > worst_ratio)
               {
-                max_d = d;
-                worst = static_cast<int>(b);
+                worst_ratio = d / allowed_step[b];
+                worst       = static_cast<int>(b);
               }
           }
       }
-    if (max_d > allowed_step)
+    if (worst_ratio > 1.)
       {
         why = "block " + std::to_string(scene.blocks[worst].id) + " moved "
-              + num(max_d) + " m in one step, more than the allowed "
-              + num(allowed_step) + " m (min of "
+              + num(worst_ratio * allowed_step[worst])
+              + " m in one step, more than its allowed "
+              + num(allowed_step[worst]) + " m (min of "
               + num(ctrl.max_displacement_ratio) + " x domain size "
               + num(domain) + " m and " + num(ctrl.max_displacement_block_ratio)
-              + " x median block size)";
+              + " x its size)";
         return false;
       }
+
+    // Accepted: energy flows of the step, and joints broken by the
+    // accepted states.
+    for (std::size_t c = 0; c < contacts.size(); ++c)
+      {
+        Contact &ct = contacts[c];
+        if (ct.state == ContactState::sliding)
+          {
+            // Work of the friction force over this step's slip.
+            const auto  &kin = assembler.kinematics()[c];
+            const double s
+              = assembler.shear_displacement(static_cast<int>(c), x);
+            friction_work += -ct.shear_force * (s - kin.s0);
+            ct.broken = true;
+          }
+        else if (ct.state == ContactState::open
+                 && ct.state_at_start != ContactState::open)
+          ct.broken = true;
+      }
+    for (const auto &l : scene.load_points)
+      load_work += l.force.dot(
+        displacement_matrix(assembler.moments()[l.block].centroid, l.point)
+        * x.segment<6>(6 * l.block));
+    if (a_ground != 0.)
+      for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+        load_work += -a_ground * assembler.masses()[b](0, 0)
+                     * scene.seismic.direction.dot(x.segment<2>(6 * b));
 
     update(x, h);
     current_contacts = std::move(contacts);
@@ -421,6 +498,82 @@ namespace rockdda::dda
        : c.state == ContactState::sliding ? report.n_sliding
                                           : report.n_locked)++;
     return true;
+  }
+
+
+
+  void
+  DdaSystem::check_face_groups(const std::vector<Contact> &contacts,
+                               const Eigen::VectorXd      &x,
+                               std::vector<StateCheck>    &checks) const
+  {
+    const auto      &group = assembler.groups();
+    std::vector<int> members;
+    std::vector<int> order(contacts.size());
+    for (std::size_t c = 0; c < contacts.size(); ++c)
+      order[c] = static_cast<int>(c);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+      return group[a] < group[b];
+    });
+    const double ps = ctrl.law.shear_penalty();
+    for (std::size_t a = 0; a < order.size();)
+      {
+        std::size_t b = a;
+        while (b < order.size() && group[order[b]] == group[order[a]])
+          ++b;
+        if (group[order[a]] < 0)
+          {
+            a = b;
+            continue;
+          }
+        // The resultant shear force on the lower block, along the first
+        // member's tangent, against the summed strength.
+        members.clear();
+        for (std::size_t k = a; k < b; ++k)
+          {
+            const Contact &ct = contacts[order[k]];
+            const auto    &j  = scene.joints[ct.joint];
+            // A frictionless contact carries no shear at all.
+            const bool frictionless
+              = j.friction_deg == 0. && (ct.broken || j.cohesion == 0.);
+            if (ct.state != ContactState::sliding && !frictionless
+                && checks[order[k]].state != ContactState::open)
+              members.push_back(order[k]);
+          }
+        a = b;
+        if (members.size() < 2)
+          continue;
+        const geometry::Point u = assembler.kinematics()[members[0]].tangent;
+        double                resultant = 0., strength = 0., tolerance = 0.;
+        std::vector<double>   sense(members.size());
+        for (std::size_t m = 0; m < members.size(); ++m)
+          {
+            const int   c   = members[m];
+            const auto &kin = assembler.kinematics()[c];
+            const auto &g   = contacts[c].geometry;
+            sense[m]        = (g.block_i < g.block_j ? 1. : -1.)
+                       * (kin.tangent.dot(u) >= 0. ? 1. : -1.);
+            resultant += sense[m] * ps * assembler.shear_displacement(c, x);
+            strength += shear_strength(contacts[c],
+                                       checks[c].normal_force,
+                                       kin.length,
+                                       scene.joints[contacts[c].joint]);
+            tolerance += kin.force_tolerance;
+          }
+        const bool slides = std::abs(resultant) > strength + tolerance;
+        for (std::size_t m = 0; m < members.size(); ++m)
+          {
+            StateCheck &r = checks[members[m]];
+            if (!slides)
+              r.state = ContactState::locked;
+            else
+              {
+                r.state           = ContactState::sliding;
+                r.slide_direction = sense[m] * resultant > 0. ? 1 : -1;
+              }
+            r.changed = r.state != contacts[members[m]].state;
+          }
+      }
   }
 
 
@@ -529,6 +682,21 @@ namespace rockdda::dda
         e -= scene.materials[b.material].density * m.area
              * scene.gravity.dot(m.centroid - b.initial_centroid);
       }
+    return e;
+  }
+
+
+
+  EnergyLedger
+  DdaSystem::energy() const
+  {
+    EnergyLedger e;
+    e.kinetic   = kinetic_energy();
+    e.strain    = strain_energy();
+    e.contact   = contact_energy();
+    e.potential = potential_energy();
+    e.friction  = friction_work;
+    e.load_work = load_work;
     return e;
   }
 

@@ -16,7 +16,7 @@ namespace rockdda::dda
   namespace
   {
     constexpr char          magic[]        = "rockdda DDA checkpoint";
-    constexpr std::uint32_t format_version = 1;
+    constexpr std::uint32_t format_version = 2;
     using io::BinaryReader;
     using io::BinaryWriter;
 
@@ -124,6 +124,9 @@ namespace rockdda::dda
     w.put<std::uint64_t>(last_solution.size());
     for (Eigen::Index i = 0; i < last_solution.size(); ++i)
       w.put(last_solution[i]);
+    w.put(friction_work);
+    w.put(load_work);
+    w.put<std::uint8_t>(first_detection ? 1 : 0);
     return w.bytes;
   }
 
@@ -223,6 +226,9 @@ namespace rockdda::dda
     Eigen::VectorXd x(static_cast<Eigen::Index>(n_x));
     for (Eigen::Index i = 0; i < x.size(); ++i)
       x[i] = r.get<double>();
+    const double friction = r.get<double>();
+    const double loads    = r.get<double>();
+    const bool   first    = r.get<std::uint8_t>() != 0;
     if (!r.at_end())
       throw InputError(source + ": the checkpoint has trailing data");
     if (!(std::isfinite(time) && step > 0.))
@@ -233,10 +239,13 @@ namespace rockdda::dda
     scene            = std::move(s);
     current_contacts = std::move(contacts);
     contact_set.store(current_contacts);
-    t             = time;
-    dt            = step;
-    n_steps       = steps;
-    n_cuts        = cuts;
-    last_solution = std::move(x);
+    t               = time;
+    dt              = step;
+    n_steps         = steps;
+    n_cuts          = cuts;
+    last_solution   = std::move(x);
+    friction_work   = friction;
+    load_work       = loads;
+    first_detection = first;
   }
 } // namespace rockdda::dda

@@ -61,9 +61,13 @@ namespace rockdda::dda
     header(s, n_points, blocks.size());
     s << "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" "
          "format=\"ascii\">\n";
+    // Global coordinates (origin + local), to 0.1 um at UTM magnitudes.
+    const geometry::Point o = dda.system().origin;
+    s << std::setprecision(15);
     for (const auto &b : blocks)
       for (const auto &v : b.polygon.vertices)
-        s << v.x() << ' ' << v.y() << " 0\n";
+        s << o.x() + v.x() << ' ' << o.y() + v.y() << " 0\n";
+    s << std::setprecision(10);
     s << "</DataArray>\n</Points>\n<Cells>\n"
       << "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
     std::size_t k = 0;
@@ -131,8 +135,11 @@ namespace rockdda::dda
         const auto  Q0 = vj[g.edge];
         const auto  Q1 = vj[(g.edge + 1) % vj.size()];
         const auto  P0 = Q0 + g.xi * (Q1 - Q0);
-        s << P.x() << ' ' << P.y() << " 0\n"
-          << P0.x() << ' ' << P0.y() << " 0\n";
+        const auto &o  = dda.system().origin;
+        s << std::setprecision(15) << o.x() + P.x() << ' ' << o.y() + P.y()
+          << " 0\n"
+          << o.x() + P0.x() << ' ' << o.y() + P0.y() << " 0\n"
+          << std::setprecision(10);
       }
     s << "</DataArray>\n</Points>\n<Cells>\n"
       << "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";

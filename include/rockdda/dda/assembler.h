@@ -33,10 +33,6 @@ namespace rockdda::dda
     /// Target positions of the fixed points at the end of the step (m).
     std::vector<geometry::Point> fixed_targets;
     ContactLaw                   law;
-    /// Gaps and shear displacements below this are round-off (m).
-    double gap_tolerance = 0.;
-    /// See ContactKinematics::reversal_tolerance (m).
-    double reversal_tolerance = 0.;
   };
 
   /**
@@ -75,6 +71,19 @@ namespace rockdda::dda
       return contact_kinematics;
     }
 
+    /**
+     * Face group of each contact (-1 for a corner on a face): the vertex
+     * contacts between one pair of faces, whose Mohr-Coulomb strength is
+     * checked on their resultant (the self-equilibrated corner forces of
+     * uniformly strained blocks, e.g. from Poisson expansion, do not break
+     * a joint).
+     */
+    const std::vector<int> &
+    groups() const
+    {
+      return contact_group;
+    }
+
     /// Moments of each block at the start of the step.
     const std::vector<BlockMoments> &
     moments() const
@@ -91,22 +100,35 @@ namespace rockdda::dda
 
     /// Kinematics of a contact at the current geometry, with its shear
     /// reference @p xi_ref.
-    static ContactKinematics
-    contact_kinematics_of(const BlockSystem               &system,
-                          const std::vector<BlockMoments> &moments,
-                          const ContactCandidate          &candidate,
-                          const double                     xi_ref,
-                          const double                     tolerance);
+    ContactKinematics
+    contact_kinematics_of(const BlockSystem      &system,
+                          const ContactCandidate &candidate,
+                          const double            xi_ref) const;
+
+    /// Shear displacement (m) of contact @p index for the increments @p x.
+    double
+    shear_displacement(const int index, const Eigen::VectorXd &x) const;
+    /// Normal gap (m) of contact @p index for the increments @p x.
+    double
+    gap(const int index, const Eigen::VectorXd &x) const;
 
   private:
-    StepParameters                 params;
-    std::vector<Matrix6>           base_matrix, mass;
-    std::vector<Vector6>           base_rhs;
-    std::vector<BlockMoments>      block_moments_;
+    StepParameters            params;
+    std::vector<Matrix6>      base_matrix, mass;
+    std::vector<Vector6>      base_rhs;
+    std::vector<BlockMoments> block_moments_;
+    /// Size (larger side of the bounding box, m) of each block.
+    std::vector<double> block_size;
+    /// Contact length of each contact (m): its share of the length over
+    /// which the two faces overlap (0 for a corner on a face).
+    std::vector<double>            contact_length;
+    std::vector<int>               contact_group;
     std::vector<ContactKinematics> contact_kinematics;
     /// Pair index of each contact (-1 for a contact within one block).
-    std::vector<int>           contact_pair;
-    std::vector<JointMaterial> joints;
+    std::vector<int> contact_pair;
+    /// The two blocks of each contact (vertex block, edge block).
+    std::vector<std::pair<int, int>> contact_blocks;
+    std::vector<JointMaterial>       joints;
   };
 } // namespace rockdda::dda
 

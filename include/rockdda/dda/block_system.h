@@ -122,6 +122,9 @@ namespace rockdda::dda
     };
     Mode            mode = Mode::none;
     seismic::Record record;
+    /// Unit direction of the ground motion in the scene's plane (default
+    /// +x); a rotated scene rotates it with the blocks.
+    geometry::Point direction = geometry::Point(1., 0.);
     /// Gravitational acceleration used to convert g to m/s^2.
     double g = 9.80665;
   };
@@ -138,6 +141,12 @@ namespace rockdda::dda
     /// Constant body acceleration (m/s^2), e.g. (0, -9.80665).
     geometry::Point gravity = geometry::Point(0., -9.80665);
     SeismicInput    seismic;
+    /// The coordinates above are relative to this point (m): a scene's
+    /// global position is origin + local. DdaSystem moves its scene to a
+    /// local origin (the centre of the blocks' bounding box) so that round-
+    /// off does not depend on where the scene sits (e.g. UTM coordinates);
+    /// outputs add the origin back.
+    geometry::Point origin = geometry::Point::Zero();
   };
 
   /**
@@ -146,12 +155,13 @@ namespace rockdda::dda
    * set. Throws InputError naming the block id for fewer than 3 vertices,
    * zero area, a self-intersecting polygon, a missing or invalid material,
    * zero density, blocks overlapping at t = 0 (by more than
-   * @p overlap_tolerance m), and points outside their block.
+   * @p overlap_fraction of the smaller block's size), and fixed, load and
+   * measurement points outside their block.
    */
   void
   validate_and_prepare(BlockSystem              &system,
                        std::vector<std::string> &warnings,
-                       const double              overlap_tolerance);
+                       const double              overlap_fraction);
 
   /**
    * The ground displacement and velocity of a seismic record, integrated

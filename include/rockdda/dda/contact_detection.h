@@ -9,6 +9,7 @@
 
 #include <rockdda/geometry/polygon.h>
 
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -30,19 +31,36 @@ namespace rockdda::dda
     double          xi = 0., gap = 0.;
   };
 
-  /// Options of the detection (lengths in m).
+  /**
+   * Options of the detection (lengths in m). Every length is per block, so
+   * that the rules do not depend on the size of the domain or on where the
+   * scene sits: the pair (i, j) is searched within max(reach_i, reach_j).
+   */
   struct DetectionOptions
   {
-    /// Pairs and vertex-edge candidates closer than this are reported.
+    /// Search distance of every block when @p reach is empty (m).
     double search_distance = 0.;
-    /// Entrance-rule tolerance: an edge a of the vertex passes if
-    /// n . a >= -angle_tolerance |a|.
-    double angle_tolerance = 1e-3;
-    /// Deepest penetration (m) of a vertex behind an edge that is still
-    /// taken as a contact (deeper vertices belong to other edges).
-    double penetration_limit = 0.;
-    /// Vertices within this distance count as coincident (m).
-    double coincidence_tolerance = 0.;
+    /// Search distance of each block (m): how far its vertices may move
+    /// relative to a neighbour in one step, times a safety factor.
+    std::vector<double> reach;
+    /// Predicted displacement of each vertex of each block over the step
+    /// (m; same layout as the polygons' vertices, empty = at rest). Decides
+    /// the entrance of vertex-vertex contacts by the shortest path.
+    std::vector<std::vector<geometry::Point>> predicted;
+    /// Entrance rule of a penetrated vertex: an edge a of the vertex
+    /// passes if n . a >= -sin(entrance_angle) |a| (rad). Larger than the
+    /// relative rotation of two blocks in one step.
+    double entrance_angle = 0.2;
+    /// Two vertices closer than coincidence_fraction * (pair search
+    /// distance) form a vertex-vertex contact.
+    double coincidence_fraction = 0.2;
+
+    /// Search distance of the pair (i, j) (m).
+    double
+    pair_distance(const int i, const int j) const
+    {
+      return reach.empty() ? search_distance : std::max(reach[i], reach[j]);
+    }
   };
 
   /**
@@ -54,16 +72,24 @@ namespace rockdda::dda
   candidate_pairs(const std::vector<geometry::Polygon> &polygons,
                   const double                          distance);
 
+  /// Broad phase with the box of block i grown by @p grow[i] on each side.
+  std::vector<std::pair<int, int>>
+  candidate_pairs(const std::vector<geometry::Polygon> &polygons,
+                  const std::vector<double>            &grow);
+
   /**
-   * Narrow phase for all candidate pairs: convex vertices of one block
-   * against the edges of the other. A candidate passes the entrance rule
-   * when both edges a of the vertex satisfy n . a >= -tol |a| (the vertex's
-   * wedge is not behind the edge). Concave (and straight) vertices do not
-   * initiate contacts. A vertex on (near) an edge end is a vertex-vertex
-   * contact; of the candidates that coincident vertex pairs produce in both
-   * directions only one is kept (the one whose wedge is most open with
-   * respect to the edge; on a tie the lower block owns the vertex), so that
-   * stacks of equal-width blocks get one contact per corner.
+   * Narrow phase for all candidate pairs (Shi 1988, ch. 4; the rules are
+   * documented in doc/theory/dda.md). Only convex vertices initiate
+   * contacts. A vertex outside the other block whose projection falls on
+   * an edge within the search distance is in contact with that edge; near
+   * a concave (reflex) corner it touches both edges. A vertex inside the
+   * other block (penetrated) is in contact with the edge of shortest exit
+   * that passes the entrance rule, and with both edges of a reflex corner
+   * it sits in. Two convex vertices within the coincidence distance, or a
+   * vertex beyond both edges of a convex corner, form a vertex-vertex
+   * contact: of the four vertex-edge entrances the one that passes the
+   * entrance rule with the largest predicted separation at the end of the
+   * step (the shortest penetration path) is kept.
    */
   std::vector<ContactCandidate>
   detect_contacts(const std::vector<geometry::Polygon> &polygons,

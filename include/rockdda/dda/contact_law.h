@@ -42,14 +42,19 @@ namespace rockdda::dda
     /// Unit tangent of the edge (m/m) and the edge's length (m).
     geometry::Point tangent;
     double          edge_length = 0.;
-    /// Gap and shear displacements below this are round-off (m).
+    /// Gap and shear displacements below this are round-off (m): 1e-12 of
+    /// the smaller block's size plus the round-off of the vertex's local
+    /// coordinates.
     double tolerance = 0.;
-    /// Hysteresis of the state switches (m): a sliding contact locks only
-    /// when its shear displacement reverses by more than this, and an open
-    /// contact closes only when it penetrates by more than this. Smaller
-    /// changes are noise (lagged friction, contacts at zero force) that
-    /// would make the open-close iteration chatter.
-    double reversal_tolerance = 0.;
+    /// Force below which a state change is noise (N/m): 1e-6 of the
+    /// weight of the lighter block (its mass times the body acceleration),
+    /// and at least the penalty times the round-off tolerance. A contact
+    /// closes when it would carry more than this in compression, opens
+    /// when its tension exceeds the tensile strength by more than this,
+    /// slides when the shear force exceeds the strength by more than this,
+    /// and a sliding contact locks when reversing its slip would change
+    /// the shear spring force by more than this.
+    double force_tolerance = 0.;
   };
 
   /**
@@ -67,12 +72,14 @@ namespace rockdda::dda
 
   /**
    * Mohr-Coulomb check of the open-close iteration for a contact whose
-   * latest gap is @p g and shear displacement @p s (m):
-   * - open -> locked when the vertex penetrates (g < -reversal tolerance);
-   * - closed -> open when the tensile force p g exceeds T l;
-   * - locked -> sliding when |p_s s| > N tan(phi) + c l (direction of s);
-   * - sliding -> locked when the shear displacement reverses against the
-   *   assumed sliding direction.
+   * latest gap is @p g and shear displacement @p s (m), with force
+   * criteria (f the force tolerance):
+   * - open -> locked when the compressive force -p g exceeds f;
+   * - closed -> open when the tensile force p g exceeds T l + f (T only
+   *   while the joint is intact and locked);
+   * - locked -> sliding when |p_s s| > strength + f (direction of s);
+   * - sliding -> locked when the slip reverses against the sliding
+   *   direction by more than f / p_s.
    */
   StateCheck
   check_state(const Contact           &contact,
@@ -82,7 +89,12 @@ namespace rockdda::dda
               const ContactLaw        &law,
               const JointMaterial     &joint);
 
-  /// Shear strength (N/m) of a closed contact with normal force @p n.
+  /**
+   * Shear strength (N/m) of a closed contact with normal force @p n
+   * (compression positive): N tan(phi) + c l while the joint is intact and
+   * locked, where a tensile N lowers it (Mohr-Coulomb, floored at 0);
+   * max(N, 0) tan(phi) once it is broken or sliding (residual).
+   */
   double
   shear_strength(const Contact       &contact,
                  const double         n,

@@ -9,6 +9,7 @@
 #include <rockdda/dda/contact_detection.h>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace rockdda::dda
@@ -37,8 +38,9 @@ namespace rockdda::dda
     double           normal_force    = 0.;
     double           shear_force     = 0.;
     int              slide_direction = 0;
-    /// Cohesion and tensile strength are lost once the contact has slid or
-    /// opened.
+    /// Cohesion and tensile strength are lost once an accepted step ends
+    /// with the contact sliding or opened (trial states of the open-close
+    /// iteration do not break it).
     bool broken = false;
     /// Joint material index.
     int joint = 0;
@@ -57,11 +59,15 @@ namespace rockdda::dda
     /**
      * Turn this step's candidates into contacts, with the states transferred
      * from the previous step. New contacts start locked if their gap is
-     * below @p closed_gap (m), open otherwise.
+     * at most closed_gap(candidate) (m, the round-off of that contact),
+     * open otherwise; they are intact joints
+     * (cohesion and tensile strength) only if @p intact (the first
+     * detection of a run), otherwise contacts that formed by motion.
      */
     std::vector<Contact>
-    transfer(const std::vector<ContactCandidate> &candidates,
-             const double                         closed_gap) const;
+    transfer(const std::vector<ContactCandidate>                   &candidates,
+             const std::function<double(const ContactCandidate &)> &closed_gap,
+             const bool intact) const;
 
     /// Store the states at the end of an accepted step.
     void

@@ -9,6 +9,7 @@
 
 #include <rockdda/dda/assembler.h>
 #include <rockdda/dda/block_system.h>
+#include <rockdda/dda/contact_law.h>
 #include <rockdda/dda/contact_set.h>
 #include <rockdda/dda/linear_solver.h>
 
@@ -27,14 +28,15 @@ namespace rockdda::dda
     double min_time_step = 0.;
     /// Dynamic control parameter in [0, 1] (0 static, 1 fully dynamic).
     double dynamic = 1.;
-    /// Open-close iterations before the step is cut.
+    /// Open-close iterations before the step is cut (the contact states
+    /// and the friction forces must both have converged).
     unsigned int max_iterations = 6;
     /// Largest vertex displacement per step, as a fraction of the domain
     /// size (the larger side of the bounding box of all blocks).
     double max_displacement_ratio = 0.01;
-    /// The allowed vertex displacement per step is also at most this
-    /// fraction of the median block size (keeps the contact search local
-    /// in large domains of small blocks).
+    /// The allowed vertex displacement per step of a block is also at most
+    /// this fraction of the block's own size (keeps contact search and
+    /// rotation per step local to the block, whatever the domain size).
     double max_displacement_block_ratio = 0.05;
     /// Contact search distance = search_factor * the allowed vertex
     /// displacement per step.
@@ -69,6 +71,26 @@ namespace rockdda::dda
     double max_displacement = 0.;
     /// Linear solver iterations (CG) summed over the step.
     unsigned long solver_iterations = 0;
+  };
+
+  /**
+   * The energy ledger of a run (J per m thickness). Stored: kinetic, block
+   * strain, contact springs, gravity potential (relative to t = 0). Flows
+   * since t = 0: work dissipated by sliding friction (>= 0) and work done on
+   * the blocks by point loads, the seismic inertial load and moving fixed
+   * points. In exact dynamics balance() stays at its initial value; the
+   * time integration may only lower it (numerical damping).
+   */
+  struct EnergyLedger
+  {
+    double kinetic = 0., strain = 0., contact = 0., potential = 0.;
+    double friction = 0., load_work = 0.;
+    /// kinetic + strain + contact + potential + friction - load_work.
+    double
+    balance() const
+    {
+      return kinetic + strain + contact + potential + friction - load_work;
+    }
   };
 
   /// A run that cannot continue (the message is the diagnosis).
@@ -140,11 +162,13 @@ namespace rockdda::dda
     {
       return domain;
     }
-    /// Allowed vertex displacement per step (m).
+    /// Allowed vertex displacement per step of block @p b (m): the smaller
+    /// of max_displacement_ratio x the domain size and
+    /// max_displacement_block_ratio x the block's size.
     double
-    allowed_displacement() const
+    allowed_displacement(const int b) const
     {
-      return allowed_step;
+      return allowed_step[b];
     }
     const std::vector<std::string> &
     warnings() const
@@ -182,6 +206,10 @@ namespace rockdda::dda
     double
     potential_energy() const;
 
+    /// All terms of the energy balance (see EnergyLedger).
+    EnergyLedger
+    energy() const;
+
     /// Displacement (m) of a block's centroid since t = 0.
     geometry::Point
     centroid_displacement(const int block) const;
@@ -216,6 +244,12 @@ namespace rockdda::dda
              std::string                &why);
     void
     update(const Eigen::VectorXd &d, const double step);
+    /// Mohr-Coulomb on the resultant of each face group (Assembler::groups):
+    /// its locked members slide together or not at all.
+    void
+    check_face_groups(const std::vector<Contact> &contacts,
+                      const Eigen::VectorXd      &x,
+                      std::vector<StateCheck>    &checks) const;
 
     BlockSystem              scene;
     Controls                 ctrl;
@@ -227,10 +261,17 @@ namespace rockdda::dda
     GroundMotionIntegral     ground;
     Eigen::VectorXd          last_solution;
     std::vector<std::string> warning_list;
-    double                   t = 0., dt = 0., domain = 0., gap_tolerance = 0.;
+    double                   t = 0., dt = 0., domain = 0.;
     double                   dt_min = 0.;
-    /// Allowed vertex displacement per step (m).
-    double allowed_step = 0.;
+    /// Allowed vertex displacement per step of each block (m), and its
+    /// size (larger side of its bounding box at t = 0, m).
+    std::vector<double> allowed_step, block_size;
+    /// Energy flows since t = 0 (J/m): dissipated by friction, work of
+    /// the loads.
+    double friction_work = 0., load_work = 0.;
+    /// Contacts found by the first detection are intact joints (cohesion
+    /// and tensile strength); contacts that form later are not bonded.
+    bool first_detection = true;
   };
 } // namespace rockdda::dda
 

@@ -1,0 +1,149 @@
+/**
+ * @file
+ * Small scene-building helpers shared by the DDA verification tests (copied
+ * from tests/unit/test_dda.cc): rectangles, rotation, a one-material scene,
+ * blocks, fixed blocks, controls and the block-on-incline scene.
+ */
+#ifndef ROCKDDA_TESTS_UNIT_DDA_TEST_SCENES_H
+#define ROCKDDA_TESTS_UNIT_DDA_TEST_SCENES_H
+
+#include <rockdda/dda/block_system.h>
+#include <rockdda/dda/engine.h>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <initializer_list>
+
+namespace rockdda::dda::test_scenes
+{
+  using geometry::Point;
+  using geometry::Polygon;
+
+  constexpr double g_earth = 9.80665;
+
+  /// The axis-parallel rectangle [x0, x0 + w] x [y0, y0 + h],
+  /// counter-clockwise.
+  inline Polygon
+  rectangle(const double x0, const double y0, const double w, const double h)
+  {
+    Polygon p;
+    p.vertices = {Point(x0, y0),
+                  Point(x0 + w, y0),
+                  Point(x0 + w, y0 + h),
+                  Point(x0, y0 + h)};
+    return p;
+  }
+
+  /// A polygon from its vertices (give them counter-clockwise).
+  inline Polygon
+  polygon(std::initializer_list<Point> vertices)
+  {
+    Polygon p;
+    p.vertices = vertices;
+    return p;
+  }
+
+  /// @p p rotated by @p angle (rad, counter-clockwise) about @p about.
+  inline Polygon
+  rotated(const Polygon &p,
+          const double   angle,
+          const Point    about = Point::Zero())
+  {
+    Polygon         r = p;
+    Eigen::Matrix2d R;
+    R << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+    for (auto &v : r.vertices)
+      v = about + R * (v - about);
+    return r;
+  }
+
+  /// @p p moved by @p shift.
+  inline Polygon
+  translated(const Polygon &p, const Point &shift)
+  {
+    Polygon r = p;
+    for (auto &v : r.vertices)
+      v += shift;
+    return r;
+  }
+
+  /// A scene with one block material and one joint material.
+  inline BlockSystem
+  one_material_scene(const double density = 2700.,
+                     const double young   = 1e10,
+                     const double nu      = 0.25,
+                     const double phi     = 30.)
+  {
+    BlockSystem s;
+    s.materials.push_back({density, young, nu, false});
+    JointMaterial j;
+    j.friction_deg = phi;
+    s.joints.push_back(j);
+    return s;
+  }
+
+  /// Append a block (id = index) and return its index.
+  inline int
+  add_block(BlockSystem &s, const Polygon &p, const int material = 0)
+  {
+    Block b;
+    b.id       = static_cast<int>(s.blocks.size());
+    b.polygon  = p;
+    b.material = material;
+    s.blocks.push_back(b);
+    return b.id;
+  }
+
+  /// Fix a block by its vertices.
+  inline void
+  fix_block(BlockSystem &s, const int b)
+  {
+    for (const auto &v : s.blocks[b].polygon.vertices)
+      {
+        FixedPoint f;
+        f.block = b;
+        f.point = v;
+        s.fixed_points.push_back(f);
+      }
+  }
+
+  inline Controls
+  controls(const double dt, const double dynamic, const double penalty)
+  {
+    Controls c;
+    c.time_step              = dt;
+    c.dynamic                = dynamic;
+    c.law.normal_penalty     = penalty;
+    c.max_displacement_ratio = 0.01;
+    return c;
+  }
+
+  /// A block of size w x h resting on a fixed base (block 0), both rotated
+  /// by alpha (rad) so that the contact plane dips towards
+  /// +x' = (cos a, -sin a). The block (block 1) is centred on the base.
+  inline BlockSystem
+  incline_scene(const double alpha,
+                const double phi_deg,
+                const double w           = 1.,
+                const double h           = 1.,
+                const double base_length = 10.)
+  {
+    BlockSystem s    = one_material_scene(2700., 1e10, 0.25, phi_deg);
+    const int   base = add_block(
+      s, rotated(rectangle(-0.5 * base_length, -1., base_length, 1.), -alpha));
+    add_block(s, rotated(rectangle(-0.5 * w, 0., w, h), -alpha));
+    fix_block(s, base);
+    return s;
+  }
+
+  /// Displacement of a block's centroid along the slope of incline_scene().
+  inline double
+  along_slope(const DdaSystem &dda, const int block, const double alpha)
+  {
+    return dda.centroid_displacement(block).dot(
+      Point(std::cos(alpha), -std::sin(alpha)));
+  }
+} // namespace rockdda::dda::test_scenes
+
+#endif
