@@ -4,6 +4,8 @@
  */
 #include <rockdda/dda/assembler.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -160,14 +162,48 @@ namespace rockdda::dda
         += displacement_matrix(block_moments_[l.block].centroid, l.point)
              .transpose()
            * l.force;
+    // Fixed points. A block held by three or more points that are not
+    // collinear is clamped: its displacement is prescribed (the least-
+    // squares fit of its points' targets, exact for the rigid motions they
+    // follow) and eliminated, so it does not ring on penalty springs.
+    // Blocks held by one or two points are pinned by penalty springs.
+    std::vector<Matrix6> fit(n, Matrix6::Zero());
+    std::vector<Vector6> fit_rhs(n, Vector6::Zero());
+    std::vector<int>     n_fixed(n, 0);
     for (std::size_t f = 0; f < system.fixed_points.size(); ++f)
       {
         const auto &fp = system.fixed_points[f];
         const auto  T
           = displacement_matrix(block_moments_[fp.block].centroid, fp.point);
-        base_matrix[fp.block] += params.fixed_penalty * T.transpose() * T;
-        base_rhs[fp.block] += params.fixed_penalty * T.transpose()
-                              * (params.fixed_targets[f] - fp.point);
+        fit[fp.block] += T.transpose() * T;
+        fit_rhs[fp.block]
+          += T.transpose() * (params.fixed_targets[f] - fp.point);
+        ++n_fixed[fp.block];
+      }
+    clamped.assign(n, 0);
+    prescribed.assign(n, Vector6::Zero());
+    for (int b = 0; b < n; ++b)
+      {
+        if (n_fixed[b] == 0)
+          continue;
+        // Divide the rotation and strain columns (lengths) by the block
+        // size so that the rank test is dimensionless.
+        Vector6 scale = Vector6::Ones();
+        scale.tail<4>().setConstant(1. / block_size[b]);
+        const Matrix6 A = scale.asDiagonal() * fit[b] * scale.asDiagonal();
+        const Eigen::SelfAdjointEigenSolver<Matrix6> eig(A);
+        if (n_fixed[b] >= 3
+            && eig.eigenvalues().minCoeff()
+                 > 1e-8 * eig.eigenvalues().maxCoeff())
+          {
+            clamped[b]    = 1;
+            prescribed[b] = fit[b].ldlt().solve(fit_rhs[b]);
+          }
+        else
+          {
+            base_matrix[b] += params.fixed_penalty * fit[b];
+            base_rhs[b] += params.fixed_penalty * fit_rhs[b];
+          }
       }
 
     // Contacts: kinematics, contact lengths and the block pattern.
@@ -289,5 +325,20 @@ namespace rockdda::dda
             F.segment<6>(6 * ct.geometry.block_j) -= f * kin.hs;
           }
       }
+    // Clamped blocks: eliminate their prescribed displacements.
+    for (std::size_t k = 0; k < K.pairs.size(); ++k)
+      {
+        const auto [i, j] = K.pairs[k];
+        if (!clamped[i] && !clamped[j])
+          continue;
+        if (clamped[i] && !clamped[j])
+          F.segment<6>(6 * j) -= K.off[k].transpose() * prescribed[i];
+        else if (clamped[j] && !clamped[i])
+          F.segment<6>(6 * i) -= K.off[k] * prescribed[j];
+        K.off[k].setZero();
+      }
+    for (int b = 0; b < n; ++b)
+      if (clamped[b])
+        F.segment<6>(6 * b) = K.diag[b] * prescribed[b];
   }
 } // namespace rockdda::dda

@@ -183,6 +183,7 @@ namespace rockdda::dda
           , i(i)
           , j(j)
           , d(opt.pair_distance(i, j))
+          , dv(opt.vertex_distance(i, j))
           , out(out)
       {}
 
@@ -265,7 +266,7 @@ namespace rockdda::dda
                                                   0.05 * Q.a2.norm()});
               const bool   coincident = dist <= ctol;
               if (coincident
-                  || (dist <= d
+                  || (dist <= dv
                       && (beyond_corner(P.P, Q) || beyond_corner(Q.P, P))))
                 {
                   resolve_vertex_vertex(static_cast<int>(k),
@@ -363,7 +364,17 @@ namespace rockdda::dda
                     const Point  E = pb.vertices[(e + 1) % nb] - pb.vertices[e];
                     const double xr
                       = E.dot(P.P - pb.vertices[e]) / E.squaredNorm();
-                    if (xr >= 0. && xr <= 1. && c.gap <= d
+                    // Beyond an end at a reflex corner: the vertex comes
+                    // round the corner onto this edge; an open candidate
+                    // from now on, so that it closes when it crosses the
+                    // edge's line instead of being found already inside.
+                    const int  nbv = static_cast<int>(pb.vertices.size());
+                    const bool round_corner
+                      = (xr < 0. && !corners[1 - side][e].convex
+                         && (P.P - pb.vertices[e]).norm() <= d)
+                        || (xr > 1. && !corners[1 - side][(e + 1) % nbv].convex
+                            && (P.P - pb.vertices[(e + 1) % nbv]).norm() <= d);
+                    if (((xr >= 0. && xr <= 1.) || round_corner) && c.gap <= d
                         && c.gap >= -1e-9 * d)
                       out.push_back(c);
                   }
@@ -406,20 +417,26 @@ namespace rockdda::dda
             if (best < 0)
               continue;
             out.push_back(c[best]);
-            // Reflex corners at either end of the chosen edge.
-            const Corner &end   = corners[1 - side][(best + 1) % nb];
-            const Corner &start = corners[1 - side][best];
-            if (!end.convex && ok[(best + 1) % nb])
-              out.push_back(c[(best + 1) % nb]);
-            if (!start.convex && ok[(best + nb - 1) % nb])
-              out.push_back(c[(best + nb - 1) % nb]);
+            // At a reflex corner at either end of the chosen edge, within
+            // reach: the other edge of the corner too, penetrated (if
+            // admissible) or still open (the vertex coming round the
+            // corner closes on it when it crosses its line).
+            for (const int end : {(best + 1) % nb, best})
+              {
+                const int     other = end == best ? (best + nb - 1) % nb : end;
+                const Corner &R     = corners[1 - side][end];
+                if (R.convex || (P.P - R.P).norm() > d || c[other].gap > d
+                    || c[other].gap < -d || (c[other].gap < 0. && !ok[other]))
+                  continue;
+                out.push_back(c[other]);
+              }
           }
       }
 
       const std::vector<geometry::Polygon> &polys;
       const DetectionOptions               &opt;
       const int                             i, j;
-      const double                          d;
+      const double                          d, dv;
       std::vector<ContactCandidate>        &out;
       std::vector<Corner>                   corners[2];
       std::vector<bool>                     consumed[2];

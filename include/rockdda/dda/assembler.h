@@ -121,8 +121,12 @@ namespace rockdda::dda
     std::vector<double> block_size;
     /// Contact length of each contact (m): its share of the length over
     /// which the two faces overlap (0 for a corner on a face).
-    std::vector<double>            contact_length;
-    std::vector<int>               contact_group;
+    std::vector<double> contact_length;
+    std::vector<int>    contact_group;
+    /// Blocks whose displacement is prescribed by their fixed points, and
+    /// that displacement.
+    std::vector<char>              clamped;
+    std::vector<Vector6>           prescribed;
     std::vector<ContactKinematics> contact_kinematics;
     /// Pair index of each contact (-1 for a contact within one block).
     std::vector<int> contact_pair;

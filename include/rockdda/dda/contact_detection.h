@@ -51,8 +51,8 @@ namespace rockdda::dda
     /// passes if n . a >= -sin(entrance_angle) |a| (rad). Larger than the
     /// relative rotation of two blocks in one step.
     double entrance_angle = 0.2;
-    /// Two vertices closer than coincidence_fraction * (pair search
-    /// distance) form a vertex-vertex contact.
+    /// Two vertices closer than coincidence_fraction * vertex_distance()
+    /// form a vertex-vertex contact.
     double coincidence_fraction = 0.2;
 
     /// Search distance of the pair (i, j) (m).
@@ -60,6 +60,14 @@ namespace rockdda::dda
     pair_distance(const int i, const int j) const
     {
       return reach.empty() ? search_distance : std::max(reach[i], reach[j]);
+    }
+    /// Distance within which two vertices of the pair (i, j) can meet in
+    /// one step (m): the smaller block's reach, so that a large (e.g.
+    /// fixed) block does not make distant corners vertex-vertex contacts.
+    double
+    vertex_distance(const int i, const int j) const
+    {
+      return reach.empty() ? search_distance : std::min(reach[i], reach[j]);
     }
   };
 
