@@ -146,8 +146,7 @@ namespace rockdda::dda
         const BlockMaterial &mat   = system.materials[block.material];
         const BlockMoments   m     = block_moments(block.polygon);
         block_moments_[b]          = m;
-        const Eigen::Vector4d bb   = block.polygon.bounding_box();
-        block_size[b]              = std::max(bb[2] - bb[0], bb[3] - bb[1]);
+        block_size[b]              = dda::block_size(block.polygon);
         mass[b]                    = mass_matrix(m, mat.density);
         Matrix6 &K                 = base_matrix[b];
         Vector6 &F                 = base_rhs[b];

@@ -4,10 +4,26 @@
  */
 #include <rockdda/dda/block_matrices.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace rockdda::dda
 {
+  double
+  block_size(const geometry::Polygon &polygon)
+  {
+    geometry::Point mean = geometry::Point::Zero();
+    for (const auto &v : polygon.vertices)
+      mean += v;
+    mean /= static_cast<double>(polygon.vertices.size());
+    double r = 0.;
+    for (const auto &v : polygon.vertices)
+      r = std::max(r, (v - mean).norm());
+    return 2. * r;
+  }
+
+
+
   BlockMoments
   block_moments(const geometry::Polygon &polygon)
   {

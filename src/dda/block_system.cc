@@ -132,8 +132,7 @@ namespace rockdda::dda
     std::vector<double> sizes;
     for (const auto &p : polys)
       {
-        const Eigen::Vector4d bb = p.bounding_box();
-        sizes.push_back(std::max(bb[2] - bb[0], bb[3] - bb[1]));
+        sizes.push_back(block_size(p));
       }
     for (const auto &[i, j] : candidate_pairs(polys, 0.))
       for (int pass = 0; pass < 2; ++pass)
@@ -149,8 +148,8 @@ namespace rockdda::dda
               throw InputError(
                 block_name(system.blocks[a]) + " overlaps "
                 + block_name(system.blocks[c]) + " at t = 0 (point ("
-                + io::format_number(p.x(), 8) + ", "
-                + io::format_number(p.y(), 8) + ") m lies "
+                + io::format_number(system.origin.x() + p.x(), 8) + ", "
+                + io::format_number(system.origin.y() + p.y(), 8) + ") m lies "
                 + io::format_number(distance_to_boundary(polys[c], p), 4)
                 + " m inside it)");
         }
@@ -172,9 +171,9 @@ namespace rockdda::dda
               || (!poly.contains(p)
                   && distance_to_boundary(poly, p) > 1e-6 * sizes[b]))
             throw InputError(
-              what + " at (" + io::format_number(p.x(), 8) + ", "
-              + io::format_number(p.y(), 8) + ") m lies outside "
-              + block_name(system.blocks[b]) + " ("
+              what + " at (" + io::format_number(system.origin.x() + p.x(), 8)
+              + ", " + io::format_number(system.origin.y() + p.y(), 8)
+              + ") m lies outside " + block_name(system.blocks[b]) + " ("
               + io::format_number(distance_to_boundary(poly, p), 4)
               + " m from it); valid: inside the block or on its boundary");
         };

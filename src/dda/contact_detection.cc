@@ -259,7 +259,7 @@ namespace rockdda::dda
               if (!P.convex || !Q.convex)
                 continue;
               const double dist       = (P.P - Q.P).norm();
-              const double ctol       = std::min({opt.coincidence_fraction * d,
+              const double ctol       = std::min({opt.coincidence_fraction * dv,
                                                   0.05 * P.a1.norm(),
                                                   0.05 * P.a2.norm(),
                                                   0.05 * Q.a1.norm(),
@@ -312,7 +312,11 @@ namespace rockdda::dda
                 options.push_back(o);
               }
           }
-        const double  tie_length = 1e-9 * d, tie_angle = 1e-6;
+        // Ties: flush corners give two admissible entrances that describe
+        // the same contact, whose separations and wedge openness differ by
+        // the blocks' relative rotation; they go to the lower block so
+        // that round-off cannot switch the contact from step to step.
+        const double  tie_length = 1e-6 * dv, tie_angle = 1e-2;
         const Option *best = nullptr;
         for (const auto &o : options)
           {
@@ -321,8 +325,9 @@ namespace rockdda::dda
                 best = &o;
                 continue;
               }
-            const bool ok = o.score >= -1e-9, best_ok = best->score >= -1e-9;
-            bool       better;
+            const bool ok      = o.score >= -tie_angle,
+                       best_ok = best->score >= -tie_angle;
+            bool better;
             if (ok != best_ok)
               better = ok;
             else if (!ok)

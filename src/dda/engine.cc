@@ -38,7 +38,7 @@ namespace rockdda::dda
       throw InputError("the scene has no blocks");
     if (scene.joints.empty())
       scene.joints.push_back(JointMaterial());
-    // Domain size from the raw coordinates (finite ones).
+    // Bounding box of the raw coordinates (finite ones).
     Eigen::Vector4d box(1e300, 1e300, -1e300, -1e300);
     for (const auto &b : scene.blocks)
       for (const auto &p : b.polygon.vertices)
@@ -49,33 +49,46 @@ namespace rockdda::dda
             box[2] = std::max(box[2], p.x());
             box[3] = std::max(box[3], p.y());
           }
-    domain = std::max(box[2] - box[0], box[3] - box[1]);
-    if (!(domain > 0.) || !std::isfinite(domain))
+    if (!(box[2] >= box[0])
+        || !std::isfinite(box[2] - box[0] + box[3] - box[1]))
       throw InputError("the scene's blocks have no extent");
-    validate_and_prepare(scene, warning_list, 1e-6);
-    // Work in coordinates relative to the centre of the scene, so that the
-    // round-off does not depend on where the scene sits.
-    const geometry::Point centre(0.5 * (box[0] + box[2]),
-                                 0.5 * (box[1] + box[3]));
+    // Work in coordinates relative to the lower-left corner of the scene's
+    // bounding box, so that the round-off does not depend on where the
+    // scene sits: for a translated scene both the vertices and the corner
+    // move by the same amount, and their difference is the same number.
+    const geometry::Point centre(box[0], box[1]);
     for (auto &b : scene.blocks)
       {
         for (auto &p : b.polygon.vertices)
           p -= centre;
-        b.initial_centroid -= centre;
       }
     for (auto &f : scene.fixed_points)
-      {
-        f.point -= centre;
-        f.anchor -= centre;
-      }
+      f.point -= centre;
     for (auto &l : scene.load_points)
       l.point -= centre;
     for (auto &m : scene.measurement_points)
-      {
-        m.point -= centre;
-        m.initial -= centre;
-      }
+      m.point -= centre;
     scene.origin += centre;
+    // Validate (and set the initial centroids and anchors) in the local
+    // coordinates.
+    validate_and_prepare(scene, warning_list, 1e-6);
+    // Domain size: twice the largest distance of a vertex from the mean
+    // vertex (invariant under rotation, unlike the box).
+    geometry::Point mean  = geometry::Point::Zero();
+    std::size_t     count = 0;
+    for (const auto &b : scene.blocks)
+      for (const auto &p : b.polygon.vertices)
+        {
+          mean += p;
+          ++count;
+        }
+    mean /= static_cast<double>(count);
+    domain = 0.;
+    for (const auto &b : scene.blocks)
+      for (const auto &p : b.polygon.vertices)
+        domain = std::max(domain, 2. * (p - mean).norm());
+    if (!(domain > 0.) || !std::isfinite(domain))
+      throw InputError("the scene's blocks have no extent");
     const double dn = scene.seismic.direction.norm();
     if (!(dn > 0.) || !std::isfinite(dn))
       throw InputError("the seismic direction has no length");
@@ -105,8 +118,7 @@ namespace rockdda::dda
     dt = ctrl.time_step;
     for (const auto &b : scene.blocks)
       {
-        const Eigen::Vector4d bb = b.polygon.bounding_box();
-        block_size.push_back(std::max(bb[2] - bb[0], bb[3] - bb[1]));
+        block_size.push_back(dda::block_size(b.polygon));
         allowed_step.push_back(
           std::min(ctrl.max_displacement_ratio * domain,
                    ctrl.max_displacement_block_ratio * block_size.back()));

@@ -318,9 +318,10 @@ TEST(DdaSingleBlock, InclineSticking)
   // block, m g sin(a) h / (2 G A) ~ 1.6e-6 m for E = 10 GPa).
   const Point s_dir(std::cos(alpha), -std::sin(alpha));
   for (int k : {0, 1})
-    EXPECT_LT(
-      std::abs((dda.system().blocks[1].polygon.vertices[k] - v0[k]).dot(s_dir)),
-      1e-6);
+    EXPECT_LT(std::abs((dda.system().origin
+                        + dda.system().blocks[1].polygon.vertices[k] - v0[k])
+                         .dot(s_dir)),
+              1e-6);
   for (const auto &c : dda.contacts())
     EXPECT_NE(c.state, ContactState::sliding);
 }

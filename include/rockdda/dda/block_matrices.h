@@ -28,6 +28,15 @@ namespace rockdda::dda
   block_moments(const geometry::Polygon &polygon);
 
   /**
+   * Size of a block (m): twice the largest distance of a vertex from the
+   * centroid of its vertices. Unlike a bounding box it does not change
+   * when the scene is rotated; every per-block scale (allowed step,
+   * tolerances) derives from it.
+   */
+  double
+  block_size(const geometry::Polygon &polygon);
+
+  /**
    * T(x, y) about the centroid c: u = T D with
    * T = [[1, 0, -(y-yc), x-xc, 0, (y-yc)/2], [0, 1, x-xc, 0, y-yc, (x-xc)/2]].
    */

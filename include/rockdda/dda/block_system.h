@@ -143,9 +143,9 @@ namespace rockdda::dda
     SeismicInput    seismic;
     /// The coordinates above are relative to this point (m): a scene's
     /// global position is origin + local. DdaSystem moves its scene to a
-    /// local origin (the centre of the blocks' bounding box) so that round-
-    /// off does not depend on where the scene sits (e.g. UTM coordinates);
-    /// outputs add the origin back.
+    /// local origin (the lower-left corner of the blocks' bounding box) so that
+    /// round- off does not depend on where the scene sits (e.g. UTM
+    /// coordinates); outputs add the origin back.
     geometry::Point origin = geometry::Point::Zero();
   };
 

@@ -46,7 +46,7 @@ namespace rockdda::dda
     /// the smaller block's size plus the round-off of the vertex's local
     /// coordinates.
     double tolerance = 0.;
-    /// Force below which a state change is noise (N/m): 1e-6 of the
+    /// Force below which a state change is noise (N/m): 1e-4 of the
     /// weight of the lighter block (its mass times the body acceleration),
     /// and at least the penalty times the round-off tolerance. A contact
     /// closes when it would carry more than this in compression, opens

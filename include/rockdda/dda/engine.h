@@ -77,9 +77,12 @@ namespace rockdda::dda
    * The energy ledger of a run (J per m thickness). Stored: kinetic, block
    * strain, contact springs, gravity potential (relative to t = 0). Flows
    * since t = 0: work dissipated by sliding friction (>= 0) and work done on
-   * the blocks by point loads, the seismic inertial load and moving fixed
-   * points. In exact dynamics balance() stays at its initial value; the
-   * time integration may only lower it (numerical damping).
+   * the blocks by point loads and the seismic inertial load. In exact
+   * dynamics balance() stays at its initial value; the time integration
+   * (Newmark beta = 1/2, gamma = 1) may only lower it. Not included: the
+   * work of fixed points that move (displacement-mode seismic input) and
+   * the energy of the penalty springs of pinned blocks (one or two fixed
+   * points), so the balance closes only without them.
    */
   struct EnergyLedger
   {
