@@ -4,11 +4,11 @@
  */
 #include <rockdda/dda/assembler.h>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Cholesky>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace rockdda::dda
@@ -86,7 +86,7 @@ namespace rockdda::dda
      * edge most nearly parallel to the touched edge, if within ~6 degrees;
      * otherwise a corner touches a face and the length is 0.
      */
-    std::pair<double, std::array<int, 4>>
+    std::pair<double, std::uint64_t>
     face_overlap(const BlockSystem &system, const ContactCandidate &c)
     {
       const auto  &vi       = system.blocks[c.block_i].polygon.vertices;
@@ -110,16 +110,21 @@ namespace rockdda::dda
             }
         }
       if (best_sin > 0.1)
-        return {0., {-1, -1, -1, -1}};
-      const double       u1      = t.dot(vi[face] - Q0);
-      const double       u2      = t.dot(vi[(face + 1) % ni] - Q0);
-      const double       overlap = std::max(0.,
+        return {0., 0};
+      const double u1      = t.dot(vi[face] - Q0);
+      const double u2      = t.dot(vi[(face + 1) % ni] - Q0);
+      const double overlap = std::max(0.,
                                       std::min(std::max(u1, u2), l)
                                         - std::max(std::min(u1, u2), 0.));
-      std::array<int, 4> key     = {c.block_i, face, c.block_j, c.edge};
-      if (c.block_j < c.block_i)
-        key = {c.block_j, c.edge, c.block_i, face};
-      return {overlap, key};
+      // Key of the pair of faces (lower block first): 22 bits per block,
+      // 10 per face.
+      auto part = [](const int block, const int f) {
+        return (static_cast<std::uint64_t>(block) << 10)
+               | static_cast<std::uint64_t>(f & 0x3ff);
+      };
+      const std::uint64_t a = part(c.block_i, face);
+      const std::uint64_t b = part(c.block_j, c.edge);
+      return {overlap, c.block_i < c.block_j ? (a << 32) | b : (b << 32) | a};
     }
   } // namespace
 
@@ -185,15 +190,7 @@ namespace rockdda::dda
       {
         if (n_fixed[b] == 0)
           continue;
-        // Divide the rotation and strain columns (lengths) by the block
-        // size so that the rank test is dimensionless.
-        Vector6 scale = Vector6::Ones();
-        scale.tail<4>().setConstant(1. / block_size[b]);
-        const Matrix6 A = scale.asDiagonal() * fit[b] * scale.asDiagonal();
-        const Eigen::SelfAdjointEigenSolver<Matrix6> eig(A);
-        if (n_fixed[b] >= 3
-            && eig.eigenvalues().minCoeff()
-                 > 1e-8 * eig.eigenvalues().maxCoeff())
+        if (clamps(fit[b], n_fixed[b], block_size[b]))
           {
             clamped[b]    = 1;
             prescribed[b] = fit[b].ldlt().solve(fit_rhs[b]);
@@ -211,24 +208,44 @@ namespace rockdda::dda
     contact_blocks.resize(contacts.size());
     std::vector<std::pair<int, int>> pairs;
     pairs.reserve(contacts.size());
-    std::vector<std::pair<std::array<int, 4>, int>> faces;
-    std::vector<double>                             overlap(contacts.size());
+    std::vector<std::pair<std::uint64_t, int>> faces;
+    std::vector<double>                        overlap(contacts.size());
+    // Kinematics and face overlaps per contact (independent: in halves).
+    std::vector<std::uint64_t>     face_key(contacts.size());
+    const std::function<void(int)> half = [&](const int h) {
+      const std::size_t lo = h == 0 ? 0 : contacts.size() / 2;
+      const std::size_t hi = h == 0 ? contacts.size() / 2 : contacts.size();
+      for (std::size_t c = lo; c < hi; ++c)
+        {
+          const auto &g     = contacts[c].geometry;
+          contact_blocks[c] = {g.block_i, g.block_j};
+          contact_kinematics[c]
+            = contact_kinematics_of(system, g, contacts[c].xi_ref);
+          const auto [o, key] = face_overlap(system, g);
+          overlap[c]          = o;
+          face_key[c]         = key;
+        }
+    };
+    if (params.run_halves)
+      params.run_halves(half);
+    else
+      {
+        half(0);
+        half(1);
+      }
     for (std::size_t c = 0; c < contacts.size(); ++c)
       {
-        const auto &g     = contacts[c].geometry;
-        contact_blocks[c] = {g.block_i, g.block_j};
-        contact_kinematics[c]
-          = contact_kinematics_of(system, g, contacts[c].xi_ref);
+        const auto &g = contacts[c].geometry;
         pairs.emplace_back(std::min(g.block_i, g.block_j),
                            std::max(g.block_i, g.block_j));
-        const auto [o, key] = face_overlap(system, g);
-        overlap[c]          = o;
-        if (o > 0.)
-          faces.emplace_back(key, static_cast<int>(c));
+        if (overlap[c] > 0.)
+          faces.emplace_back(face_key[c], static_cast<int>(c));
       }
     // The vertex contacts of one pair of faces share its overlap.
     std::sort(faces.begin(), faces.end());
     contact_group.assign(contacts.size(), -1);
+    group_start_.assign(1, 0);
+    group_members_.clear();
     int n_groups = 0;
     for (std::size_t a = 0; a < faces.size();)
       {
@@ -240,8 +257,13 @@ namespace rockdda::dda
             contact_kinematics[faces[k].second].length
               = overlap[faces[k].second] / static_cast<double>(b - a);
             if (b - a > 1)
-              contact_group[faces[k].second] = n_groups;
+              {
+                contact_group[faces[k].second] = n_groups;
+                group_members_.push_back(faces[k].second);
+              }
           }
+        if (b - a > 1)
+          group_start_.push_back(static_cast<int>(group_members_.size()));
         n_groups += b - a > 1 ? 1 : 0;
         a = b;
       }

@@ -4,6 +4,8 @@
  */
 #include <rockdda/dda/block_matrices.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 
@@ -20,6 +22,20 @@ namespace rockdda::dda
     for (const auto &v : polygon.vertices)
       r = std::max(r, (v - mean).norm());
     return 2. * r;
+  }
+
+
+
+  bool
+  clamps(const Matrix6 &fit, const int n_points, const double size)
+  {
+    if (n_points < 3)
+      return false;
+    Vector6 scale = Vector6::Ones();
+    scale.tail<4>().setConstant(1. / size);
+    const Matrix6 A = scale.asDiagonal() * fit * scale.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<Matrix6> eig(A);
+    return eig.eigenvalues().minCoeff() > 1e-8 * eig.eigenvalues().maxCoeff();
   }
 
 

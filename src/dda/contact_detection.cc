@@ -117,6 +117,12 @@ namespace rockdda::dda
     {
       Point P, a1, a2;
       bool  convex = false;
+      /// Unit vectors along a1 and a2.
+      Point u1, u2;
+      /// The edge that starts here: unit tangent, outward unit normal,
+      /// length.
+      Point  t, n;
+      double l = 0.;
     };
 
     Corner
@@ -125,12 +131,18 @@ namespace rockdda::dda
       const auto &v = poly.vertices;
       const int   n = static_cast<int>(v.size());
       Corner      c;
-      c.P  = v[k];
-      c.a1 = v[(k + n - 1) % n] - c.P;
-      c.a2 = v[(k + 1) % n] - c.P;
+      c.P             = v[k];
+      c.a1            = v[(k + n - 1) % n] - c.P;
+      c.a2            = v[(k + 1) % n] - c.P;
+      const double l1 = c.a1.norm(), l2 = c.a2.norm();
       // A left turn: any interior angle below 180 degrees, however sharp
       // (the vertices of slivers are contact vertices too).
-      c.convex = cross(-c.a1, c.a2) > 1e-14 * c.a1.norm() * c.a2.norm();
+      c.convex = cross(-c.a1, c.a2) > 1e-14 * l1 * l2;
+      c.u1     = c.a1 / l1;
+      c.u2     = c.a2 / l2;
+      c.l      = l2;
+      c.t      = c.u2;
+      c.n      = Point(c.t.y(), -c.t.x());
       return c;
     }
 
@@ -140,32 +152,28 @@ namespace rockdda::dda
     double
     entrance_score(const Corner &c, const Point &n)
     {
-      return std::min(n.dot(c.a1) / c.a1.norm(), n.dot(c.a2) / c.a2.norm());
+      return std::min(n.dot(c.u1), n.dot(c.u2));
     }
 
-    /// Vertex @p k of block @p a against edge @p e of block @p b.
+    /// Vertex @p k (at @p P) of block @p a against edge @p e of block @p b,
+    /// which starts at corner @p E.
     ContactCandidate
-    vertex_edge(const std::vector<geometry::Polygon> &polys,
-                const int                             a,
-                const int                             k,
-                const int                             b,
-                const int                             e)
+    vertex_edge(const Point  &P,
+                const int     a,
+                const int     k,
+                const int     b,
+                const int     e,
+                const Corner &E)
     {
-      const auto      &vb = polys[b].vertices;
-      const int        nb = static_cast<int>(vb.size());
-      const Point     &Q0 = vb[e];
-      const Point      E  = vb[(e + 1) % nb] - Q0;
-      const double     l  = E.norm();
-      const Point      t  = E / l;
-      const Point      r  = polys[a].vertices[k] - Q0;
+      const Point      r = P - E.P;
       ContactCandidate c;
       c.block_i = a;
       c.vertex  = k;
       c.block_j = b;
       c.edge    = e;
-      c.normal  = Point(t.y(), -t.x());
-      c.gap     = c.normal.dot(r);
-      c.xi      = std::clamp(t.dot(r) / l, 0., 1.);
+      c.normal  = E.n;
+      c.gap     = E.n.dot(r);
+      c.xi      = std::clamp(E.t.dot(r) / E.l, 0., 1.);
       return c;
     }
 
@@ -173,28 +181,34 @@ namespace rockdda::dda
     class PairDetector
     {
     public:
-      PairDetector(const std::vector<geometry::Polygon> &polys,
-                   const DetectionOptions               &opt,
-                   const int                             i,
-                   const int                             j,
-                   std::vector<ContactCandidate>        &out)
+      PairDetector(const std::vector<geometry::Polygon>   &polys,
+                   const std::vector<std::vector<Corner>> &all_corners,
+                   const std::vector<Eigen::Vector4d>     &boxes,
+                   const DetectionOptions                 &opt,
+                   const int                               i,
+                   const int                               j,
+                   std::vector<bool> (&consumed)[2],
+                   std::vector<ContactCandidate> &out)
           : polys(polys)
+          , boxes(boxes)
           , opt(opt)
           , i(i)
           , j(j)
           , d(opt.pair_distance(i, j))
           , dv(opt.vertex_distance(i, j))
+          , consumed(consumed)
           , out(out)
-      {}
+      {
+        corners[0] = &all_corners[i];
+        corners[1] = &all_corners[j];
+      }
 
       void
       run()
       {
         const std::size_t first = out.size();
-        corners[0]              = corners_of(i);
-        corners[1]              = corners_of(j);
-        consumed[0].assign(corners[0].size(), false);
-        consumed[1].assign(corners[1].size(), false);
+        consumed[0].assign(corners[0]->size(), false);
+        consumed[1].assign(corners[1]->size(), false);
         find_vertex_vertex();
         vertices_on_edges(0);
         vertices_on_edges(1);
@@ -216,15 +230,6 @@ namespace rockdda::dda
       }
 
     private:
-      std::vector<Corner>
-      corners_of(const int b) const
-      {
-        std::vector<Corner> c;
-        for (int k = 0; k < static_cast<int>(polys[b].vertices.size()); ++k)
-          c.push_back(corner(polys[b], k));
-        return c;
-      }
-
       int
       block(const int side) const
       {
@@ -252,10 +257,10 @@ namespace rockdda::dda
       void
       find_vertex_vertex()
       {
-        for (std::size_t k = 0; k < corners[0].size(); ++k)
-          for (std::size_t m = 0; m < corners[1].size(); ++m)
+        for (std::size_t k = 0; k < (*corners[0]).size(); ++k)
+          for (std::size_t m = 0; m < (*corners[1]).size(); ++m)
             {
-              const Corner &P = corners[0][k], &Q = corners[1][m];
+              const Corner &P = (*corners[0])[k], &Q = (*corners[1])[m];
               if (!P.convex || !Q.convex)
                 continue;
               const double dist       = (P.P - Q.P).norm();
@@ -293,21 +298,22 @@ namespace rockdda::dda
           double           score, separation;
         };
         std::vector<Option> options;
-        const int           nk[2] = {static_cast<int>(corners[0].size()),
-                                     static_cast<int>(corners[1].size())};
+        const int           nk[2] = {static_cast<int>((*corners[0]).size()),
+                                     static_cast<int>((*corners[1]).size())};
         for (int side = 0; side < 2; ++side)
           {
             // Vertex v of 'side' entering an edge at vertex w of 'other'.
             const int     other = 1 - side;
             const int     v = side == 0 ? k : m, w = side == 0 ? m : k;
-            const Corner &X  = corners[side][v];
+            const Corner &X  = (*corners[side])[v];
             const Point   dX = X.P + predicted(side, v);
-            const Point   dW = corners[other][w].P + predicted(other, w);
+            const Point   dW = (*corners[other])[w].P + predicted(other, w);
             for (const int e : {(w + nk[other] - 1) % nk[other], w})
               {
                 Option o;
-                o.c     = vertex_edge(polys, block(side), v, block(other), e);
-                o.score = entrance_score(X, o.c.normal);
+                o.c = vertex_edge(
+                  X.P, block(side), v, block(other), e, (*corners[other])[e]);
+                o.score      = entrance_score(X, o.c.normal);
                 o.separation = o.c.normal.dot(dX - dW);
                 options.push_back(o);
               }
@@ -351,37 +357,41 @@ namespace rockdda::dda
         const int                a = block(side), b = block(1 - side);
         const geometry::Polygon &pb = polys[b];
         const int                nb = static_cast<int>(pb.vertices.size());
-        const Eigen::Vector4d    bb = pb.bounding_box();
-        for (int k = 0; k < static_cast<int>(corners[side].size()); ++k)
+        const Eigen::Vector4d   &bb = boxes[b];
+        for (int k = 0; k < static_cast<int>((*corners[side]).size()); ++k)
           {
-            const Corner &P = corners[side][k];
+            const Corner &P = (*corners[side])[k];
             if (!P.convex || consumed[side][k] || P.P.x() < bb[0] - d
                 || P.P.x() > bb[2] + d || P.P.y() < bb[1] - d
                 || P.P.y() > bb[3] + d)
               continue;
-            if (!pb.contains(P.P))
+            // (Outside the box: outside the block.)
+            const bool in_box = P.P.x() >= bb[0] && P.P.x() <= bb[2]
+                                && P.P.y() >= bb[1] && P.P.y() <= bb[3];
+            if (!in_box || !pb.contains(P.P))
               {
                 // Outside: every edge the vertex projects onto within the
                 // search distance (both edges of a reflex corner).
+                const auto &cb = *corners[1 - side];
                 for (int e = 0; e < nb; ++e)
                   {
-                    const ContactCandidate c = vertex_edge(polys, a, k, b, e);
-                    const Point  E = pb.vertices[(e + 1) % nb] - pb.vertices[e];
-                    const double xr
-                      = E.dot(P.P - pb.vertices[e]) / E.squaredNorm();
+                    const Corner &E   = cb[e];
+                    const Point   r   = P.P - E.P;
+                    const double  gap = E.n.dot(r);
+                    if (gap > d || gap < -1e-9 * d)
+                      continue;
+                    const double xr = E.t.dot(r) / E.l;
                     // Beyond an end at a reflex corner: the vertex comes
                     // round the corner onto this edge; an open candidate
                     // from now on, so that it closes when it crosses the
                     // edge's line instead of being found already inside.
-                    const int  nbv = static_cast<int>(pb.vertices.size());
-                    const bool round_corner
-                      = (xr < 0. && !corners[1 - side][e].convex
-                         && (P.P - pb.vertices[e]).norm() <= d)
-                        || (xr > 1. && !corners[1 - side][(e + 1) % nbv].convex
-                            && (P.P - pb.vertices[(e + 1) % nbv]).norm() <= d);
-                    if (((xr >= 0. && xr <= 1.) || round_corner) && c.gap <= d
-                        && c.gap >= -1e-9 * d)
-                      out.push_back(c);
+                    const Corner &F = cb[(e + 1) % nb];
+                    const bool    round_corner
+                      = (xr < 0. && !E.convex && r.squaredNorm() <= d * d)
+                        || (xr > 1. && !F.convex
+                            && (P.P - F.P).squaredNorm() <= d * d);
+                    if ((xr >= 0. && xr <= 1.) || round_corner)
+                      out.push_back(vertex_edge(P.P, a, k, b, e, E));
                   }
                 continue;
               }
@@ -394,9 +404,9 @@ namespace rockdda::dda
             std::vector<char>             ok(nb, 0);
             for (int e = 0; e < nb; ++e)
               {
-                c[e]            = vertex_edge(polys, a, k, b, e);
-                const Point  E  = pb.vertices[(e + 1) % nb] - pb.vertices[e];
-                const double xr = E.dot(P.P - pb.vertices[e]) / E.squaredNorm();
+                const Corner &E  = (*corners[1 - side])[e];
+                c[e]             = vertex_edge(P.P, a, k, b, e, E);
+                const double xr  = E.t.dot(P.P - E.P) / E.l;
                 const double dep = -c[e].gap;
                 // (A vertex on the boundary may be found inside or outside by
                 // round-off.)
@@ -429,7 +439,7 @@ namespace rockdda::dda
             for (const int end : {(best + 1) % nb, best})
               {
                 const int     other = end == best ? (best + nb - 1) % nb : end;
-                const Corner &R     = corners[1 - side][end];
+                const Corner &R     = (*corners[1 - side])[end];
                 if (R.convex || (P.P - R.P).norm() > d || c[other].gap > d
                     || c[other].gap < -d || (c[other].gap < 0. && !ok[other]))
                   continue;
@@ -439,12 +449,13 @@ namespace rockdda::dda
       }
 
       const std::vector<geometry::Polygon> &polys;
+      const std::vector<Eigen::Vector4d>   &boxes;
       const DetectionOptions               &opt;
       const int                             i, j;
       const double                          d, dv;
-      std::vector<ContactCandidate>        &out;
-      std::vector<Corner>                   corners[2];
-      std::vector<bool>                     consumed[2];
+      std::vector<bool> (&consumed)[2];
+      std::vector<ContactCandidate> &out;
+      const std::vector<Corner>     *corners[2];
     };
   } // namespace
 
@@ -457,9 +468,41 @@ namespace rockdda::dda
     std::vector<double> grow(polygons.size(), 0.5 * options.search_distance);
     if (!options.reach.empty())
       grow = options.reach;
-    std::vector<ContactCandidate> result;
-    for (const auto &[i, j] : candidate_pairs(polygons, grow))
-      PairDetector(polygons, options, i, j, result).run();
-    return result;
+    // Corners and boxes once per detection, scratch reused by all pairs.
+    std::vector<std::vector<Corner>> corners(polygons.size());
+    std::vector<Eigen::Vector4d>     boxes(polygons.size());
+    for (std::size_t b = 0; b < polygons.size(); ++b)
+      {
+        for (int k = 0; k < static_cast<int>(polygons[b].vertices.size()); ++k)
+          corners[b].push_back(corner(polygons[b], k));
+        boxes[b] = polygons[b].bounding_box();
+      }
+    // The pairs in two halves (in order), each with its own output.
+    const auto                     pairs = candidate_pairs(polygons, grow);
+    std::vector<bool>              consumed[2][2];
+    std::vector<ContactCandidate>  part[2];
+    const std::function<void(int)> half = [&](const int h) {
+      const std::size_t lo = h == 0 ? 0 : pairs.size() / 2;
+      const std::size_t hi = h == 0 ? pairs.size() / 2 : pairs.size();
+      for (std::size_t k = lo; k < hi; ++k)
+        PairDetector(polygons,
+                     corners,
+                     boxes,
+                     options,
+                     pairs[k].first,
+                     pairs[k].second,
+                     consumed[h],
+                     part[h])
+          .run();
+    };
+    if (options.run_halves)
+      options.run_halves(half);
+    else
+      {
+        half(0);
+        half(1);
+      }
+    part[0].insert(part[0].end(), part[1].begin(), part[1].end());
+    return std::move(part[0]);
   }
 } // namespace rockdda::dda

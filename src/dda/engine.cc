@@ -14,6 +14,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 namespace rockdda::dda
@@ -125,6 +127,17 @@ namespace rockdda::dda
       }
     if (scene.seismic.mode != SeismicInput::Mode::none)
       ground = GroundMotionIntegral(scene.seismic.record, scene.seismic.g);
+    std::vector<Matrix6> fit(scene.blocks.size(), Matrix6::Zero());
+    std::vector<int>     n_fixed(scene.blocks.size(), 0);
+    for (const auto &f : scene.fixed_points)
+      {
+        const auto T = displacement_matrix(
+          block_moments(scene.blocks[f.block].polygon).centroid, f.point);
+        fit[f.block] += T.transpose() * T;
+        ++n_fixed[f.block];
+      }
+    for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+      clamped_block.push_back(clamps(fit[b], n_fixed[b], block_size[b]));
   }
 
 
@@ -214,9 +227,21 @@ namespace rockdda::dda
     for (const auto &b : scene.blocks)
       polys.push_back(b.polygon);
     DetectionOptions detection;
+    detection.run_halves
+      = [this](const std::function<void(int)> &f) { solver.run_halves(f); };
     detection.reach.resize(polys.size());
+    detection.vertex_reach.resize(polys.size());
+    // A clamped block moves only with the ground (displacement mode).
+    const double ground_step
+      = scene.seismic.mode == SeismicInput::Mode::displacement
+          ? std::abs(ground.displacement(t + dt) - ground.displacement(t))
+          : 0.;
     for (std::size_t b = 0; b < polys.size(); ++b)
-      detection.reach[b] = ctrl.search_factor * allowed_step[b];
+      {
+        detection.vertex_reach[b] = ctrl.search_factor * allowed_step[b];
+        detection.reach[b] = clamped_block[b] ? ctrl.search_factor * ground_step
+                                              : detection.vertex_reach[b];
+      }
     // Shortest-path rule of vertex-vertex contacts: the vertices move on as
     // in the previous step.
     if (last_solution.size() == static_cast<long>(6 * polys.size()))
@@ -313,6 +338,8 @@ namespace rockdda::dda
           = fp.anchor
             + (fp.moves_with_ground ? ug : 0.) * scene.seismic.direction;
       }
+    par.run_halves
+      = [this](const std::function<void(int)> &f) { solver.run_halves(f); };
     assembler.prepare_step(scene, contacts, par, matrix);
     solver.new_pattern(matrix);
 
@@ -324,7 +351,13 @@ namespace rockdda::dda
     bool     converged       = false;
     unsigned changes = 0, friction_changes = 0;
     unsigned it = 0;
-    while (it < ctrl.max_iterations)
+    // The contact states must settle within max_iterations; iterations
+    // that change no state only update the friction forces (and reuse the
+    // factorisation or preconditioner), for up to max_iterations more.
+    unsigned         state_iterations = 0;
+    std::vector<int> flips(contacts.size(), 0);
+    while (state_iterations < ctrl.max_iterations
+           && it < 2 * ctrl.max_iterations)
       {
         ++it;
         assembler.assemble(contacts, matrix, F);
@@ -364,15 +397,35 @@ namespace rockdda::dda
               ++n_closed;
             }
         const double mean_force = n_closed > 0 ? force_sum / n_closed : 0.;
-        std::vector<StateCheck> checks(contacts.size());
-        for (std::size_t c = 0; c < contacts.size(); ++c)
-          checks[c]
-            = check_state(contacts[c],
-                          assembler.kinematics()[c],
-                          assembler.gap(static_cast<int>(c), x),
-                          assembler.shear_displacement(static_cast<int>(c), x),
-                          ctrl.law,
-                          scene.joints[contacts[c].joint]);
+        std::vector<StateCheck>        checks(contacts.size());
+        const std::function<void(int)> check_half = [&](const int h) {
+          const std::size_t lo = h == 0 ? 0 : contacts.size() / 2;
+          const std::size_t hi = h == 0 ? contacts.size() / 2 : contacts.size();
+          for (std::size_t c = lo; c < hi; ++c)
+            {
+              const int                ci = static_cast<int>(c);
+              ContactKinematics        chatter;
+              const ContactKinematics *k = &assembler.kinematics()[c];
+              if (flips[c] >= 2)
+                {
+                  // A contact near zero force that keeps changing state
+                  // (chatter): its force tolerance grows 10x per further
+                  // change, to at most 100x (1 % of the lighter block's
+                  // weight).
+                  chatter = *k;
+                  chatter.force_tolerance
+                    *= std::pow(10., std::min(flips[c] - 1, 2));
+                  k = &chatter;
+                }
+              checks[c] = check_state(contacts[c],
+                                      *k,
+                                      assembler.gap(ci, x),
+                                      assembler.shear_displacement(ci, x),
+                                      ctrl.law,
+                                      scene.joints[contacts[c].joint]);
+            }
+        };
+        solver.run_halves(check_half);
         check_face_groups(contacts, x, checks);
         for (std::size_t c = 0; c < contacts.size(); ++c)
           {
@@ -395,6 +448,7 @@ namespace rockdda::dda
             if (r.changed)
               {
                 ++changes;
+                ++flips[c];
                 const ContactState old = ct.state;
                 ct.state               = r.state;
                 if (r.state == ContactState::locked
@@ -426,13 +480,14 @@ namespace rockdda::dda
             converged = true;
             break;
           }
+        if (changes > 0)
+          ++state_iterations;
       }
     if (!converged)
       {
         why = "the open-close iteration did not converge in "
-              + std::to_string(ctrl.max_iterations) + " iterations ("
-              + std::to_string(changes) + " contacts changing state, "
-              + std::to_string(friction_changes)
+              + std::to_string(it) + " iterations (" + std::to_string(changes)
+              + " contacts changing state, " + std::to_string(friction_changes)
               + " sliding contacts whose friction force has not converged)";
         return false;
       }
@@ -519,45 +574,37 @@ namespace rockdda::dda
                                const Eigen::VectorXd      &x,
                                std::vector<StateCheck>    &checks) const
   {
-    const auto      &group = assembler.groups();
-    std::vector<int> members;
-    std::vector<int> order(contacts.size());
-    for (std::size_t c = 0; c < contacts.size(); ++c)
-      order[c] = static_cast<int>(c);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-      return group[a] < group[b];
-    });
-    const double ps = ctrl.law.shear_penalty();
-    for (std::size_t a = 0; a < order.size();)
+    const auto         &start  = assembler.group_start();
+    const auto         &member = assembler.group_members();
+    std::vector<int>    members;
+    std::vector<double> sense;
+    const double        ps = ctrl.law.shear_penalty();
+    for (std::size_t g = 0; g + 1 < start.size(); ++g)
       {
-        std::size_t b = a;
-        while (b < order.size() && group[order[b]] == group[order[a]])
-          ++b;
-        if (group[order[a]] < 0)
-          {
-            a = b;
-            continue;
-          }
-        // The resultant shear force on the lower block, along the first
-        // member's tangent, against the summed strength.
+        // Members: contacts that are locked, or closing, and stay closed.
         members.clear();
-        for (std::size_t k = a; k < b; ++k)
+        for (int k = start[g]; k < start[g + 1]; ++k)
           {
-            const Contact &ct = contacts[order[k]];
+            const int      c  = member[k];
+            const Contact &ct = contacts[c];
             const auto    &j  = scene.joints[ct.joint];
             // A frictionless contact carries no shear at all.
             const bool frictionless
               = j.friction_deg == 0. && (ct.broken || j.cohesion == 0.);
             if (ct.state != ContactState::sliding && !frictionless
-                && checks[order[k]].state != ContactState::open)
-              members.push_back(order[k]);
+                && checks[c].state != ContactState::open)
+              members.push_back(c);
           }
-        a = b;
-        if (members.size() < 2)
+        // If every member stays locked on its own, so does the group
+        // (|sum F| <= sum |F| <= sum S): nothing to decide.
+        bool any_slides = false;
+        for (const int c : members)
+          any_slides = any_slides || checks[c].state == ContactState::sliding;
+        if (members.size() < 2 || !any_slides)
           continue;
         const geometry::Point u = assembler.kinematics()[members[0]].tangent;
         double                resultant = 0., strength = 0., tolerance = 0.;
-        std::vector<double>   sense(members.size());
+        sense.resize(members.size());
         for (std::size_t m = 0; m < members.size(); ++m)
           {
             const int   c   = members[m];

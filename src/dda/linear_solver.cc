@@ -703,6 +703,23 @@ namespace rockdda::dda
 
 
   void
+  LinearSolver::run_halves(const std::function<void(int)> &f)
+  {
+    if (team)
+      {
+        auto g = [&f](const int part) { f(part); };
+        team->run(g);
+      }
+    else
+      {
+        f(0);
+        f(1);
+      }
+  }
+
+
+
+  void
   LinearSolver::new_pattern(const BlockSparseMatrix &K)
   {
     factorised = false;

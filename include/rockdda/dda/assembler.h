@@ -14,6 +14,7 @@
 #include <rockdda/dda/contact_set.h>
 #include <rockdda/dda/linear_solver.h>
 
+#include <functional>
 #include <vector>
 
 namespace rockdda::dda
@@ -33,6 +34,9 @@ namespace rockdda::dda
     /// Target positions of the fixed points at the end of the step (m).
     std::vector<geometry::Point> fixed_targets;
     ContactLaw                   law;
+    /// Runs a function of the half (0, 1) for both halves, possibly on two
+    /// threads; empty: one after the other.
+    std::function<void(const std::function<void(int)> &)> run_halves;
   };
 
   /**
@@ -84,6 +88,19 @@ namespace rockdda::dda
       return contact_group;
     }
 
+    /// The contacts of face group g: group_members()[group_start()[g]] to
+    /// group_members()[group_start()[g + 1] - 1].
+    const std::vector<int> &
+    group_start() const
+    {
+      return group_start_;
+    }
+    const std::vector<int> &
+    group_members() const
+    {
+      return group_members_;
+    }
+
     /// Moments of each block at the start of the step.
     const std::vector<BlockMoments> &
     moments() const
@@ -123,6 +140,7 @@ namespace rockdda::dda
     /// which the two faces overlap (0 for a corner on a face).
     std::vector<double> contact_length;
     std::vector<int>    contact_group;
+    std::vector<int>    group_start_, group_members_;
     /// Blocks whose displacement is prescribed by their fixed points, and
     /// that displacement.
     std::vector<char>              clamped;

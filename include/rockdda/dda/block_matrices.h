@@ -37,6 +37,15 @@ namespace rockdda::dda
   block_size(const geometry::Polygon &polygon);
 
   /**
+   * Whether @p n_points fixed points with sum T^T T = @p fit clamp a block
+   * of size @p size (m): three or more points that are not collinear (the
+   * smallest eigenvalue of the fit, with the rotation and strain columns
+   * divided by the size, above 1e-8 of the largest).
+   */
+  bool
+  clamps(const Matrix6 &fit, const int n_points, const double size);
+
+  /**
    * T(x, y) about the centroid c: u = T D with
    * T = [[1, 0, -(y-yc), x-xc, 0, (y-yc)/2], [0, 1, x-xc, 0, y-yc, (x-xc)/2]].
    */

@@ -10,6 +10,7 @@
 #include <rockdda/geometry/polygon.h>
 
 #include <algorithm>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -41,8 +42,12 @@ namespace rockdda::dda
     /// Search distance of every block when @p reach is empty (m).
     double search_distance = 0.;
     /// Search distance of each block (m): how far its vertices may move
-    /// relative to a neighbour in one step, times a safety factor.
+    /// in one step, times a safety factor (0 for a block that does not
+    /// move, e.g. a clamped one).
     std::vector<double> reach;
+    /// Scale of each block for vertex-vertex contacts (m): the reach its
+    /// size allows, also for blocks that do not move. Empty: reach.
+    std::vector<double> vertex_reach;
     /// Predicted displacement of each vertex of each block over the step
     /// (m; same layout as the polygons' vertices, empty = at rest). Decides
     /// the entrance of vertex-vertex contacts by the shortest path.
@@ -51,6 +56,9 @@ namespace rockdda::dda
     /// passes if n . a >= -sin(entrance_angle) |a| (rad). Larger than the
     /// relative rotation of two blocks in one step.
     double entrance_angle = 0.2;
+    /// Runs a function of the half (0, 1) for both halves, possibly on two
+    /// threads (LinearSolver::run_halves); empty: one after the other.
+    std::function<void(const std::function<void(int)> &)> run_halves;
     /// Two vertices closer than coincidence_fraction * vertex_distance()
     /// form a vertex-vertex contact.
     double coincidence_fraction = 0.2;
@@ -67,7 +75,8 @@ namespace rockdda::dda
     double
     vertex_distance(const int i, const int j) const
     {
-      return reach.empty() ? search_distance : std::min(reach[i], reach[j]);
+      const auto &r = vertex_reach.empty() ? reach : vertex_reach;
+      return r.empty() ? search_distance : std::min(r[i], r[j]);
     }
   };
 

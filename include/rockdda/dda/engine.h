@@ -28,8 +28,9 @@ namespace rockdda::dda
     double min_time_step = 0.;
     /// Dynamic control parameter in [0, 1] (0 static, 1 fully dynamic).
     double dynamic = 1.;
-    /// Open-close iterations before the step is cut (the contact states
-    /// and the friction forces must both have converged).
+    /// Open-close iterations that change contact states before the step
+    /// is cut; iterations that only update friction forces may add as many
+    /// again (the states and the friction forces must both converge).
     unsigned int max_iterations = 6;
     /// Largest vertex displacement per step, as a fraction of the domain
     /// size (the larger side of the bounding box of all blocks).
@@ -269,6 +270,9 @@ namespace rockdda::dda
     /// Allowed vertex displacement per step of each block (m), and its
     /// size (larger side of its bounding box at t = 0, m).
     std::vector<double> allowed_step, block_size;
+    /// Blocks clamped by their fixed points (they move only with the
+    /// ground, so their contact search reaches no further than that).
+    std::vector<char> clamped_block;
     /// Energy flows since t = 0 (J/m): dissipated by friction, work of
     /// the loads.
     double friction_work = 0., load_work = 0.;

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -156,6 +157,15 @@ namespace rockdda::dda
     /// natural order is used).
     int
     separator_size() const;
+
+    /**
+     * Run @p f(0) and @p f(1) on the solver's two threads when it has them
+     * (iterative solver with the subdomain ordering and Threads >= 2),
+     * else one after the other. The two calls must write disjoint data;
+     * results are then the same on one and two threads.
+     */
+    void
+    run_halves(const std::function<void(int)> &f);
 
   private:
     struct Direct;
