@@ -190,7 +190,9 @@ namespace rockdda::dda
       {
         if (n_fixed[b] == 0)
           continue;
-        if (clamps(fit[b], n_fixed[b], block_size[b]))
+        if (params.clamped != nullptr
+              ? (*params.clamped)[b] != 0
+              : clamps(fit[b], n_fixed[b], block_size[b]))
           {
             clamped[b]    = 1;
             prescribed[b] = fit[b].ldlt().solve(fit_rhs[b]);
@@ -241,8 +243,19 @@ namespace rockdda::dda
         if (overlap[c] > 0.)
           faces.emplace_back(face_key[c], static_cast<int>(c));
       }
-    // The vertex contacts of one pair of faces share its overlap.
-    std::sort(faces.begin(), faces.end());
+    // The vertex contacts of one pair of faces share its overlap. Detection
+    // emits the contacts of a block pair together and the pairs in order,
+    // so the keys are sorted but within each block's few contacts:
+    // insertion sort is then linear; otherwise a full sort.
+    bool by_pair = true;
+    for (std::size_t c = 1; c < pairs.size() && by_pair; ++c)
+      by_pair = !(pairs[c] < pairs[c - 1]);
+    if (by_pair)
+      for (std::size_t a = 1; a < faces.size(); ++a)
+        for (std::size_t b = a; b > 0 && faces[b] < faces[b - 1]; --b)
+          std::swap(faces[b], faces[b - 1]);
+    else
+      std::sort(faces.begin(), faces.end());
     contact_group.assign(contacts.size(), -1);
     group_start_.assign(1, 0);
     group_members_.clear();

@@ -181,12 +181,13 @@ namespace rockdda::dda
     class PairDetector
     {
     public:
-      PairDetector(const std::vector<geometry::Polygon>   &polys,
-                   const std::vector<std::vector<Corner>> &all_corners,
-                   const std::vector<Eigen::Vector4d>     &boxes,
-                   const DetectionOptions                 &opt,
-                   const int                               i,
-                   const int                               j,
+      PairDetector(const std::vector<geometry::Polygon> &polys,
+                   const std::vector<Corner>            &all_corners,
+                   const std::vector<int>               &offset,
+                   const std::vector<Eigen::Vector4d>   &boxes,
+                   const DetectionOptions               &opt,
+                   const int                             i,
+                   const int                             j,
                    std::vector<bool> (&consumed)[2],
                    std::vector<ContactCandidate> &out)
           : polys(polys)
@@ -199,16 +200,18 @@ namespace rockdda::dda
           , consumed(consumed)
           , out(out)
       {
-        corners[0] = &all_corners[i];
-        corners[1] = &all_corners[j];
+        corners[0] = all_corners.data() + offset[i];
+        corners[1] = all_corners.data() + offset[j];
+        count[0]   = offset[i + 1] - offset[i];
+        count[1]   = offset[j + 1] - offset[j];
       }
 
       void
       run()
       {
         const std::size_t first = out.size();
-        consumed[0].assign(corners[0]->size(), false);
-        consumed[1].assign(corners[1]->size(), false);
+        consumed[0].assign(count[0], false);
+        consumed[1].assign(count[1], false);
         find_vertex_vertex();
         vertices_on_edges(0);
         vertices_on_edges(1);
@@ -257,10 +260,10 @@ namespace rockdda::dda
       void
       find_vertex_vertex()
       {
-        for (std::size_t k = 0; k < (*corners[0]).size(); ++k)
-          for (std::size_t m = 0; m < (*corners[1]).size(); ++m)
+        for (int k = 0; k < count[0]; ++k)
+          for (int m = 0; m < count[1]; ++m)
             {
-              const Corner &P = (*corners[0])[k], &Q = (*corners[1])[m];
+              const Corner &P = corners[0][k], &Q = corners[1][m];
               if (!P.convex || !Q.convex)
                 continue;
               const double dist       = (P.P - Q.P).norm();
@@ -298,21 +301,21 @@ namespace rockdda::dda
           double           score, separation;
         };
         std::vector<Option> options;
-        const int           nk[2] = {static_cast<int>((*corners[0]).size()),
-                                     static_cast<int>((*corners[1]).size())};
+        const int           nk[2]
+          = {static_cast<int>(count[0]), static_cast<int>(count[1])};
         for (int side = 0; side < 2; ++side)
           {
             // Vertex v of 'side' entering an edge at vertex w of 'other'.
             const int     other = 1 - side;
             const int     v = side == 0 ? k : m, w = side == 0 ? m : k;
-            const Corner &X  = (*corners[side])[v];
+            const Corner &X  = corners[side][v];
             const Point   dX = X.P + predicted(side, v);
-            const Point   dW = (*corners[other])[w].P + predicted(other, w);
+            const Point   dW = corners[other][w].P + predicted(other, w);
             for (const int e : {(w + nk[other] - 1) % nk[other], w})
               {
                 Option o;
                 o.c = vertex_edge(
-                  X.P, block(side), v, block(other), e, (*corners[other])[e]);
+                  X.P, block(side), v, block(other), e, corners[other][e]);
                 o.score      = entrance_score(X, o.c.normal);
                 o.separation = o.c.normal.dot(dX - dW);
                 options.push_back(o);
@@ -358,9 +361,9 @@ namespace rockdda::dda
         const geometry::Polygon &pb = polys[b];
         const int                nb = static_cast<int>(pb.vertices.size());
         const Eigen::Vector4d   &bb = boxes[b];
-        for (int k = 0; k < static_cast<int>((*corners[side]).size()); ++k)
+        for (int k = 0; k < static_cast<int>(count[side]); ++k)
           {
-            const Corner &P = (*corners[side])[k];
+            const Corner &P = corners[side][k];
             if (!P.convex || consumed[side][k] || P.P.x() < bb[0] - d
                 || P.P.x() > bb[2] + d || P.P.y() < bb[1] - d
                 || P.P.y() > bb[3] + d)
@@ -372,7 +375,7 @@ namespace rockdda::dda
               {
                 // Outside: every edge the vertex projects onto within the
                 // search distance (both edges of a reflex corner).
-                const auto &cb = *corners[1 - side];
+                const Corner *cb = corners[1 - side];
                 for (int e = 0; e < nb; ++e)
                   {
                     const Corner &E   = cb[e];
@@ -404,7 +407,7 @@ namespace rockdda::dda
             std::vector<char>             ok(nb, 0);
             for (int e = 0; e < nb; ++e)
               {
-                const Corner &E  = (*corners[1 - side])[e];
+                const Corner &E  = corners[1 - side][e];
                 c[e]             = vertex_edge(P.P, a, k, b, e, E);
                 const double xr  = E.t.dot(P.P - E.P) / E.l;
                 const double dep = -c[e].gap;
@@ -439,7 +442,7 @@ namespace rockdda::dda
             for (const int end : {(best + 1) % nb, best})
               {
                 const int     other = end == best ? (best + nb - 1) % nb : end;
-                const Corner &R     = (*corners[1 - side])[end];
+                const Corner &R     = corners[1 - side][end];
                 if (R.convex || (P.P - R.P).norm() > d || c[other].gap > d
                     || c[other].gap < -d || (c[other].gap < 0. && !ok[other]))
                   continue;
@@ -455,7 +458,8 @@ namespace rockdda::dda
       const double                          d, dv;
       std::vector<bool> (&consumed)[2];
       std::vector<ContactCandidate> &out;
-      const std::vector<Corner>     *corners[2];
+      const Corner                  *corners[2];
+      int                            count[2];
     };
   } // namespace
 
@@ -468,13 +472,17 @@ namespace rockdda::dda
     std::vector<double> grow(polygons.size(), 0.5 * options.search_distance);
     if (!options.reach.empty())
       grow = options.reach;
-    // Corners and boxes once per detection, scratch reused by all pairs.
-    std::vector<std::vector<Corner>> corners(polygons.size());
-    std::vector<Eigen::Vector4d>     boxes(polygons.size());
+    // Corners (one array, offsets per block) and boxes once per detection;
+    // scratch reused by all pairs.
+    std::vector<int> offset(polygons.size() + 1, 0);
+    for (std::size_t b = 0; b < polygons.size(); ++b)
+      offset[b + 1] = offset[b] + static_cast<int>(polygons[b].vertices.size());
+    std::vector<Corner>          corners(offset.back());
+    std::vector<Eigen::Vector4d> boxes(polygons.size());
     for (std::size_t b = 0; b < polygons.size(); ++b)
       {
-        for (int k = 0; k < static_cast<int>(polygons[b].vertices.size()); ++k)
-          corners[b].push_back(corner(polygons[b], k));
+        for (int k = 0; k < offset[b + 1] - offset[b]; ++k)
+          corners[offset[b] + k] = corner(polygons[b], k);
         boxes[b] = polygons[b].bounding_box();
       }
     // The pairs in two halves (in order), each with its own output.
@@ -487,6 +495,7 @@ namespace rockdda::dda
       for (std::size_t k = lo; k < hi; ++k)
         PairDetector(polygons,
                      corners,
+                     offset,
                      boxes,
                      options,
                      pairs[k].first,

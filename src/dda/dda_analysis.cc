@@ -87,16 +87,21 @@ namespace rockdda::dda
                     "6",
                     Integer(1, 100),
                     "-",
-                    "Iterations before the time step is cut.");
+                    "Open-close iterations that change contact states "
+                    "before the time step is cut; iterations that only "
+                    "update friction forces may add as many again. A step "
+                    "is accepted only when the states and the friction "
+                    "forces have converged.");
         io::declare(prm,
                     "Maximum displacement ratio",
                     "0.01",
                     Double(0., 1.),
                     "-",
                     "Largest vertex displacement per step as a fraction "
-                    "of the domain size (larger side of the bounding box). "
-                    "The contact search distance is 2.5 times this "
-                    "displacement.");
+                    "of the domain size (twice the largest distance of a "
+                    "vertex from the mean vertex); a block's own limit is "
+                    "also at most 0.05 x its size. The contact search "
+                    "distance of a block is 2.5 times its limit.");
         io::declare(prm,
                     "Contact penalty",
                     "0",
@@ -115,8 +120,11 @@ namespace rockdda::dda
                     "0",
                     Double(0.),
                     "N/m",
-                    "Stiffness of the springs of fixed points; 0 = 10 x the "
-                    "contact penalty.");
+                    "Stiffness of the springs of fixed points of a block "
+                    "held by one or two of them; 0 = 10 x the contact "
+                    "penalty. A block with three or more fixed points that "
+                    "are not collinear is clamped (its motion prescribed, "
+                    "no spring).");
         io::declare(prm,
                     "Linear solver",
                     "automatic",

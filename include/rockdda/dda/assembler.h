@@ -37,6 +37,9 @@ namespace rockdda::dda
     /// Runs a function of the half (0, 1) for both halves, possibly on two
     /// threads; empty: one after the other.
     std::function<void(const std::function<void(int)> &)> run_halves;
+    /// Which blocks their fixed points clamp (clamps()), if known; else
+    /// decided here.
+    const std::vector<char> *clamped = nullptr;
   };
 
   /**
