@@ -300,8 +300,9 @@ namespace rockdda::dda
           ContactCandidate c;
           double           score, separation;
         };
-        std::vector<Option> options;
-        const int           nk[2]
+        Option    options[4];
+        int       n_options = 0;
+        const int nk[2]
           = {static_cast<int>(count[0]), static_cast<int>(count[1])};
         for (int side = 0; side < 2; ++side)
           {
@@ -316,9 +317,9 @@ namespace rockdda::dda
                 Option o;
                 o.c = vertex_edge(
                   X.P, block(side), v, block(other), e, corners[other][e]);
-                o.score      = entrance_score(X, o.c.normal);
-                o.separation = o.c.normal.dot(dX - dW);
-                options.push_back(o);
+                o.score              = entrance_score(X, o.c.normal);
+                o.separation         = o.c.normal.dot(dX - dW);
+                options[n_options++] = o;
               }
           }
         // Ties: flush corners give two admissible entrances that describe
@@ -327,8 +328,9 @@ namespace rockdda::dda
         // that round-off cannot switch the contact from step to step.
         const double  tie_length = 1e-6 * dv, tie_angle = 1e-2;
         const Option *best = nullptr;
-        for (const auto &o : options)
+        for (int q = 0; q < n_options; ++q)
           {
+            const Option &o = options[q];
             if (best == nullptr)
               {
                 best = &o;

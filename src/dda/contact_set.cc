@@ -33,12 +33,24 @@ namespace rockdda::dda
     const std::function<double(const ContactCandidate &)> &closed_gap,
     const bool                                             intact) const
   {
-    std::vector<Contact>       result(candidates.size());
-    std::vector<std::uint64_t> present;
-    present.reserve(candidates.size());
-    for (const auto &g : candidates)
-      present.push_back(key(g.block_i, g.vertex, g.block_j, g.edge));
-    std::sort(present.begin(), present.end());
+    std::vector<Contact> result(candidates.size());
+    // Whether the candidates hold vertex (i, k) of block i against edge e
+    // of block j: the candidates of one vertex and block are adjacent
+    // (detection emits them together), so look at the neighbours of c.
+    const auto present = [&](const std::size_t c, const int e) {
+      const ContactCandidate &g    = candidates[c];
+      const auto              same = [&](const ContactCandidate &o) {
+        return o.block_i == g.block_i && o.vertex == g.vertex
+               && o.block_j == g.block_j;
+      };
+      for (std::size_t d = c; d < candidates.size() && same(candidates[d]); ++d)
+        if (candidates[d].edge == e)
+          return true;
+      for (std::size_t d = c; d-- > 0 && same(candidates[d]);)
+        if (candidates[d].edge == e)
+          return true;
+      return false;
+    };
     for (std::size_t c = 0; c < candidates.size(); ++c)
       {
         const ContactCandidate &g = candidates[c];
@@ -65,12 +77,7 @@ namespace rockdda::dda
             // Only if the vertex has left its previous edge (near a reflex
             // corner it touches both, each with its own state).
             if (v != nullptr && v->state != ContactState::open
-                && !std::binary_search(present.begin(),
-                                       present.end(),
-                                       key(v->geometry.block_i,
-                                           v->geometry.vertex,
-                                           v->geometry.block_j,
-                                           v->geometry.edge)))
+                && !present(c, v->geometry.edge))
               {
                 // The vertex moved onto another edge of the same block.
                 const Contact &o  = *v;
