@@ -13,6 +13,7 @@
 #include <rockdda/analytical/newmark.h>
 #include <rockdda/dda/engine.h>
 
+#include "../../tests/unit/dda_test_scenes.h"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -28,28 +29,9 @@ using geometry::Polygon;
 
 namespace
 {
-  constexpr double g_earth = 9.80665;
-
-  Polygon
-  rectangle(double x0, double y0, double w, double h)
-  {
-    Polygon p;
-    p.vertices = {Point(x0, y0),
-                  Point(x0 + w, y0),
-                  Point(x0 + w, y0 + h),
-                  Point(x0, y0 + h)};
-    return p;
-  }
-
-  Polygon
-  rotated(const Polygon &p, double angle)
-  {
-    Polygon r = p;
-    for (auto &v : r.vertices)
-      v = Point(std::cos(angle) * v.x() - std::sin(angle) * v.y(),
-                std::sin(angle) * v.x() + std::cos(angle) * v.y());
-    return r;
-  }
+  using test_scenes::g_earth;
+  using test_scenes::rectangle;
+  using test_scenes::rotated;
 
   void
   add_block(BlockSystem &s, const Polygon &p, bool fixed = false)

@@ -1,8 +1,8 @@
 /**
  * @file
- * Small scene-building helpers shared by the DDA verification tests (copied
- * from tests/unit/test_dda.cc): rectangles, rotation, a one-material scene,
- * blocks, fixed blocks, controls and the block-on-incline scene.
+ * Small scene-building helpers shared by the DDA verification tests
+ * (test_dda.cc, test_dda_contacts.cc): rectangles, rotation, a one-material
+ * scene, blocks, fixed blocks, controls and the block-on-incline scene.
  */
 #ifndef ROCKDDA_TESTS_UNIT_DDA_TEST_SCENES_H
 #define ROCKDDA_TESTS_UNIT_DDA_TEST_SCENES_H

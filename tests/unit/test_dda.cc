@@ -15,78 +15,14 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include "dda_test_scenes.h"
 #include <cmath>
 #include <random>
 
 using namespace rockdda;
 using namespace rockdda::dda;
-using geometry::Point;
-using geometry::Polygon;
+using namespace rockdda::dda::test_scenes;
 
-namespace
-{
-  constexpr double g_earth = 9.80665;
-
-  Polygon
-  rectangle(double x0, double y0, double w, double h)
-  {
-    Polygon p;
-    p.vertices = {Point(x0, y0),
-                  Point(x0 + w, y0),
-                  Point(x0 + w, y0 + h),
-                  Point(x0, y0 + h)};
-    return p;
-  }
-
-  Polygon
-  rotated(const Polygon &p, double angle, Point about = Point::Zero())
-  {
-    Polygon         r = p;
-    Eigen::Matrix2d R;
-    R << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
-    for (auto &v : r.vertices)
-      v = about + R * (v - about);
-    return r;
-  }
-
-  BlockSystem
-  one_material_scene(double density = 2700.,
-                     double young   = 1e10,
-                     double nu      = 0.25,
-                     double phi     = 30.)
-  {
-    BlockSystem s;
-    s.materials.push_back({density, young, nu, false});
-    JointMaterial j;
-    j.friction_deg = phi;
-    s.joints.push_back(j);
-    return s;
-  }
-
-  int
-  add_block(BlockSystem &s, const Polygon &p, int material = 0)
-  {
-    Block b;
-    b.id       = static_cast<int>(s.blocks.size());
-    b.polygon  = p;
-    b.material = material;
-    s.blocks.push_back(b);
-    return b.id;
-  }
-
-  /// Fix a block by its vertices.
-  void
-  fix_block(BlockSystem &s, int b)
-  {
-    for (const auto &v : s.blocks[b].polygon.vertices)
-      {
-        FixedPoint f;
-        f.block = b;
-        f.point = v;
-        s.fixed_points.push_back(f);
-      }
-  }
-} // namespace
 
 // ---------------------------------------------------------------------------
 // Exact geometry and block matrices.
@@ -197,43 +133,6 @@ TEST(DdaGeometry, RigidRotationKeepsAreaExactly)
 // ---------------------------------------------------------------------------
 // Single blocks.
 
-namespace
-{
-  Controls
-  controls(double dt, double dynamic, double penalty)
-  {
-    Controls c;
-    c.time_step              = dt;
-    c.dynamic                = dynamic;
-    c.law.normal_penalty     = penalty;
-    c.max_displacement_ratio = 0.01;
-    return c;
-  }
-
-  /// A block of size w x h resting on a fixed base, both rotated by alpha
-  /// (rad) so that the contact plane dips towards +x' = (cos a, -sin a).
-  BlockSystem
-  incline_scene(double alpha,
-                double phi_deg,
-                double w           = 1.,
-                double h           = 1.,
-                double base_length = 10.)
-  {
-    BlockSystem s    = one_material_scene(2700., 1e10, 0.25, phi_deg);
-    const int   base = add_block(
-      s, rotated(rectangle(-0.5 * base_length, -1., base_length, 1.), -alpha));
-    add_block(s, rotated(rectangle(-0.5 * w, 0., w, h), -alpha));
-    fix_block(s, base);
-    return s;
-  }
-
-  double
-  along_slope(const DdaSystem &dda, int block, double alpha)
-  {
-    return dda.centroid_displacement(block).dot(
-      Point(std::cos(alpha), -std::sin(alpha)));
-  }
-} // namespace
 
 TEST(DdaSingleBlock, FreeFall)
 {
