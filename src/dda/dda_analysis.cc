@@ -84,7 +84,7 @@ namespace rockdda::dda
                     "0 static relaxation, 1 fully dynamic.");
         io::declare(prm,
                     "Maximum open-close iterations",
-                    "6",
+                    "12",
                     Integer(1, 100),
                     "-",
                     "Open-close iterations that change contact states "

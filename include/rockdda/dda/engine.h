@@ -31,7 +31,7 @@ namespace rockdda::dda
     /// Open-close iterations that change contact states before the step
     /// is cut; iterations that only update friction forces may add as many
     /// again (the states and the friction forces must both converge).
-    unsigned int max_iterations = 6;
+    unsigned int max_iterations = 12;
     /// Largest vertex displacement per step, as a fraction of the domain
     /// size (the larger side of the bounding box of all blocks).
     double max_displacement_ratio = 0.01;
