@@ -405,8 +405,10 @@ namespace rockdda::dda
             const double min_score = -std::sin(opt.entrance_angle);
             int          best = -1, fallback = -1;
             double       best_depth = 1e300, fallback_depth = 1e300;
-            std::vector<ContactCandidate> c(nb);
-            std::vector<char>             ok(nb, 0);
+            thread_local std::vector<ContactCandidate> c;
+            thread_local std::vector<char>             ok;
+            c.resize(nb);
+            ok.assign(nb, 0);
             for (int e = 0; e < nb; ++e)
               {
                 const Corner &E  = corners[1 - side][e];
@@ -479,18 +481,22 @@ namespace rockdda::dda
     std::vector<int> offset(polygons.size() + 1, 0);
     for (std::size_t b = 0; b < polygons.size(); ++b)
       offset[b + 1] = offset[b] + static_cast<int>(polygons[b].vertices.size());
-    std::vector<Corner>          corners(offset.back());
-    std::vector<Eigen::Vector4d> boxes(polygons.size());
+    std::vector<Corner>          corners;
+    std::vector<Eigen::Vector4d> boxes;
+    corners.reserve(offset.back());
+    boxes.reserve(polygons.size());
     for (std::size_t b = 0; b < polygons.size(); ++b)
       {
         for (int k = 0; k < offset[b + 1] - offset[b]; ++k)
-          corners[offset[b] + k] = corner(polygons[b], k);
-        boxes[b] = polygons[b].bounding_box();
+          corners.push_back(corner(polygons[b], k));
+        boxes.push_back(polygons[b].bounding_box());
       }
     // The pairs in two halves (in order), each with its own output.
-    const auto                     pairs = candidate_pairs(polygons, grow);
-    std::vector<bool>              consumed[2][2];
-    std::vector<ContactCandidate>  part[2];
+    const auto                    pairs = candidate_pairs(polygons, grow);
+    std::vector<bool>             consumed[2][2];
+    std::vector<ContactCandidate> part[2];
+    part[0].reserve(3 * pairs.size());
+    part[1].reserve(3 * pairs.size() / 2);
     const std::function<void(int)> half = [&](const int h) {
       const std::size_t lo = h == 0 ? 0 : pairs.size() / 2;
       const std::size_t hi = h == 0 ? pairs.size() / 2 : pairs.size();

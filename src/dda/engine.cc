@@ -226,7 +226,7 @@ namespace rockdda::dda
     polys.reserve(scene.blocks.size());
     for (const auto &b : scene.blocks)
       polys.push_back(b.polygon);
-    DetectionOptions detection;
+    DetectionOptions &detection = detection_options;
     detection.run_halves
       = [this](const std::function<void(int)> &f) { solver.run_halves(f); };
     detection.reach.resize(polys.size());
@@ -249,6 +249,7 @@ namespace rockdda::dda
         detection.predicted.resize(polys.size());
         for (std::size_t b = 0; b < polys.size(); ++b)
           {
+            detection.predicted[b].clear();
             const Vector6 D = last_solution.segment<6>(6 * b);
             const auto    c = block_moments(polys[b]).centroid;
             for (const auto &p : polys[b].vertices)

@@ -279,6 +279,9 @@ namespace rockdda::dda
     /// Contacts found by the first detection are intact joints (cohesion
     /// and tensile strength); contacts that form later are not bonded.
     bool first_detection = true;
+    /// Options of the contact detection, kept between steps (their
+    /// per-block arrays are refilled, not reallocated).
+    DetectionOptions detection_options;
   };
 } // namespace rockdda::dda
 
