@@ -44,10 +44,8 @@ namespace rockdda::dda
     k.hs = -(Tjr.transpose() * k.tangent);
     // Round-off of this contact: relative to the smaller block, plus the
     // representation error of the coordinates in the local frame.
-    const double scale = std::min(block_size[c.block_i], block_size[c.block_j]);
-    k.tolerance
-      = 1e-12 * scale
-        + 4. * std::numeric_limits<double>::epsilon() * (P.norm() + Q0.norm());
+    k.tolerance = round_off_tolerance(
+      std::min(block_size[c.block_i], block_size[c.block_j]), P, Q0);
     // Force scale: the weight of the lighter block.
     const double weight = std::min(mass[c.block_i](0, 0), mass[c.block_j](0, 0))
                           * params.body_acceleration.norm();
@@ -173,7 +171,6 @@ namespace rockdda::dda
     // Blocks held by one or two points are pinned by penalty springs.
     std::vector<Matrix6> fit(n, Matrix6::Zero());
     std::vector<Vector6> fit_rhs(n, Vector6::Zero());
-    std::vector<int>     n_fixed(n, 0);
     for (std::size_t f = 0; f < system.fixed_points.size(); ++f)
       {
         const auto &fp = system.fixed_points[f];
@@ -182,17 +179,15 @@ namespace rockdda::dda
         fit[fp.block] += T.transpose() * T;
         fit_rhs[fp.block]
           += T.transpose() * (params.fixed_targets[f] - fp.point);
-        ++n_fixed[fp.block];
       }
     clamped.assign(n, 0);
     prescribed.assign(n, Vector6::Zero());
     for (int b = 0; b < n; ++b)
       {
-        if (n_fixed[b] == 0)
+        // (fit(0, 0) is the number of the block's fixed points.)
+        if (fit[b](0, 0) == 0.)
           continue;
-        if (params.clamped != nullptr
-              ? (*params.clamped)[b] != 0
-              : clamps(fit[b], n_fixed[b], block_size[b]))
+        if (params.clamped != nullptr && (*params.clamped)[b] != 0)
           {
             clamped[b]    = 1;
             prescribed[b] = fit[b].ldlt().solve(fit_rhs[b]);
@@ -213,28 +208,23 @@ namespace rockdda::dda
     std::vector<std::pair<std::uint64_t, int>> faces;
     std::vector<double>                        overlap(contacts.size());
     // Kinematics and face overlaps per contact (independent: in halves).
-    std::vector<std::uint64_t>     face_key(contacts.size());
-    const std::function<void(int)> half = [&](const int h) {
-      const std::size_t lo = h == 0 ? 0 : contacts.size() / 2;
-      const std::size_t hi = h == 0 ? contacts.size() / 2 : contacts.size();
-      for (std::size_t c = lo; c < hi; ++c)
-        {
-          const auto &g     = contacts[c].geometry;
-          contact_blocks[c] = {g.block_i, g.block_j};
-          contact_kinematics[c]
-            = contact_kinematics_of(system, g, contacts[c].xi_ref);
-          const auto [o, key] = face_overlap(system, g);
-          overlap[c]          = o;
-          face_key[c]         = key;
-        }
-    };
-    if (params.run_halves)
-      params.run_halves(half);
-    else
-      {
-        half(0);
-        half(1);
-      }
+    std::vector<std::uint64_t> face_key(contacts.size());
+    for_each_half(params.run_halves,
+                  contacts.size(),
+                  [&](int, const std::size_t lo, const std::size_t hi) {
+                    for (std::size_t c = lo; c < hi; ++c)
+                      {
+                        const auto &g     = contacts[c].geometry;
+                        contact_blocks[c] = {g.block_i, g.block_j};
+                        contact_kinematics[c]
+                          = contact_kinematics_of(system,
+                                                  g,
+                                                  contacts[c].xi_ref);
+                        const auto [o, key] = face_overlap(system, g);
+                        overlap[c]          = o;
+                        face_key[c]         = key;
+                      }
+                  });
     for (std::size_t c = 0; c < contacts.size(); ++c)
       {
         const auto &g = contacts[c].geometry;

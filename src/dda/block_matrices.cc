@@ -26,16 +26,34 @@ namespace rockdda::dda
 
 
 
-  bool
-  clamps(const Matrix6 &fit, const int n_points, const double size)
+  std::vector<char>
+  clamped_blocks(const BlockSystem &system)
   {
-    if (n_points < 3)
-      return false;
-    Vector6 scale = Vector6::Ones();
-    scale.tail<4>().setConstant(1. / size);
-    const Matrix6 A = scale.asDiagonal() * fit * scale.asDiagonal();
-    const Eigen::SelfAdjointEigenSolver<Matrix6> eig(A);
-    return eig.eigenvalues().minCoeff() > 1e-8 * eig.eigenvalues().maxCoeff();
+    const std::size_t    n = system.blocks.size();
+    std::vector<Matrix6> fit(n, Matrix6::Zero());
+    std::vector<int>     n_points(n, 0);
+    for (const auto &f : system.fixed_points)
+      {
+        const auto T = displacement_matrix(
+          block_moments(system.blocks[f.block].polygon).centroid, f.point);
+        fit[f.block] += T.transpose() * T;
+        ++n_points[f.block];
+      }
+    std::vector<char> clamped(n, 0);
+    for (std::size_t b = 0; b < n; ++b)
+      {
+        if (n_points[b] < 3)
+          continue;
+        // Rotation and strain columns (lengths) divided by the block size:
+        // a dimensionless rank test.
+        Vector6 scale = Vector6::Ones();
+        scale.tail<4>().setConstant(1. / block_size(system.blocks[b].polygon));
+        const Matrix6 A = scale.asDiagonal() * fit[b] * scale.asDiagonal();
+        const Eigen::SelfAdjointEigenSolver<Matrix6> eig(A);
+        clamped[b]
+          = eig.eigenvalues().minCoeff() > 1e-8 * eig.eigenvalues().maxCoeff();
+      }
+    return clamped;
   }
 
 

@@ -497,28 +497,21 @@ namespace rockdda::dda
     std::vector<ContactCandidate> part[2];
     part[0].reserve(3 * pairs.size());
     part[1].reserve(3 * pairs.size() / 2);
-    const std::function<void(int)> half = [&](const int h) {
-      const std::size_t lo = h == 0 ? 0 : pairs.size() / 2;
-      const std::size_t hi = h == 0 ? pairs.size() / 2 : pairs.size();
-      for (std::size_t k = lo; k < hi; ++k)
-        PairDetector(polygons,
-                     corners,
-                     offset,
-                     boxes,
-                     options,
-                     pairs[k].first,
-                     pairs[k].second,
-                     consumed[h],
-                     part[h])
-          .run();
-    };
-    if (options.run_halves)
-      options.run_halves(half);
-    else
-      {
-        half(0);
-        half(1);
-      }
+    for_each_half(options.run_halves,
+                  pairs.size(),
+                  [&](const int h, const std::size_t lo, const std::size_t hi) {
+                    for (std::size_t k = lo; k < hi; ++k)
+                      PairDetector(polygons,
+                                   corners,
+                                   offset,
+                                   boxes,
+                                   options,
+                                   pairs[k].first,
+                                   pairs[k].second,
+                                   consumed[h],
+                                   part[h])
+                        .run();
+                  });
     part[0].insert(part[0].end(), part[1].begin(), part[1].end());
     return std::move(part[0]);
   }

@@ -83,10 +83,7 @@ namespace rockdda::dda
             const double strength
               = shear_strength(contact, n, kin.length, joint);
             r.normal_force = n;
-            const bool frictionless
-              = joint.friction_deg == 0.
-                && (contact.broken || joint.cohesion == 0.);
-            if (frictionless)
+            if (frictionless(contact, joint))
               {
                 r.state           = ContactState::sliding;
                 r.slide_direction = s >= 0. ? 1 : -1;

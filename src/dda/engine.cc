@@ -14,8 +14,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 
 namespace rockdda::dda
@@ -58,19 +56,17 @@ namespace rockdda::dda
     // bounding box, so that the round-off does not depend on where the
     // scene sits: for a translated scene both the vertices and the corner
     // move by the same amount, and their difference is the same number.
-    const geometry::Point centre(box[0], box[1]);
+    const geometry::Point corner(box[0], box[1]);
     for (auto &b : scene.blocks)
-      {
-        for (auto &p : b.polygon.vertices)
-          p -= centre;
-      }
+      for (auto &p : b.polygon.vertices)
+        p -= corner;
     for (auto &f : scene.fixed_points)
-      f.point -= centre;
+      f.point -= corner;
     for (auto &l : scene.load_points)
-      l.point -= centre;
+      l.point -= corner;
     for (auto &m : scene.measurement_points)
-      m.point -= centre;
-    scene.origin += centre;
+      m.point -= corner;
+    scene.origin += corner;
     // Validate (and set the initial centroids and anchors) in the local
     // coordinates.
     validate_and_prepare(scene, warning_list, 1e-6);
@@ -127,17 +123,7 @@ namespace rockdda::dda
       }
     if (scene.seismic.mode != SeismicInput::Mode::none)
       ground = GroundMotionIntegral(scene.seismic.record, scene.seismic.g);
-    std::vector<Matrix6> fit(scene.blocks.size(), Matrix6::Zero());
-    std::vector<int>     n_fixed(scene.blocks.size(), 0);
-    for (const auto &f : scene.fixed_points)
-      {
-        const auto T = displacement_matrix(
-          block_moments(scene.blocks[f.block].polygon).centroid, f.point);
-        fit[f.block] += T.transpose() * T;
-        ++n_fixed[f.block];
-      }
-    for (std::size_t b = 0; b < scene.blocks.size(); ++b)
-      clamped_block.push_back(clamps(fit[b], n_fixed[b], block_size[b]));
+    clamped_block = clamped_blocks(scene);
   }
 
 
@@ -227,8 +213,7 @@ namespace rockdda::dda
     for (const auto &b : scene.blocks)
       polys.push_back(b.polygon);
     DetectionOptions &detection = detection_options;
-    detection.run_halves
-      = [this](const std::function<void(int)> &f) { solver.run_halves(f); };
+    detection.run_halves        = halves();
     detection.reach.resize(polys.size());
     detection.vertex_reach.resize(polys.size());
     // A clamped block moves only with the ground (displacement mode).
@@ -258,11 +243,10 @@ namespace rockdda::dda
       }
     // A new contact touching within round-off starts closed.
     const auto touching = [&](const ContactCandidate &c) {
-      const double size
-        = std::min(block_size[c.block_i], block_size[c.block_j]);
-      return 1e-12 * size
-             + 4. * std::numeric_limits<double>::epsilon()
-                 * polys[c.block_i].vertices[c.vertex].norm();
+      return round_off_tolerance(std::min(block_size[c.block_i],
+                                          block_size[c.block_j]),
+                                 polys[c.block_i].vertices[c.vertex],
+                                 geometry::Point::Zero());
     };
     std::vector<Contact> start
       = contact_set.transfer(detect_contacts(polys, detection),
@@ -339,8 +323,8 @@ namespace rockdda::dda
           = fp.anchor
             + (fp.moves_with_ground ? ug : 0.) * scene.seismic.direction;
       }
-    par.run_halves
-      = [this](const std::function<void(int)> &f) { solver.run_halves(f); };
+    par.run_halves = halves();
+    par.clamped    = &clamped_block;
     assembler.prepare_step(scene, contacts, par, matrix);
     solver.new_pattern(matrix);
 
@@ -398,35 +382,36 @@ namespace rockdda::dda
               ++n_closed;
             }
         const double mean_force = n_closed > 0 ? force_sum / n_closed : 0.;
-        std::vector<StateCheck>        checks(contacts.size());
-        const std::function<void(int)> check_half = [&](const int h) {
-          const std::size_t lo = h == 0 ? 0 : contacts.size() / 2;
-          const std::size_t hi = h == 0 ? contacts.size() / 2 : contacts.size();
-          for (std::size_t c = lo; c < hi; ++c)
-            {
-              const int                ci = static_cast<int>(c);
-              ContactKinematics        chatter;
-              const ContactKinematics *k = &assembler.kinematics()[c];
-              if (flips[c] >= 2)
-                {
-                  // A contact near zero force that keeps changing state
-                  // (chatter): its force tolerance grows 10x per further
-                  // change, to at most 100x (1 % of the lighter block's
-                  // weight).
-                  chatter = *k;
-                  chatter.force_tolerance
-                    *= std::pow(10., std::min(flips[c] - 1, 2));
-                  k = &chatter;
-                }
-              checks[c] = check_state(contacts[c],
-                                      *k,
-                                      assembler.gap(ci, x),
-                                      assembler.shear_displacement(ci, x),
-                                      ctrl.law,
-                                      scene.joints[contacts[c].joint]);
-            }
-        };
-        solver.run_halves(check_half);
+        std::vector<StateCheck> checks(contacts.size());
+        for_each_half(halves(),
+                      contacts.size(),
+                      [&](int, const std::size_t lo, const std::size_t hi) {
+                        for (std::size_t c = lo; c < hi; ++c)
+                          {
+                            const int                ci = static_cast<int>(c);
+                            ContactKinematics        chatter;
+                            const ContactKinematics *k
+                              = &assembler.kinematics()[c];
+                            if (flips[c] >= 2)
+                              {
+                                // A contact near zero force that keeps changing
+                                // state (chatter): its force tolerance grows
+                                // 10x per further change, to at most 100x (1 %
+                                // of the lighter block's weight).
+                                chatter = *k;
+                                chatter.force_tolerance
+                                  *= std::pow(10., std::min(flips[c] - 1, 2));
+                                k = &chatter;
+                              }
+                            checks[c]
+                              = check_state(contacts[c],
+                                            *k,
+                                            assembler.gap(ci, x),
+                                            assembler.shear_displacement(ci, x),
+                                            ctrl.law,
+                                            scene.joints[contacts[c].joint]);
+                          }
+                      });
         check_face_groups(contacts, x, checks);
         for (std::size_t c = 0; c < contacts.size(); ++c)
           {
@@ -570,6 +555,14 @@ namespace rockdda::dda
 
 
 
+  HalvesRunner
+  DdaSystem::halves()
+  {
+    return [this](const std::function<void(int)> &f) { solver.run_halves(f); };
+  }
+
+
+
   void
   DdaSystem::check_face_groups(const std::vector<Contact> &contacts,
                                const Eigen::VectorXd      &x,
@@ -588,11 +581,9 @@ namespace rockdda::dda
           {
             const int      c  = member[k];
             const Contact &ct = contacts[c];
-            const auto    &j  = scene.joints[ct.joint];
             // A frictionless contact carries no shear at all.
-            const bool frictionless
-              = j.friction_deg == 0. && (ct.broken || j.cohesion == 0.);
-            if (ct.state != ContactState::sliding && !frictionless
+            if (ct.state != ContactState::sliding
+                && !frictionless(ct, scene.joints[ct.joint])
                 && checks[c].state != ContactState::open)
               members.push_back(c);
           }

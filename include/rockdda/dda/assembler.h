@@ -34,11 +34,10 @@ namespace rockdda::dda
     /// Target positions of the fixed points at the end of the step (m).
     std::vector<geometry::Point> fixed_targets;
     ContactLaw                   law;
-    /// Runs a function of the half (0, 1) for both halves, possibly on two
-    /// threads; empty: one after the other.
-    std::function<void(const std::function<void(int)> &)> run_halves;
-    /// Which blocks their fixed points clamp (clamps()), if known; else
-    /// decided here.
+    /// Runs the contact kinematics in two halves (see HalvesRunner).
+    HalvesRunner run_halves;
+    /// Which blocks their fixed points clamp (clamped_blocks()); nullptr:
+    /// none, every fixed point is a penalty spring.
     const std::vector<char> *clamped = nullptr;
   };
 

@@ -9,6 +9,8 @@
 
 #include <rockdda/dda/block_system.h>
 
+#include <vector>
+
 namespace rockdda::dda
 {
   /**
@@ -37,13 +39,14 @@ namespace rockdda::dda
   block_size(const geometry::Polygon &polygon);
 
   /**
-   * Whether @p n_points fixed points with sum T^T T = @p fit clamp a block
-   * of size @p size (m): three or more points that are not collinear (the
-   * smallest eigenvalue of the fit, with the rotation and strain columns
-   * divided by the size, above 1e-8 of the largest).
+   * Which blocks of @p system their fixed points clamp: three or more
+   * points that are not collinear (the smallest eigenvalue of
+   * sum T^T T, with the rotation and strain columns divided by the block
+   * size, above 1e-8 of the largest). A clamped block's displacement is
+   * prescribed instead of held by penalty springs.
    */
-  bool
-  clamps(const Matrix6 &fit, const int n_points, const double size);
+  std::vector<char>
+  clamped_blocks(const BlockSystem &system);
 
   /**
    * T(x, y) about the centroid c: u = T D with

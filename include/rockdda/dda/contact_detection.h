@@ -33,6 +33,33 @@ namespace rockdda::dda
   };
 
   /**
+   * Runs a function of the half (0, 1) for both halves, possibly on two
+   * threads (LinearSolver::run_halves); empty: one after the other.
+   */
+  using HalvesRunner = std::function<void(const std::function<void(int)> &)>;
+
+  /**
+   * Call @p f(h, lo, hi) for the halves h = 0, 1 of the index range
+   * [0, n): [0, n/2) and [n/2, n), through @p runner (or one after the
+   * other if it is empty). The two calls must write disjoint data.
+   */
+  inline void
+  for_each_half(const HalvesRunner &runner,
+                const std::size_t   n,
+                const std::function<void(int, std::size_t, std::size_t)> &f)
+  {
+    const std::function<void(int)> half
+      = [&](const int h) { f(h, h == 0 ? 0 : n / 2, h == 0 ? n / 2 : n); };
+    if (runner)
+      runner(half);
+    else
+      {
+        half(0);
+        half(1);
+      }
+  }
+
+  /**
    * Options of the detection (lengths in m). Every length is per block, so
    * that the rules do not depend on the size of the domain or on where the
    * scene sits: the pair (i, j) is searched within max(reach_i, reach_j).
@@ -56,9 +83,8 @@ namespace rockdda::dda
     /// passes if n . a >= -sin(entrance_angle) |a| (rad). Larger than the
     /// relative rotation of two blocks in one step.
     double entrance_angle = 0.2;
-    /// Runs a function of the half (0, 1) for both halves, possibly on two
-    /// threads (LinearSolver::run_halves); empty: one after the other.
-    std::function<void(const std::function<void(int)> &)> run_halves;
+    /// Runs the block pairs in two halves (see HalvesRunner).
+    HalvesRunner run_halves;
     /// Two vertices closer than coincidence_fraction * vertex_distance()
     /// form a vertex-vertex contact.
     double coincidence_fraction = 0.2;

@@ -10,6 +10,8 @@
 #include <rockdda/dda/block_system.h>
 #include <rockdda/dda/contact_set.h>
 
+#include <limits>
+
 namespace rockdda::dda
 {
   /// Spring stiffnesses (N/m per m thickness).
@@ -88,6 +90,29 @@ namespace rockdda::dda
               const double             s,
               const ContactLaw        &law,
               const JointMaterial     &joint);
+
+  /// Whether a contact carries no shear at all: no friction and no intact
+  /// cohesion.
+  inline bool
+  frictionless(const Contact &contact, const JointMaterial &joint)
+  {
+    return joint.friction_deg == 0. && (contact.broken || joint.cohesion == 0.);
+  }
+
+  /**
+   * Round-off of a contact's gap and shear displacement (m): 1e-12 of the
+   * smaller block's size @p scale plus the representation error of the
+   * local coordinates of the points @p P and @p Q that it is measured from.
+   */
+  inline double
+  round_off_tolerance(const double           scale,
+                      const geometry::Point &P,
+                      const geometry::Point &Q)
+  {
+    return 1e-12 * scale
+           + 4. * std::numeric_limits<double>::epsilon()
+               * (P.norm() + Q.norm());
+  }
 
   /**
    * Shear strength (N/m) of a closed contact with normal force @p n

@@ -248,6 +248,10 @@ namespace rockdda::dda
              std::string                &why);
     void
     update(const Eigen::VectorXd &d, const double step);
+    /// Runs work in two halves on the linear solver's threads (built per
+    /// use, so that it always refers to this object).
+    HalvesRunner
+    halves();
     /// Mohr-Coulomb on the resultant of each face group (Assembler::groups):
     /// its locked members slide together or not at all.
     void
