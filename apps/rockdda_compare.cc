@@ -14,6 +14,37 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
+
+namespace
+{
+  /// The fields of one CSV record (RFC 4180 quoting, as written by rockdda's
+  /// CsvWriter); false for an unterminated quote.
+  bool
+  split_record(const std::string &line, std::vector<std::string> &fields)
+  {
+    fields.assign(1, std::string());
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i)
+      {
+        const char c = line[i];
+        if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+          {
+            fields.back() += '"';
+            ++i;
+          }
+        else if (c == '"')
+          quoted = !quoted;
+        else if (c == ',' && !quoted)
+          fields.emplace_back();
+        else if (c != '\r' || quoted)
+          fields.back() += c;
+      }
+    return !quoted;
+  }
+} // namespace
+
+
 
 int
 main(int argc, char **argv)
@@ -31,14 +62,31 @@ main(int argc, char **argv)
         std::cerr << argv[1] << ": cannot open\n";
         return 2;
       }
-    std::string line;
-    std::getline(in, line); // header
+    // summary.csv must be valid CSV (RFC 4180) with three fields per
+    // record: quantity, value, unit.
+    std::string              line;
+    std::vector<std::string> fields;
+    int                      summary_line = 1;
+    std::getline(in, line);
+    if (!split_record(line, fields)
+        || fields != std::vector<std::string>{"quantity", "value", "unit"})
+      {
+        std::cerr << argv[1] << ":1: the header is not 'quantity,value,unit'\n";
+        return 1;
+      }
     while (std::getline(in, line))
       {
-        std::stringstream s(line);
-        std::string       name, value;
-        std::getline(s, name, ',');
-        std::getline(s, value, ',');
+        ++summary_line;
+        if (!split_record(line, fields) || fields.size() != 3)
+          {
+            std::cerr << argv[1] << ":" << summary_line
+                      << ": not a valid CSV record of 3 fields (quantity, "
+                         "value, unit; a field with commas must be "
+                         "quoted): "
+                      << line << "\n";
+            return 1;
+          }
+        const std::string &name = fields[0], &value = fields[1];
         try
           {
             values[name] = std::stod(value);

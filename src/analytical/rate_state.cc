@@ -204,6 +204,7 @@ namespace rockdda::analytical
                std::vector<double> &j) { j[0] = -v2 / p.dc; });
 
     RateStateHistory history;
+    history.max_abs_velocity = v2;
     for (const double t : output_times(duration, n_outputs))
       {
         const double theta = solver.advance(t)[0];
@@ -288,6 +289,12 @@ namespace rockdda::analytical
           {0., std::log(v_init), std::log(theta_init)},
           0.,
           settings);
+        history.max_abs_velocity = v_init;
+        solver.set_step_observer(
+          [&history](const double, const std::vector<double> &y) {
+            history.max_abs_velocity
+              = std::max(history.max_abs_velocity, std::exp(y[1]));
+          });
         for (const double t : output_times(duration, n_outputs))
           {
             const std::vector<double> &y     = solver.advance(t);
@@ -333,6 +340,12 @@ namespace rockdda::analytical
             j[1 * 3 + 2] = -dmu_dln_theta / m;
             j[2 * 3 + 1] = -(y[1] > 0. ? 1. : (y[1] < 0. ? -1. : 0.)) / f.dc;
             j[2 * 3 + 2] = -std::exp(-y[2]);
+          });
+        history.max_abs_velocity = std::abs(v_init);
+        solver.set_step_observer(
+          [&history](const double, const std::vector<double> &y) {
+            history.max_abs_velocity
+              = std::max(history.max_abs_velocity, std::abs(y[1]));
           });
         for (const double t : output_times(duration, n_outputs))
           {
@@ -497,7 +510,13 @@ namespace rockdda::analytical
       });
 
     RateStateHistory history;
-    const auto       n_intervals = static_cast<unsigned long>(
+    history.max_abs_velocity = std::abs(vs * std::sinh(initial_w));
+    solver.set_step_observer(
+      [&history, vs](const double, const std::vector<double> &y) {
+        history.max_abs_velocity
+          = std::max(history.max_abs_velocity, std::abs(vs * std::sinh(y[1])));
+      });
+    const auto n_intervals = static_cast<unsigned long>(
       std::ceil(duration / output_interval - 1e-9));
     for (unsigned long i = 0; i <= n_intervals; ++i)
       {

@@ -39,7 +39,8 @@ namespace rockdda::analytical
       context.summary.add("final_slip_rate", h.velocity.back(), "m/s");
       context.summary.add("final_state", h.theta.back(), "s");
       context.summary.add("final_friction", h.mu.back(), "-");
-      double vmax = 0.;
+      // Over every integrator step, not only the rows of statistics.csv.
+      double vmax = h.max_abs_velocity;
       for (const double v : h.velocity)
         vmax = std::max(vmax, std::abs(v));
       context.summary.add("max_slip_rate", vmax, "m/s");

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <exception>
 #include <sstream>
+#include <utility>
 
 namespace rockdda::analytical
 {
@@ -27,6 +28,10 @@ namespace rockdda::analytical
     double              t_output   = 0.; // last output time
     double              t_internal = 0.; // time CVODE has integrated to
     std::vector<double> y_buffer, ydot_buffer, jacobian_buffer, output;
+    /// Called after every internal step (may be empty).
+    StepObserver observer;
+    /// The solution handed to the observer.
+    std::vector<double> observed;
     /// An exception thrown by a user callback, re-thrown from advance().
     std::exception_ptr pending;
     /// The last message CVODE sent to its error handler.
@@ -328,6 +333,12 @@ namespace rockdda::analytical
         d.check(flag, "CVode");
         d.t_internal = t_return;
         d.check_finite(d.y, t_return);
+        if (d.observer)
+          {
+            const double *data = N_VGetArrayPointer(d.y);
+            d.observed.assign(data, data + d.n);
+            d.observer(t_return, d.observed);
+          }
       }
 
     if (d.t_internal == t_out)
@@ -339,6 +350,14 @@ namespace rockdda::analytical
     d.output.assign(data, data + d.n);
     d.t_output = t_out;
     return d.output;
+  }
+
+
+
+  void
+  StiffOdeSolver::set_step_observer(StepObserver observer)
+  {
+    impl->observer = std::move(observer);
   }
 
 

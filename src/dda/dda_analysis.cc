@@ -359,19 +359,24 @@ namespace rockdda::dda
             table.add_column(p + "sigma_y", "Pa");
             table.add_column(p + "tau_xy", "Pa");
           }
-        auto add_row = [&](const StepReport &r) {
-          std::vector<double> row = {dda->time(),
-                                     r.dt,
-                                     double(r.iterations),
-                                     double(r.cuts),
-                                     double(r.n_open),
-                                     double(r.n_sliding),
-                                     double(r.n_locked),
-                                     dda->kinetic_energy(),
-                                     dda->strain_energy(),
-                                     dda->contact_energy(),
-                                     dda->potential_energy(),
-                                     r.max_displacement};
+        // The cuts column counts every cut since the previous row (a row
+        // may follow several steps); the column sums to time_step_cuts.
+        unsigned long cuts_reported = 0;
+        auto          add_row       = [&](const StepReport &r) {
+          const unsigned long cuts = dda->n_cuts - cuts_reported;
+          cuts_reported            = dda->n_cuts;
+          std::vector<double> row  = {dda->time(),
+                                      r.dt,
+                                      double(r.iterations),
+                                      double(cuts),
+                                      double(r.n_open),
+                                      double(r.n_sliding),
+                                      double(r.n_locked),
+                                      dda->kinetic_energy(),
+                                      dda->strain_energy(),
+                                      dda->contact_energy(),
+                                      dda->potential_energy(),
+                                      r.max_displacement};
           for (const auto &m : dda->system().measurement_points)
             {
               const auto  d = m.point - m.initial;
@@ -424,6 +429,7 @@ namespace rockdda::dda
             w.put(v);
           w.put<std::uint32_t>(max_iterations);
           w.put<std::uint64_t>(iterations_total);
+          w.put<std::uint64_t>(cuts_reported);
           checkpoint_file.write(w, table);
           saved_at = dda->time();
         };
@@ -446,6 +452,7 @@ namespace rockdda::dda
             *v = r.get<double>();
           max_iterations   = r.get<std::uint32_t>();
           iterations_total = r.get<std::uint64_t>();
+          cuts_reported    = r.get<std::uint64_t>();
           if (!r.at_end())
             throw InputError(checkpoint_file.file() + ": trailing data");
           context.log.line("resumed from " + checkpoint_file.file()

@@ -1,11 +1,13 @@
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <stdexcept>
 #include <unistd.h>
 
 namespace rockdda::io
@@ -74,6 +76,103 @@ namespace rockdda::io
 
 
 
+  CsvWriter &
+  CsvWriter::field(const std::string &text)
+  {
+    if (record_open)
+      buffer += ',';
+    buffer += quote(text);
+    record_open = true;
+    return *this;
+  }
+
+
+
+  CsvWriter &
+  CsvWriter::number(const double value, const int digits)
+  {
+    return field(format_number(value, digits));
+  }
+
+
+
+  CsvWriter &
+  CsvWriter::end_record()
+  {
+    buffer += '\n';
+    record_open = false;
+    return *this;
+  }
+
+
+
+  CsvWriter &
+  CsvWriter::record(const std::vector<std::string> &fields)
+  {
+    for (const auto &f : fields)
+      field(f);
+    return end_record();
+  }
+
+
+
+  std::string
+  CsvWriter::quote(const std::string &text)
+  {
+    const bool needs_quotes
+      = text.find_first_of(",\"\r\n") != std::string::npos
+        || (!text.empty()
+            && (std::isspace(static_cast<unsigned char>(text.front()))
+                || std::isspace(static_cast<unsigned char>(text.back()))));
+    if (!needs_quotes)
+      return text;
+    std::string q = "\"";
+    for (const char c : text)
+      {
+        if (c == '"')
+          q += '"';
+        q += c;
+      }
+    return q + '"';
+  }
+
+
+
+  std::vector<std::string>
+  split_csv_record(const std::string &line)
+  {
+    std::vector<std::string> fields(1);
+    bool                     quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i)
+      {
+        const char c = line[i];
+        if (quoted)
+          {
+            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+              {
+                fields.back() += '"';
+                ++i;
+              }
+            else if (c == '"')
+              quoted = false;
+            else
+              fields.back() += c;
+          }
+        else if (c == '"')
+          quoted = true;
+        else if (c == ',')
+          fields.emplace_back();
+        else if (c != '\r')
+          fields.back() += c;
+      }
+    if (quoted)
+      throw std::invalid_argument("CSV record with an unterminated quote: "
+                                  + line);
+    return fields;
+  }
+
+
+
   void
   Table::add_column(const std::string &name, const std::string &unit)
   {
@@ -101,17 +200,15 @@ namespace rockdda::io
   std::string
   Table::csv() const
   {
-    std::ostringstream s;
-    for (std::size_t c = 0; c < header.size(); ++c)
-      s << (c ? "," : "") << header[c];
-    s << '\n' << std::setprecision(12);
+    CsvWriter w;
+    w.record(header);
     for (const auto &row : rows)
       {
-        for (std::size_t c = 0; c < row.size(); ++c)
-          s << (c ? "," : "") << row[c];
-        s << '\n';
+        for (const double v : row)
+          w.number(v);
+        w.end_record();
       }
-    return s.str();
+    return w.text();
   }
 
 
@@ -137,10 +234,11 @@ namespace rockdda::io
   std::string
   Summary::csv() const
   {
-    std::string s = "quantity,value,unit\n";
+    CsvWriter w;
+    w.record({"quantity", "value", "unit"});
     for (const auto &e : entries)
-      s += e.quantity + "," + e.value + "," + e.unit + "\n";
-    return s;
+      w.record({e.quantity, e.value, e.unit});
+    return w.text();
   }
 
 

@@ -101,6 +101,51 @@ TEST(Output, TableHeaderCarriesUnits)
 
 
 
+TEST(Output, CsvWriterQuotesFieldsAsRfc4180)
+{
+  using rockdda::io::CsvWriter;
+  EXPECT_EQ(CsvWriter::quote("plain"), "plain");
+  EXPECT_EQ(CsvWriter::quote("a, b"), "\"a, b\"");
+  EXPECT_EQ(CsvWriter::quote("say \"hi\""), "\"say \"\"hi\"\"\"");
+  EXPECT_EQ(CsvWriter::quote("two\nlines"), "\"two\nlines\"");
+  EXPECT_EQ(CsvWriter::quote(" padded"), "\" padded\"");
+  CsvWriter w;
+  w.field("x").number(0.1).field("a,\"b\"").end_record();
+  EXPECT_EQ(w.text(), "x,0.1,\"a,\"\"b\"\"\"\n");
+  // The reader is the inverse of the writer.
+  const std::string line = w.text().substr(0, w.text().size() - 1);
+  EXPECT_EQ(rockdda::io::split_csv_record(line),
+            (std::vector<std::string>{"x", "0.1", "a,\"b\""}));
+  EXPECT_THROW(rockdda::io::split_csv_record("\"open"), std::invalid_argument);
+}
+
+
+
+TEST(Output, SummaryWithCommasInTextIsValidCsv)
+{
+  // Issue 11: the heat summary's 'method' holds commas and semicolons; every
+  // record of summary.csv must still have exactly three fields.
+  rockdda::io::Summary s;
+  s.add_text("method",
+             "Crank-Nicolson (theta = 1/2), dt = 86459.2 s; FE_Q(2); \"x\"");
+  s.add("wall_time", 1.5, "s");
+  std::istringstream in(s.csv());
+  std::string        line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "quantity,value,unit");
+  std::getline(in, line);
+  const auto f = rockdda::io::split_csv_record(line);
+  ASSERT_EQ(f.size(), 3u);
+  EXPECT_EQ(f[0], "method");
+  EXPECT_EQ(f[1],
+            "Crank-Nicolson (theta = 1/2), dt = 86459.2 s; FE_Q(2); \"x\"");
+  EXPECT_EQ(f[2], "text");
+  std::getline(in, line);
+  EXPECT_EQ(line, "wall_time,1.5,s");
+}
+
+
+
 TEST(DataFile, MalformedNumberNamesTheLine)
 {
   const auto dir = scratch("data");

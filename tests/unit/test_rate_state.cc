@@ -241,6 +241,34 @@ TEST(RateState, SpringSliderStabilityChangesAtCriticalStiffness)
 
 
 
+TEST(RateState, MaxSlipRateDoesNotDependOnTheOutputInterval)
+{
+  // Issue 11: max_slip_rate was the largest sampled slip rate, so it
+  // depended on the output interval. It is now taken over every integrator
+  // step. Stick-slip of a soft spring-slider (k = 0.8 kc): the peaks last a
+  // tiny fraction of the period, and 30 samples miss them.
+  SpringSliderParameters p;
+  p.load_point_velocity         = 1e-6;
+  p.initial_velocity            = 1.01e-6;
+  p.radiation_damping           = 0.5;
+  p.stiffness                   = 0.8 * critical_stiffness(p.friction);
+  const RateStateHistory fine   = spring_slider(p, 3000., 6000);
+  const RateStateHistory coarse = spring_slider(p, 3000., 30);
+  const double           sampled_max_coarse
+    = *std::max_element(coarse.velocity.begin(), coarse.velocity.end());
+  for (const double v : fine.velocity)
+    EXPECT_LE(v, fine.max_abs_velocity * (1. + 1e-12));
+  EXPECT_LT(sampled_max_coarse, 0.5 * coarse.max_abs_velocity);
+  EXPECT_LT(relative_error(coarse.max_abs_velocity, fine.max_abs_velocity),
+            1e-3);
+  std::cout << "  [max slip rate] every step: " << fine.max_abs_velocity
+            << " / " << coarse.max_abs_velocity
+            << " m/s (6000 / 30 outputs); sampled every 100 s: "
+            << sampled_max_coarse << " m/s" << std::endl;
+}
+
+
+
 // ------------------------------------------------------- sliding block
 
 TEST(RateState, SlidingBlockConstantFrictionLimit)

@@ -125,6 +125,9 @@ namespace rockdda::analytical
     std::vector<double> theta;
     /// Friction coefficient (-).
     std::vector<double> mu;
+    /// Largest |slip rate| (m/s) over every internal step of the integrator
+    /// and every sample: independent of the output interval.
+    double max_abs_velocity = 0.;
   };
 
   /**

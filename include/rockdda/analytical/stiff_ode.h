@@ -138,6 +138,19 @@ namespace rockdda::analytical
     const std::vector<double> &
     state() const;
 
+    /// Called after every internal CVODE step with its time (s) and
+    /// solution.
+    using StepObserver
+      = std::function<void(const double t, const std::vector<double> &y)>;
+
+    /**
+     * Call @p observer after every internal step of advance() (e.g. to take
+     * the maximum of a quantity over all steps, not only at output times);
+     * an empty function removes it.
+     */
+    void
+    set_step_observer(StepObserver observer);
+
     /// Number of internal CVODE steps taken since construction or reinit.
     long
     n_steps() const;

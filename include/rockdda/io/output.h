@@ -47,6 +47,58 @@ namespace rockdda::io
   };
 
   /**
+   * The one CSV writer behind every table rockdda writes (statistics.csv,
+   * summary.csv, the structure tables): RFC 4180 fields separated by commas,
+   * one record per line ('\n'). A field that contains a comma, a double
+   * quote, a line break or leading or trailing blanks is enclosed in double
+   * quotes, with inner quotes doubled; numbers are written with a fixed
+   * number of significant digits.
+   */
+  class CsvWriter
+  {
+  public:
+    /// Append a text field to the current record.
+    CsvWriter &
+    field(const std::string &text);
+
+    /// Append a number with @p digits significant digits.
+    CsvWriter &
+    number(const double value, const int digits = 12);
+
+    /// End the current record (a record without fields is an empty line).
+    CsvWriter &
+    end_record();
+
+    /// Append one record made of @p fields.
+    CsvWriter &
+    record(const std::vector<std::string> &fields);
+
+    /// The CSV text written so far (the current record only if ended).
+    std::string
+    text() const
+    {
+      return buffer;
+    }
+
+    /// @p text as one CSV field: quoted if needed, unchanged otherwise.
+    static std::string
+    quote(const std::string &text);
+
+  private:
+    std::string buffer;
+    bool        record_open = false;
+  };
+
+  /**
+   * Split one CSV record (RFC 4180: quoted fields may hold commas and
+   * doubled quotes) into its fields. The inverse of CsvWriter for a record
+   * without line breaks; throws std::invalid_argument for an unterminated
+   * quote.
+   */
+  std::vector<std::string>
+  split_csv_record(const std::string &line);
+
+  /**
    * A table of numbers whose every column carries a name and an SI unit,
    * written as CSV with a header "name_unit" per column (e.g. "time_s").
    */
