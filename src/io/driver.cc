@@ -1,6 +1,7 @@
 #include <rockdda/io/analysis.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/parameters.h>
+#include <rockdda/io/provenance.h>
 #include <rockdda/seismic/ground_motion.h>
 
 #include <deal.II/base/mpi.h>
@@ -29,12 +30,58 @@ namespace rockdda::io
         "  --print-parameters  print every key with default, valid values, SI\n"
         "                      unit and help (Markdown), then exit\n"
         "  --quiet             do not echo the log to stdout\n"
+        "  --version           version, git commit and build type\n"
         "  --help              this text\n";
 
     std::string
     default_output(const std::string &prm_file)
     {
       return "output-" + std::filesystem::path(prm_file).stem().string();
+    }
+
+    /**
+     * The text of parameters.prm: a comment header with the provenance of
+     * the run and the SHA-256 of each input file, then every key (defaults
+     * included) with the input files as absolute paths, so that the file
+     * runs as it stands from any folder.
+     */
+    std::string
+    resolved_parameters(dealii::ParameterHandler &prm,
+                        const RunProvenance      &provenance,
+                        const std::string        &prm_file)
+    {
+      std::ostringstream out;
+      out << "# The fully resolved input of a rockdda run; run it again with\n"
+          << "#   rockdda parameters.prm\n"
+          << "# (input files by absolute path; their SHA-256 below).\n"
+          << "# " << provenance.build.text() << "\n"
+          << "# parameter file: "
+          << std::filesystem::absolute(prm_file).lexically_normal().string()
+          << "\n";
+      for (const auto &[name, value] : provenance.fields())
+        out << "# " << name << ": " << value << "\n";
+      for (const InputFile &f : resolved_input_files())
+        {
+          out << "# input file '" << f.key << "' = " << f.path << "  sha256 "
+              << sha256_of_file(f.path) << "\n";
+          // Set the key (section path "A/B/Key") to the absolute path.
+          std::vector<std::string> parts;
+          std::string              rest = f.key;
+          for (auto slash = rest.find('/'); slash != std::string::npos;
+               slash      = rest.find('/'))
+            {
+                   parts.push_back(rest.substr(0, slash));
+                   rest = rest.substr(slash + 1);
+            }
+          for (const auto &section : parts)
+            prm.enter_subsection(section);
+          prm.set(rest, f.path);
+          for (std::size_t i = 0; i < parts.size(); ++i)
+            prm.leave_subsection();
+        }
+      out << "\n";
+      prm.print_parameters(out, dealii::ParameterHandler::ShortPRM);
+      return out.str();
     }
   } // namespace
 
@@ -108,6 +155,15 @@ namespace rockdda::io
           print_parameters = true;
         else if (arg == "--quiet")
           quiet = true;
+        else if (arg == "--version")
+          {
+            const BuildInfo b = BuildInfo::current();
+            std::cout << "rockdda " << b.version << "\n"
+                      << "git commit: " << b.git_commit << "\n"
+                      << "build type: " << b.build_type << "\n"
+                      << "deal.II: " << b.deal_ii_version << std::endl;
+            return 0;
+          }
         else if (arg == "--help" || arg == "-h")
           {
             std::cout << usage_text;
@@ -148,6 +204,7 @@ namespace rockdda::io
     std::string output_path;
     try
       {
+        resolved_input_files().clear();
         parse_parameter_file(prm, prm_file);
         const std::string type = prm.get("Analysis type");
         for (const auto &a : analyses)
@@ -177,12 +234,16 @@ namespace rockdda::io
     Summary    summary;
     try
       {
-        OutputDirectory output(output_path, root);
-        {
-          std::ostringstream resolved;
-          prm.print_parameters(resolved, dealii::ParameterHandler::ShortPRM);
-          output.write("parameters.prm", resolved.str());
-        }
+        OutputDirectory     output(output_path, root);
+        const RunProvenance provenance = RunProvenance::current(argc, argv);
+        output.write("parameters.prm",
+                     resolved_parameters(prm, provenance, prm_file));
+        log.line(provenance.build.text());
+        log.line("run " + provenance.date + " on " + provenance.host + " in "
+                 + provenance.working_directory + ": "
+                 + provenance.command_line);
+        for (const auto &[name, value] : provenance.fields())
+          summary.add_text(name, value);
         log.line("rockdda " + analysis->name() + ": " + prm_file);
         RunContext context{output, log, summary};
         try

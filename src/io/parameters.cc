@@ -1,6 +1,8 @@
 #include <rockdda/io/error.h>
 #include <rockdda/io/parameters.h>
+#include <rockdda/io/provenance.h>
 
+#include <algorithm>
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
 #include <cctype>
@@ -169,7 +171,18 @@ namespace rockdda::io
     std::filesystem::path p(result);
     if (p.is_relative())
       p = std::filesystem::path(prm_file).parent_path() / p;
-    return p.lexically_normal().string();
+    p = p.lexically_normal();
+    // Recorded for parameters.prm (absolute path and checksum).
+    auto &files = resolved_input_files();
+    files.erase(std::remove_if(files.begin(),
+                               files.end(),
+                               [&key](const InputFile &f) {
+                                 return f.key == key;
+                               }),
+                files.end());
+    files.push_back(
+      {key, path, std::filesystem::absolute(p).lexically_normal().string()});
+    return p.string();
   }
 
 

@@ -8,6 +8,7 @@
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
 #include <rockdda/io/parameters.h>
+#include <rockdda/io/provenance.h>
 #include <rockdda/seismic/record.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -142,6 +143,49 @@ TEST(Output, SummaryWithCommasInTextIsValidCsv)
   EXPECT_EQ(f[2], "text");
   std::getline(in, line);
   EXPECT_EQ(line, "wall_time,1.5,s");
+}
+
+
+
+TEST(Provenance, Sha256MatchesFips180Vectors)
+{
+  using rockdda::io::sha256;
+  // FIPS 180-4 examples and lengths around the padding boundaries (55, 56,
+  // 64, 119 bytes), and one million 'a'.
+  EXPECT_EQ(sha256(""),
+            "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  EXPECT_EQ(sha256("abc"),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_EQ(sha256("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+            "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+  EXPECT_EQ(sha256(std::string(55, 'a')),
+            "9f4390f8d30c2dd92ec9f095b65e2b9ae9b0a925a5258e241c9f1e910f734318");
+  EXPECT_EQ(sha256(std::string(64, 'a')),
+            "ffe054fe7ae0cb6dc65c3af9b61d5209f439851db43d0ba5997337df154668eb");
+  EXPECT_EQ(sha256(std::string(119, 'a')),
+            "31eba51c313a5c08226adf18d4a359cfdfd8d2e816b13f4af952f7ea6584dcfb");
+  EXPECT_EQ(sha256(std::string(1000000, 'a')),
+            "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+}
+
+
+
+TEST(Provenance, BuildAndRunAreRecorded)
+{
+  const auto b = rockdda::io::BuildInfo::current();
+  EXPECT_TRUE(
+    std::regex_match(b.version, std::regex("[0-9]+\\.[0-9]+\\.[0-9]+")))
+    << b.version;
+  EXPECT_FALSE(b.git_commit.empty());
+  EXPECT_FALSE(b.build_type.empty());
+  const char *argv[] = {"rockdda", "--quiet", "my file.prm"};
+  const auto  p      = rockdda::io::RunProvenance::current(3, argv);
+  EXPECT_EQ(p.command_line, "rockdda --quiet 'my file.prm'");
+  EXPECT_TRUE(std::regex_match(
+    p.date,
+    std::regex("[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}Z")))
+    << p.date;
+  EXPECT_FALSE(p.host.empty());
 }
 
 
