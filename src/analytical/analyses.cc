@@ -44,14 +44,14 @@ namespace rockdda::analytical
     io::declare(prm,
                 "Reference velocity",
                 "1e-6",
-                Double(0.),
+                io::DoubleInterval::positive(),
                 "m/s",
                 "Reference slip rate V0 of the rate-dependent law. Must be > "
                 "0.");
     io::declare(prm,
                 "Cutoff velocity",
                 "1e-6",
-                Double(0.),
+                io::DoubleInterval::positive(),
                 "m/s",
                 "Below this slip rate (and at rest) the rate-dependent law is "
                 "evaluated at the cutoff. Must be > 0.");

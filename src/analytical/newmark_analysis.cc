@@ -76,13 +76,13 @@ namespace rockdda::analytical
         io::declare(prm,
                     "Plane dip",
                     "20",
-                    Double(),
+                    io::DoubleInterval::right_open(0., 90.),
                     "deg",
                     "Dip of the sliding plane (plane model), 0 <= dip < 90.");
         io::declare(prm,
                     "Friction angle",
                     "30",
-                    Double(),
+                    io::DoubleInterval::right_open(0., 90.),
                     "deg",
                     "Friction angle phi of the plane (plane model), 0 <= phi "
                     "< 90; the reference coefficient of the Friction law.");

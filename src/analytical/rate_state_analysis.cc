@@ -88,7 +88,7 @@ namespace rockdda::analytical
         io::declare(prm,
                     "A",
                     "0.01",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "-",
                     "Direct-effect parameter A (> 0).");
         io::declare(prm,
@@ -100,19 +100,19 @@ namespace rockdda::analytical
         io::declare(prm,
                     "Reference velocity",
                     "1e-6",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "m/s",
                     "Reference slip rate V0 (> 0).");
         io::declare(prm,
                     "Characteristic slip distance",
                     "1e-5",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "m",
                     "Dc of the aging law, Eq. 2.2 (> 0).");
         io::declare(prm,
                     "Initial velocity",
                     "1e-6",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "m/s",
                     "Velocity step: slip rate V1 before the step; "
                     "spring-slider: initial slip rate (a value other than "
@@ -121,19 +121,19 @@ namespace rockdda::analytical
         io::declare(prm,
                     "Final velocity",
                     "1e-5",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "m/s",
                     "Velocity step: slip rate V2 after the step (> 0).");
         io::declare(prm,
                     "Load point velocity",
                     "1e-6",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "m/s",
                     "Spring-slider: velocity of the load point (> 0).");
         io::declare(prm,
                     "Stiffness",
                     "100",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "1/m",
                     "Spring-slider: stiffness per unit normal stress "
                     "K/(sigma S) (> 0). Steady sliding is unstable below "
@@ -155,7 +155,7 @@ namespace rockdda::analytical
         io::declare(prm,
                     "Plane dip",
                     "30",
-                    Double(0., 90.),
+                    io::DoubleInterval::right_open(0., 90.),
                     "deg",
                     "Sliding block: dip of the plane, 0 <= dip < 90.");
         io::declare(prm,
@@ -165,23 +165,28 @@ namespace rockdda::analytical
                     "-",
                     "Sliding block: load by the Ground motion record "
                     "(true) or by gravity alone (false).");
-        io::declare(prm, "Duration", "100", Double(0.), "s", "End time (> 0).");
+        io::declare(prm,
+                    "Duration",
+                    "100",
+                    io::DoubleInterval::positive(),
+                    "s",
+                    "End time (> 0).");
         io::declare(prm,
                     "Output interval",
                     "1",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "s",
                     "Spacing of rows in statistics.csv (> 0).");
         io::declare(prm,
                     "Relative tolerance",
                     "1e-8",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "-",
                     "CVODE relative tolerance (> 0): the accuracy knob.");
         io::declare(prm,
                     "Absolute tolerance",
                     "1e-12",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "-",
                     "CVODE absolute tolerance on each unknown, in its "
                     "unit (> 0).");
@@ -366,19 +371,19 @@ namespace rockdda::analytical
         io::declare(prm,
                     "Plane dip",
                     "20",
-                    Double(0., 90.),
+                    io::DoubleInterval::right_open(0., 90.),
                     "deg",
                     "Dip of the sliding plane, 0 <= dip < 90.");
         io::declare(prm,
                     "Time step",
                     "0.001",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "s",
                     "Largest integration step of the forward model (> 0).");
         io::declare(prm,
                     "Angle tolerance",
                     "1e-9",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "deg",
                     "Bisection stops when the friction-angle bracket is "
                     "narrower (> 0).");
@@ -393,7 +398,7 @@ namespace rockdda::analytical
         io::declare(prm,
                     "Reference velocity",
                     "1e-6",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "m/s",
                     "V0 of the fitted steady-state law (> 0).");
         prm.leave_subsection();

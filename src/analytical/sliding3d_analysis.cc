@@ -48,19 +48,19 @@ namespace rockdda::analytical
           io::declare(prm,
                       "Dip",
                       plane == "Plane 1" ? "20" : "50",
-                      Double(),
+                      Double(0., 90.),
                       "deg",
                       "Dip of the plane, 0 <= dip <= 90.");
           io::declare(prm,
                       "Dip direction",
                       plane == "Plane 1" ? "90" : "180",
-                      Double(),
+                      Double(0., 360.),
                       "deg",
                       "Dip direction, clockwise from north, 0 to 360.");
           io::declare(prm,
                       "Friction angle",
                       "30",
-                      Double(),
+                      io::DoubleInterval::right_open(0., 90.),
                       "deg",
                       "Friction angle of the plane, 0 <= phi < 90.");
           prm.leave_subsection();
@@ -93,14 +93,14 @@ namespace rockdda::analytical
       io::declare(prm,
                   "Time step",
                   "0.001",
-                  Double(),
+                  io::DoubleInterval::positive(),
                   "s",
                   "Integration time step; > 0. The error is O(dt) at "
                   "stick-slip transitions (see benchmarks/sliding-block).");
       io::declare(prm,
                   "Duration",
                   "6.283185307179586",
-                  Double(),
+                  io::DoubleInterval::positive(),
                   "s",
                   "End time of the analysis; > 0.");
       io::declare(prm,
@@ -334,7 +334,7 @@ namespace rockdda::analytical
         io::declare(prm,
                     "Block weight",
                     "1",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "N",
                     "Weight of the block (with cohesion). Must be > 0.");
         io::declare(prm,

@@ -58,12 +58,16 @@ namespace rockdda::dda
                     "Scene file (doc/block-file-format-dda.md): materials, "
                     "joints, blocks, fixed, load and measurement points. "
                     "Relative to this parameter file; $VAR is expanded.");
-        io::declare(
-          prm, "End time", "1", Double(0.), "s", "Simulated duration, > 0.");
+        io::declare(prm,
+                    "End time",
+                    "1",
+                    io::DoubleInterval::positive(),
+                    "s",
+                    "Simulated duration, > 0.");
         io::declare(prm,
                     "Time step",
                     "0.001",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "s",
                     "Largest (and initial) time step, > 0. Steps are cut "
                     "when the open-close iteration does not converge or a "
@@ -112,7 +116,7 @@ namespace rockdda::dda
         io::declare(prm,
                     "Shear penalty ratio",
                     "0.4",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "-",
                     "Shear spring stiffness / normal penalty, > 0.");
         io::declare(prm,

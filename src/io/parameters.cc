@@ -6,9 +6,13 @@
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <limits>
+#include <memory>
 #include <regex>
 #include <sstream>
 
@@ -129,6 +133,84 @@ namespace rockdda::io
       {
         throw InputError(file + ": " + exception_text(exc) + hint);
       }
+  }
+
+
+
+  DoubleInterval::DoubleInterval(const double lower,
+                                 const bool   lower_open,
+                                 const double upper,
+                                 const bool   upper_open)
+      : lower(lower)
+      , upper(upper)
+      , lower_open(lower_open)
+      , upper_open(upper_open)
+  {}
+
+
+
+  DoubleInterval
+  DoubleInterval::positive()
+  {
+    return DoubleInterval(0.,
+                          true,
+                          std::numeric_limits<double>::infinity(),
+                          false);
+  }
+
+
+
+  DoubleInterval
+  DoubleInterval::right_open(const double lower, const double upper)
+  {
+    return DoubleInterval(lower, false, upper, true);
+  }
+
+
+
+  bool
+  DoubleInterval::match(const std::string &value) const
+  {
+    std::istringstream in(value);
+    double             x = 0.;
+    in >> x;
+    if (in.fail() || !std::isfinite(x))
+      return false;
+    in >> std::ws;
+    if (!in.eof())
+      return false;
+    const bool above = lower_open ? x > lower : x >= lower;
+    const bool below = upper_open ? x < upper : x <= upper;
+    return above && below;
+  }
+
+
+
+  std::string
+  DoubleInterval::description(const OutputStyle) const
+  {
+    const auto number = [](const double v) {
+      std::ostringstream s;
+      s << std::setprecision(12) << v;
+      return s.str();
+    };
+    std::string text = "[Double ";
+    if (std::isfinite(lower) && std::isfinite(upper))
+      text += number(lower) + (lower_open ? " < x " : " <= x ")
+              + (upper_open ? "< " : "<= ") + number(upper);
+    else if (std::isfinite(lower))
+      text += std::string("x ") + (lower_open ? "> " : ">= ") + number(lower);
+    else
+      text += std::string("x ") + (upper_open ? "< " : "<= ") + number(upper);
+    return text + "]";
+  }
+
+
+
+  std::unique_ptr<dealii::Patterns::PatternBase>
+  DoubleInterval::clone() const
+  {
+    return std::make_unique<DoubleInterval>(*this);
   }
 
 

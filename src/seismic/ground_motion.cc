@@ -37,7 +37,7 @@ namespace rockdda::seismic
     io::declare(prm,
                 "Time step",
                 "0.01",
-                Double(0.),
+                io::DoubleInterval::positive(),
                 "s",
                 "Sampling interval of a one-column record file, or of the "
                 "harmonic input. Must be > 0.");
@@ -57,7 +57,7 @@ namespace rockdda::seismic
     io::declare(prm,
                 "Target PGA",
                 "0.2",
-                Double(0.),
+                io::DoubleInterval::positive(),
                 "g",
                 "Peak ground acceleration after scaling (Scaling = target "
                 "PGA). Must be > 0.");
@@ -83,13 +83,13 @@ namespace rockdda::seismic
     io::declare(prm,
                 "Harmonic frequency",
                 "1",
-                Double(0.),
+                io::DoubleInterval::positive(),
                 "Hz",
                 "Frequency f of the harmonic input. Must be > 0.");
     io::declare(prm,
                 "Duration",
                 "10",
-                Double(0.),
+                io::DoubleInterval::positive(),
                 "s",
                 "Length of the harmonic input. Must be > 0.");
     prm.leave_subsection();

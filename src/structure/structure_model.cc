@@ -145,7 +145,7 @@ namespace rockdda::structure
     io::declare(prm,
                 "Minimum thickness",
                 "0.7",
-                Double(),
+                io::DoubleInterval::positive(),
                 "m",
                 "Beds thinner than this are drawn again (truncated law). "
                 "Must be > 0 and not exceed the domain's extent across the "
@@ -160,7 +160,7 @@ namespace rockdda::structure
     io::declare(prm,
                 "Fracture spacing index",
                 "1.3",
-                Double(),
+                io::DoubleInterval::positive(),
                 "-",
                 "FSI = bed thickness / median joint spacing (Gross 1993; "
                 "thesis 1.3). Must be > 0.");
@@ -174,7 +174,7 @@ namespace rockdda::structure
     io::declare(prm,
                 "Joint spacing log deviation",
                 "0.25",
-                Double(),
+                Double(0., 2.),
                 "-",
                 "Standard deviation of ln(spacing) of the confined joints "
                 "(lognormal spacings with median thickness / FSI); 0 gives "
@@ -193,7 +193,7 @@ namespace rockdda::structure
     io::declare(prm,
                 "Fracture length",
                 "5",
-                Double(),
+                io::DoubleInterval::positive(),
                 "m",
                 "3d: mean horizontal length of the fractures (uniform in "
                 "[0.5, 1.5] x this). Must be > 0.");
@@ -239,26 +239,26 @@ namespace rockdda::structure
         io::declare(prm,
                     "Mean length",
                     "5",
-                    Double(),
+                    io::DoubleInterval::positive(),
                     "m",
                     "Mean trace length L. Must be > 0.");
         io::declare(prm,
                     "Mean bridge",
                     "1",
-                    Double(),
+                    Double(0.),
                     "m",
                     "Mean rock bridge b between traces on a line. Must be "
                     ">= 0.");
         io::declare(prm,
                     "Mean spacing",
                     "0.54",
-                    Double(),
+                    io::DoubleInterval::positive(),
                     "m",
                     "Mean spacing s between trace lines. Must be > 0.");
         io::declare(prm,
                     "Degree of randomness",
                     "0.5",
-                    Double(),
+                    Double(0., 1.),
                     "-",
                     "DR in [0, 1]: L, b and s are each uniform in "
                     "[mean (1 - DR), mean (1 + DR)].");
@@ -268,14 +268,14 @@ namespace rockdda::structure
     io::declare(prm,
                 "Sliver area",
                 "1e-4",
-                Double(),
+                Double(0.),
                 "m^2",
                 "Blocks smaller than this are slivers (0: no area test). "
                 "Must be >= 0.");
     io::declare(prm,
                 "Sliver angle",
                 "2",
-                Double(),
+                io::DoubleInterval::right_open(0., 60.),
                 "deg",
                 "Blocks with an interior angle below this are slivers "
                 "(0: no angle test). In [0, 60).");

@@ -199,7 +199,7 @@ namespace rockdda::thermal
         io::declare(prm,
                     "Joint conductance",
                     "1000",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "W/(m^2 K)",
                     "Contact conductance h_j of the joints with 'Joint "
                     "contact = conductance'; > 0. An open joint of "
@@ -245,7 +245,7 @@ namespace rockdda::thermal
         io::declare(prm,
                     "Coarse cell size",
                     "1",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "m",
                     "Cells are refined until their diameter is at most "
                     "about this size; > 0.");
@@ -333,7 +333,7 @@ namespace rockdda::thermal
         io::declare(prm,
                     "Time step",
                     "86400",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "s",
                     "Fixed step of the theta scheme; initial step of "
                     "ARKODE. > 0.");
@@ -404,13 +404,13 @@ namespace rockdda::thermal
         io::declare(prm,
                     "ARKODE relative tolerance",
                     "1e-6",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "-",
                     "Relative error tolerance of ARKODE; > 0.");
         io::declare(prm,
                     "ARKODE absolute tolerance",
                     "1e-4",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "K",
                     "Absolute error tolerance of ARKODE; > 0.");
         prm.leave_subsection();
@@ -489,7 +489,7 @@ namespace rockdda::thermal
         io::declare(prm,
                     "Output interval",
                     "86400",
-                    Double(0.),
+                    io::DoubleInterval::positive(),
                     "s",
                     "Spacing of rows in statistics.csv; > 0.");
         io::declare(prm,

@@ -25,6 +25,46 @@ namespace rockdda::io
   parse_parameter_file(dealii::ParameterHandler &prm, const std::string &file);
 
   /**
+   * The valid values of a real-valued key whose range has an open end, as
+   * its help text states it (e.g. "> 0", "0 <= dip < 90"):
+   * dealii::Patterns::Double only has closed ends, so that a key documented
+   * as "> 0" would accept 0. A value outside is rejected while the
+   * parameter file is read, with a message naming the file, line, key and
+   * this range. Shown as e.g. "[Double x > 0]" or "[Double 0 <= x < 90]".
+   */
+  class DoubleInterval : public dealii::Patterns::PatternBase
+  {
+  public:
+    /// The interval between @p lower and @p upper; an end is excluded if
+    /// its flag is true; an infinite end is unbounded.
+    DoubleInterval(const double lower,
+                   const bool   lower_open,
+                   const double upper,
+                   const bool   upper_open);
+
+    /// x > 0.
+    static DoubleInterval
+    positive();
+
+    /// @p lower <= x < @p upper.
+    static DoubleInterval
+    right_open(const double lower, const double upper);
+
+    bool
+    match(const std::string &value) const override;
+
+    std::string
+    description(const OutputStyle style = Machine) const override;
+
+    std::unique_ptr<dealii::Patterns::PatternBase>
+    clone() const override;
+
+  private:
+    double lower, upper;
+    bool   lower_open, upper_open;
+  };
+
+  /**
    * Declare an entry whose help text starts with its SI unit in brackets, e.g.
    * declare(prm, "Time step", "0.01", Patterns::Double(0), "s", "...").
    * Use "-" for dimensionless values, names and choices. The unit then shows
