@@ -67,22 +67,7 @@ namespace
   BlockSystem
   brick_wall(int rows, int columns)
   {
-    BlockSystem s = base_scene(35.);
-    add_block(s, rectangle(-2., -1., 2. * columns + 5., 1.), true);
-    // Odd rows start and end with a half brick, so the wall has straight
-    // ends.
-    for (int r = 0; r < rows; ++r)
-      if (r % 2 == 0)
-        for (int c = 0; c < columns; ++c)
-          add_block(s, rectangle(2. * c, r * 1., 2., 1.));
-      else
-        {
-          add_block(s, rectangle(0., r * 1., 1., 1.));
-          for (int c = 0; c < columns - 1; ++c)
-            add_block(s, rectangle(2. * c + 1., r * 1., 2., 1.));
-          add_block(s, rectangle(2. * columns - 1., r * 1., 1., 1.));
-        }
-    return s;
+    return test_scenes::running_bond_wall(rows, columns);
   }
 
   double

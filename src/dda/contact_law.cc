@@ -42,18 +42,19 @@ namespace rockdda::dda
               const JointMaterial     &joint)
   {
     StateCheck r;
-    r.state           = contact.state;
-    r.slide_direction = contact.slide_direction;
-    r.normal_force    = 0.;
-    r.shear_force     = 0.;
-    const double p    = law.normal_penalty;
-    const double ps   = law.shear_penalty();
-    const double f    = kin.force_tolerance;
+    r.state             = contact.state;
+    r.slide_direction   = contact.slide_direction;
+    r.normal_force      = 0.;
+    r.shear_force       = 0.;
+    const double p      = law.normal_penalty;
+    const double ps     = law.shear_penalty();
+    const double f      = kin.force_tolerance;
+    const double f_hold = std::max(f, kin.hold_tolerance);
 
     if (contact.state == ContactState::open)
       {
         const double n = -p * g;
-        if (n > f)
+        if (n > f_hold)
           {
             // Closing: lock it, or let it slide at once if the shear spring
             // would already exceed the strength (saves an iteration).
@@ -76,7 +77,9 @@ namespace rockdda::dda
               ? joint.tensile * kin.length
               : 0.;
         const double n = -p * g;
-        if (-n > tension_limit + f)
+        // A held locked contact opens only above the hold tolerance.
+        if (-n > tension_limit
+                   + (contact.state == ContactState::locked ? f_hold : f))
           r.state = ContactState::open;
         else
           {
@@ -90,7 +93,7 @@ namespace rockdda::dda
               }
             else if (contact.state == ContactState::locked)
               {
-                if (std::abs(ps * s) > strength + f)
+                if (std::abs(ps * s) > strength + f_hold)
                   {
                     r.state           = ContactState::sliding;
                     r.slide_direction = s > 0. ? 1 : -1;

@@ -24,6 +24,7 @@ namespace rockdda::dda
 {
   namespace
   {
+    using dealii::Patterns::Bool;
     using dealii::Patterns::Double;
     using dealii::Patterns::Integer;
     using dealii::Patterns::Selection;
@@ -96,6 +97,42 @@ namespace rockdda::dda
                     "update friction forces may add as many again. A step "
                     "is accepted only when the states and the friction "
                     "forces have converged.");
+        io::declare(prm,
+                    "Line search",
+                    "true",
+                    Bool(),
+                    "-",
+                    "Globalise the open-close iteration with an exact line "
+                    "search on the convex energy of the step (semismooth "
+                    "Newton with step-length control): from the second "
+                    "iteration on, each step goes only as far as the energy "
+                    "decreases, which stops the iteration from cycling "
+                    "between contact states. false: full steps (Shi 1988).");
+        io::declare(prm,
+                    "Hold fraction",
+                    "1e-7",
+                    Double(0., 1e-3),
+                    "-",
+                    "A contact that changes state four times in one step "
+                    "cycles and is held in its open or locked state while "
+                    "the force needed to change it (compression, tension, "
+                    "shear beyond the strength) is at most p_s x this x "
+                    "the smaller block's size, i.e. a penetration or "
+                    "elastic slip of at most this fraction of the block "
+                    "size; a contact that still changes state 12 times "
+                    "cuts the step. Holding cannot create energy. 0: no "
+                    "holding.");
+        io::declare(prm,
+                    "Inexact solve factor",
+                    "1000",
+                    Double(1., 1e6),
+                    "-",
+                    "While the contact states settle, CG solves to this "
+                    "factor x Solver tolerance (inexact Newton); the settled "
+                    "states are then confirmed by a solve to Solver "
+                    "tolerance, so the accepted step is unchanged. 1: every "
+                    "solve to Solver tolerance. No effect with the direct "
+                    "solver.");
         io::declare(prm,
                     "Maximum displacement ratio",
                     "0.01",
@@ -223,6 +260,9 @@ namespace rockdda::dda
         c.min_time_step  = prm.get_double("Minimum time step");
         c.dynamic        = prm.get_double("Dynamic control");
         c.max_iterations = prm.get_integer("Maximum open-close iterations");
+        c.line_search    = prm.get_bool("Line search");
+        c.hold_fraction  = prm.get_double("Hold fraction");
+        c.inexact_factor = prm.get_double("Inexact solve factor");
         c.max_displacement_ratio = prm.get_double("Maximum displacement ratio");
         c.law.normal_penalty     = prm.get_double("Contact penalty");
         c.law.shear_ratio        = prm.get_double("Shear penalty ratio");
@@ -549,6 +589,14 @@ namespace rockdda::dda
         s.add("final_time", dda->time(), "s");
         s.add("steps", static_cast<double>(dda->n_steps), "-");
         s.add("time_step_cuts", static_cast<double>(dda->n_cuts), "-");
+        s.add("open_close_iterations_per_step",
+              static_cast<double>(dda->n_iterations)
+                / static_cast<double>(std::max(1ul, dda->n_steps)),
+              "-");
+        s.add("linear_solves", static_cast<double>(dda->n_solves), "-");
+        s.add("solver_iterations",
+              static_cast<double>(dda->n_solver_iterations),
+              "-");
         s.add("kinetic_energy", dda->kinetic_energy(), "J/m");
         s.add("strain_energy", dda->strain_energy(), "J/m");
         s.add("contacts_final",

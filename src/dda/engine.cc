@@ -149,13 +149,16 @@ namespace rockdda::dda
         scene.seismic.mode = mode;
         throw;
       }
-    ctrl.dynamic       = dynamic;
-    scene.seismic.mode = mode;
-    t                  = 0.;
-    n_steps            = 0;
-    friction_work      = 0.;
-    load_work          = 0.;
-    dt                 = ctrl.time_step;
+    ctrl.dynamic        = dynamic;
+    scene.seismic.mode  = mode;
+    t                   = 0.;
+    n_steps             = 0;
+    n_iterations        = 0;
+    n_solves            = 0;
+    n_solver_iterations = 0;
+    friction_work       = 0.;
+    load_work           = 0.;
+    dt                  = ctrl.time_step;
     last_solution.setZero();
     for (auto &b : scene.blocks)
       {
@@ -341,6 +344,123 @@ namespace rockdda::dda
     // factorisation or preconditioner), for up to max_iterations more.
     unsigned         state_iterations = 0;
     std::vector<int> flips(contacts.size(), 0);
+    Eigen::VectorXd  x_prev;
+    bool             damped_last = false;
+    bool             confirming  = false;
+    // Tolerances of each contact's state check. A contact near zero force
+    // that keeps changing state (chatter): its force tolerance grows 10x
+    // per further change, to at most 100x (1 % of the lighter block's
+    // weight). A contact that has changed state hold_after times cycles in
+    // the open-close iteration: it is held (Controls::hold_fraction).
+    std::vector<double> factor(contacts.size(), 1.), hold(contacts.size(), 0.);
+    const auto          update_factors = [&]() {
+      for (std::size_t c = 0; c < contacts.size(); ++c)
+        {
+          factor[c]
+            = flips[c] >= 2 ? std::pow(10., std::min(flips[c] - 1, 2)) : 1.;
+          hold[c] = 0.;
+          if (flips[c] >= static_cast<int>(ctrl.hold_after))
+            {
+              const auto &g = contacts[c].geometry;
+              hold[c]
+                = ctrl.law.shear_penalty() * ctrl.hold_fraction
+                  * std::min(block_size[g.block_i], block_size[g.block_j]);
+            }
+        }
+    };
+    // Checks every contact against the increments x: new states, forces
+    // and the counts of state and friction changes.
+    const auto update_states = [&](const Eigen::VectorXd &x) {
+      changes          = 0;
+      friction_changes = 0;
+
+      // Force scale of the friction iteration: the mean normal force of
+      // the closed contacts (previous iteration).
+      double   force_sum = 0.;
+      unsigned n_closed  = 0;
+      for (const auto &ct : contacts)
+        if (ct.state != ContactState::open)
+          {
+            force_sum += std::abs(ct.normal_force);
+            ++n_closed;
+          }
+      const double mean_force = n_closed > 0 ? force_sum / n_closed : 0.;
+      std::vector<StateCheck> checks(contacts.size());
+      update_factors();
+      for_each_half(halves(),
+                    contacts.size(),
+                    [&](int, const std::size_t lo, const std::size_t hi) {
+                      for (std::size_t c = lo; c < hi; ++c)
+                        {
+                          const int                ci = static_cast<int>(c);
+                          ContactKinematics        chatter;
+                          const ContactKinematics *k
+                            = &assembler.kinematics()[c];
+                          if (factor[c] != 1. || hold[c] != 0.)
+                            {
+                              chatter = *k;
+                              chatter.force_tolerance *= factor[c];
+                              chatter.hold_tolerance = hold[c];
+                              k                      = &chatter;
+                            }
+                          checks[c]
+                            = check_state(contacts[c],
+                                          *k,
+                                          assembler.gap(ci, x),
+                                          assembler.shear_displacement(ci, x),
+                                          ctrl.law,
+                                          scene.joints[contacts[c].joint]);
+                        }
+                    });
+      check_face_groups(contacts, x, hold, checks);
+      for (std::size_t c = 0; c < contacts.size(); ++c)
+        {
+          Contact                 &ct  = contacts[c];
+          const ContactKinematics &kin = assembler.kinematics()[c];
+          const int                ci  = static_cast<int>(c);
+          const StateCheck        &r   = checks[c];
+          // The friction of a sliding contact used the normal force of
+          // the previous iteration; iterate until it agrees (implicit
+          // friction), which suppresses a rocking instability when the
+          // time step resolves the contact vibration.
+          const bool keeps_sliding = ct.state == ContactState::sliding
+                                     && r.state == ContactState::sliding;
+          if (keeps_sliding
+              && std::abs(r.normal_force - ct.normal_force)
+                   > 1e-3 * (std::abs(r.normal_force) + mean_force)
+                       + kin.force_tolerance)
+            ++friction_changes;
+          ct.normal_force = r.normal_force;
+          ct.shear_force  = r.shear_force;
+          if (r.changed)
+            {
+              ++changes;
+              ++flips[c];
+              const ContactState old = ct.state;
+              ct.state               = r.state;
+              if (r.state == ContactState::locked
+                  || (r.state == ContactState::sliding
+                      && old == ContactState::open))
+                {
+                  ct.xi_ref = ct.geometry.xi;
+                  if (r.state == ContactState::locked
+                      && old == ContactState::sliding)
+                    {
+                      // Force continuity: the shear spring starts from
+                      // the friction force the contact carried, i.e.
+                      // at displacement dir * strength / p_s from its
+                      // reference, instead of dropping to zero.
+                      ct.xi_ref
+                        += r.shear_force
+                           / (ctrl.law.shear_penalty() * kin.edge_length);
+                    }
+                  assembler.set_shear_reference(scene, ci, ct);
+                }
+            }
+          if (r.state == ContactState::sliding)
+            ct.slide_direction = r.slide_direction;
+        }
+    };
     while (state_iterations < ctrl.max_iterations
            && it < 2 * ctrl.max_iterations)
       {
@@ -353,8 +473,18 @@ namespace rockdda::dda
           }
         // After an iteration without state changes (only the friction
         // forces were updated) the matrix is unchanged: reuse its
-        // factorisation.
-        if (!solver.solve(matrix, F, x, it > 1 && changes == 0))
+        // factorisation. While the states settle, CG solves to a looser
+        // tolerance (inexact Newton); the settled states are confirmed by a
+        // solve to the solver's tolerance.
+        x_prev           = x;
+        const bool loose = ctrl.inexact_factor > 1. && !confirming
+                           && solver.type() != SolverType::direct;
+        if (!solver.solve(matrix,
+                          F,
+                          x,
+                          it > 1 && changes == 0,
+                          loose ? ctrl.inexact_factor * ctrl.solver.tolerance
+                                : 0.))
           {
             why = "the linear solver failed ("
                   + std::string(solver.type() == SolverType::direct
@@ -364,103 +494,40 @@ namespace rockdda::dda
             return false;
           }
         report.solver_iterations += solver.last_iterations();
+        ++n_solves;
+        n_solver_iterations += solver.last_iterations();
         if (!x.allFinite())
           {
             why = "the displacement increment is not finite";
             return false;
           }
-        changes          = 0;
-        friction_changes = 0;
-        // Force scale of the friction iteration: the mean normal force of
-        // the closed contacts (previous iteration).
-        double   force_sum = 0.;
-        unsigned n_closed  = 0;
-        for (const auto &ct : contacts)
-          if (ct.state != ContactState::open)
-            {
-              force_sum += std::abs(ct.normal_force);
-              ++n_closed;
-            }
-        const double mean_force = n_closed > 0 ? force_sum / n_closed : 0.;
-        std::vector<StateCheck> checks(contacts.size());
-        for_each_half(halves(),
-                      contacts.size(),
-                      [&](int, const std::size_t lo, const std::size_t hi) {
-                        for (std::size_t c = lo; c < hi; ++c)
-                          {
-                            const int                ci = static_cast<int>(c);
-                            ContactKinematics        chatter;
-                            const ContactKinematics *k
-                              = &assembler.kinematics()[c];
-                            if (flips[c] >= 2)
-                              {
-                                // A contact near zero force that keeps changing
-                                // state (chatter): its force tolerance grows
-                                // 10x per further change, to at most 100x (1 %
-                                // of the lighter block's weight).
-                                chatter = *k;
-                                chatter.force_tolerance
-                                  *= std::pow(10., std::min(flips[c] - 1, 2));
-                                k = &chatter;
-                              }
-                            checks[c]
-                              = check_state(contacts[c],
-                                            *k,
-                                            assembler.gap(ci, x),
-                                            assembler.shear_displacement(ci, x),
-                                            ctrl.law,
-                                            scene.joints[contacts[c].joint]);
-                          }
-                      });
-        check_face_groups(contacts, x, checks);
-        for (std::size_t c = 0; c < contacts.size(); ++c)
+        // Line search along the Newton direction (engine_line_search.cc),
+        // from the second iteration on (the first starts from the previous
+        // step's increments, not from a point of the current states).
+        double alpha = 1.;
+        if (ctrl.line_search && it > 1 && !damped_last)
           {
-            Contact                 &ct  = contacts[c];
-            const ContactKinematics &kin = assembler.kinematics()[c];
-            const int                ci  = static_cast<int>(c);
-            const StateCheck        &r   = checks[c];
-            // The friction of a sliding contact used the normal force of
-            // the previous iteration; iterate until it agrees (implicit
-            // friction), which suppresses a rocking instability when the
-            // time step resolves the contact vibration.
-            if (ct.state == ContactState::sliding
-                && r.state == ContactState::sliding
-                && std::abs(r.normal_force - ct.normal_force)
-                     > 1e-3 * (std::abs(r.normal_force) + mean_force)
-                         + kin.force_tolerance)
-              ++friction_changes;
-            ct.normal_force = r.normal_force;
-            ct.shear_force  = r.shear_force;
-            if (r.changed)
-              {
-                ++changes;
-                ++flips[c];
-                const ContactState old = ct.state;
-                ct.state               = r.state;
-                if (r.state == ContactState::locked
-                    || (r.state == ContactState::sliding
-                        && old == ContactState::open))
-                  {
-                    ct.xi_ref = ct.geometry.xi;
-                    if (r.state == ContactState::locked
-                        && old == ContactState::sliding)
-                      {
-                        // Force continuity: the shear spring starts from
-                        // the friction force the contact carried, i.e.
-                        // at displacement dir * strength / p_s from its
-                        // reference, instead of dropping to zero.
-                        ct.xi_ref
-                          += r.shear_force
-                             / (ctrl.law.shear_penalty() * kin.edge_length);
-                      }
-                    assembler.set_shear_reference(scene, ci, ct);
-                  }
-              }
-            if (r.state == ContactState::sliding)
-              ct.slide_direction = r.slide_direction;
+            update_factors();
+            alpha = line_search(contacts, x_prev, x, factor, hold);
+            if (alpha < 1.)
+              x = x_prev + alpha * (x - x_prev);
           }
+        update_states(x);
+        // A damped step after which no state changed: the next step is a
+        // full one (the line search stopped at a state's tolerance band).
+        damped_last = alpha < 1. && changes == 0;
+        if (alpha < 1. && changes == 0)
+          friction_changes = std::max(friction_changes, 1u);
         // Converged when no contact changes state and the friction forces
         // agree with the normal forces; otherwise the step is cut.
+        if (changes == 0 && friction_changes == 0 && loose)
+          {
+            // Settled on inexact solves: confirm with a solve to the
+            // solver tolerance.
+            confirming = true;
+            continue;
+          }
+        confirming = false;
         if (changes == 0 && friction_changes == 0)
           {
             converged = true;
@@ -468,6 +535,18 @@ namespace rockdda::dda
           }
         if (changes > 0)
           ++state_iterations;
+        // A contact that keeps changing state although held: the
+        // iteration cycles; a shorter step resolves the contact.
+        const auto most = std::max_element(flips.begin(), flips.end());
+        if (most != flips.end() && *most >= static_cast<int>(ctrl.cycle_limit))
+          {
+            const auto &g = contacts[most - flips.begin()].geometry;
+            why = "the open-close iteration cycles (the contact of block "
+                  + std::to_string(scene.blocks[g.block_i].id) + " on block "
+                  + std::to_string(scene.blocks[g.block_j].id)
+                  + " changed state " + std::to_string(*most) + " times)";
+            return false;
+          }
       }
     if (!converged)
       {
@@ -541,9 +620,10 @@ namespace rockdda::dda
     last_solution = x;
     t += h;
     ++n_steps;
-    report.time             = t;
-    report.dt               = h;
-    report.iterations       = it;
+    report.time       = t;
+    report.dt         = h;
+    report.iterations = it;
+    n_iterations += it;
     report.max_displacement = max_d;
     report.n_open = report.n_sliding = report.n_locked = 0;
     for (const auto &c : current_contacts)
@@ -566,6 +646,7 @@ namespace rockdda::dda
   void
   DdaSystem::check_face_groups(const std::vector<Contact> &contacts,
                                const Eigen::VectorXd      &x,
+                               const std::vector<double>  &hold,
                                std::vector<StateCheck>    &checks) const
   {
     const auto         &start  = assembler.group_start();
@@ -609,7 +690,7 @@ namespace rockdda::dda
                                        checks[c].normal_force,
                                        kin.length,
                                        scene.joints[contacts[c].joint]);
-            tolerance += kin.force_tolerance;
+            tolerance += std::max(kin.force_tolerance, hold[c]);
           }
         const bool slides = std::abs(resultant) > strength + tolerance;
         for (std::size_t m = 0; m < members.size(); ++m)

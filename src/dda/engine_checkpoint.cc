@@ -16,7 +16,7 @@ namespace rockdda::dda
   namespace
   {
     constexpr char          magic[]        = "rockdda DDA checkpoint";
-    constexpr std::uint32_t format_version = 2;
+    constexpr std::uint32_t format_version = 3;
     using io::BinaryReader;
     using io::BinaryWriter;
 
@@ -121,6 +121,9 @@ namespace rockdda::dda
     w.put(dt);
     w.put<std::uint64_t>(n_steps);
     w.put<std::uint64_t>(n_cuts);
+    w.put<std::uint64_t>(n_iterations);
+    w.put<std::uint64_t>(n_solves);
+    w.put<std::uint64_t>(n_solver_iterations);
     w.put<std::uint64_t>(last_solution.size());
     for (Eigen::Index i = 0; i < last_solution.size(); ++i)
       w.put(last_solution[i]);
@@ -215,11 +218,14 @@ namespace rockdda::dda
                            + std::to_string(g.block_i) + " and "
                            + std::to_string(g.block_j) + ")");
       }
-    const double        time  = r.get<double>();
-    const double        step  = r.get<double>();
-    const std::uint64_t steps = r.get<std::uint64_t>();
-    const std::uint64_t cuts  = r.get<std::uint64_t>();
-    const auto          n_x   = r.get<std::uint64_t>();
+    const double        time              = r.get<double>();
+    const double        step              = r.get<double>();
+    const std::uint64_t steps             = r.get<std::uint64_t>();
+    const std::uint64_t cuts              = r.get<std::uint64_t>();
+    const std::uint64_t iterations        = r.get<std::uint64_t>();
+    const std::uint64_t solves            = r.get<std::uint64_t>();
+    const std::uint64_t solver_iterations = r.get<std::uint64_t>();
+    const auto          n_x               = r.get<std::uint64_t>();
     if (n_x != 0 && n_x != 6 * s.blocks.size())
       throw InputError(source + ": the checkpoint is damaged (warm start of "
                        + std::to_string(n_x) + " values)");
@@ -239,13 +245,16 @@ namespace rockdda::dda
     scene            = std::move(s);
     current_contacts = std::move(contacts);
     contact_set.store(current_contacts);
-    t               = time;
-    dt              = step;
-    n_steps         = steps;
-    n_cuts          = cuts;
-    last_solution   = std::move(x);
-    friction_work   = friction;
-    load_work       = loads;
-    first_detection = first;
+    t                   = time;
+    dt                  = step;
+    n_steps             = steps;
+    n_cuts              = cuts;
+    n_iterations        = iterations;
+    n_solves            = solves;
+    n_solver_iterations = solver_iterations;
+    last_solution       = std::move(x);
+    friction_work       = friction;
+    load_work           = loads;
+    first_detection     = first;
   }
 } // namespace rockdda::dda

@@ -755,7 +755,8 @@ namespace rockdda::dda
   LinearSolver::solve(const BlockSparseMatrix &K,
                       const Eigen::VectorXd   &f,
                       Eigen::VectorXd         &x,
-                      const bool               same_matrix)
+                      const bool               same_matrix,
+                      const double             tolerance)
   {
     iterations = 0;
     if (current == SolverType::direct)
@@ -800,7 +801,7 @@ namespace rockdda::dda
     return dilu->cg(f,
                     x,
                     *team,
-                    options.tolerance,
+                    tolerance > 0. ? tolerance : options.tolerance,
                     iteration_limit(K.n_blocks()),
                     iterations);
   }

@@ -16,7 +16,7 @@ import re
 import subprocess
 import sys
 
-NUMBER = r"-?\d+(?:\.\d+)?(?:e-?\d+)?"
+NUMBER = r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?"
 
 
 def value(text):
@@ -29,7 +29,7 @@ def value(text):
 
 def declared_range(valid):
     """(lower, lower_open, upper, upper_open, integer) or None."""
-    m = re.fullmatch(r"\[(Double|Integer range) (-?[\w.]+)\.\.\.(-?[\w.]+) "
+    m = re.fullmatch(r"\[(Double|Integer range) (-?[\w.+-]+?)\.\.\.(-?[\w.+-]+) "
                      r"\(inclusive\)\]", valid)
     if m:
         return (value(m[2]), False, value(m[3]), False, m[1] != "Double")

@@ -57,6 +57,11 @@ namespace rockdda::dda
     /// and a sliding contact locks when reversing its slip would change
     /// the shear spring force by more than this.
     double force_tolerance = 0.;
+    /// Held contact (one that cycles in the open-close iteration): an
+    /// open contact closes only above this compression, a locked one
+    /// slides only when its shear force exceeds the strength by more than
+    /// this (N/m; 0: force_tolerance). Neither rule can create energy.
+    double hold_tolerance = 0.;
   };
 
   /**

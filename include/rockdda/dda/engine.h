@@ -42,6 +42,24 @@ namespace rockdda::dda
     /// Contact search distance = search_factor * the allowed vertex
     /// displacement per step.
     double search_factor = 2.5;
+    /// Globalise the open-close iteration with an exact line search on the
+    /// convex energy of the step (engine_line_search.cc).
+    bool line_search = true;
+    /// A contact that has changed state this many times in one attempt
+    /// cycles and is held: an open one stays open, a locked one locked,
+    /// while the force it would take to change (compression, tension, or
+    /// shear beyond the strength) is at most p_s x hold_fraction x the
+    /// smaller block's size (N/m), i.e. a penetration or elastic slip of
+    /// at most hold_fraction x that size. Holding cannot create energy.
+    unsigned int hold_after    = 4;
+    double       hold_fraction = 1e-7;
+    /// A contact that has changed state this many times although held: the
+    /// iteration cycles, and the step is cut.
+    unsigned int cycle_limit = 12;
+    /// CG tolerance while the contact states settle = inexact_factor x the
+    /// solver tolerance; the settled states are confirmed by one solve to
+    /// the solver tolerance (<= 1: every solve to the solver tolerance).
+    double inexact_factor = 1000.;
     /// Contact springs.
     ContactLaw law;
     /// Fixed-point spring stiffness (N/m); 0 = 10 * the normal penalty.
@@ -220,6 +238,9 @@ namespace rockdda::dda
 
     /// Number of steps and cuts so far.
     unsigned long n_steps = 0, n_cuts = 0;
+    /// Open-close iterations of the accepted steps, linear solves of all
+    /// attempts (cut ones included) and their CG iterations, so far.
+    unsigned long n_iterations = 0, n_solves = 0, n_solver_iterations = 0;
 
     /**
      * The state needed to continue the run bit for bit (block geometry,
@@ -252,11 +273,23 @@ namespace rockdda::dda
     /// use, so that it always refers to this object).
     HalvesRunner
     halves();
+    /// Step length alpha in (0, 1] along x_hat - x_k that minimises the
+    /// convex energy of the step for the current contact states and
+    /// strengths, with the state check's force tolerances times
+    /// @p tolerance_factor (engine_line_search.cc).
+    double
+    line_search(const std::vector<Contact> &contacts,
+                const Eigen::VectorXd      &x_k,
+                const Eigen::VectorXd      &x_hat,
+                const std::vector<double>  &tolerance_factor,
+                const std::vector<double>  &hold_tolerance) const;
     /// Mohr-Coulomb on the resultant of each face group (Assembler::groups):
-    /// its locked members slide together or not at all.
+    /// its locked members slide together or not at all (a held member adds
+    /// its hold tolerance, N/m, to the group's).
     void
     check_face_groups(const std::vector<Contact> &contacts,
                       const Eigen::VectorXd      &x,
+                      const std::vector<double>  &hold,
                       std::vector<StateCheck>    &checks) const;
 
     BlockSystem              scene;

@@ -127,13 +127,15 @@ namespace rockdda::dda
      * previous call (only f changed), and its factorisation (direct) or
      * preconditioner (iterative) is reused. Returns false if the matrix is
      * not positive definite, CG did not converge, or the result is not
-     * finite.
+     * finite. A @p tolerance > 0 replaces SolverOptions::tolerance for this
+     * solve (CG).
      */
     bool
     solve(const BlockSparseMatrix &matrix,
           const Eigen::VectorXd   &f,
           Eigen::VectorXd         &x,
-          const bool               same_matrix = false);
+          const bool               same_matrix = false,
+          const double             tolerance   = 0.);
 
     /// The solver used for the current pattern (never automatic).
     SolverType
