@@ -86,6 +86,7 @@ namespace rockdda::dda
               throw InputError(where + "material " + std::to_string(id)
                                + " is defined twice");
             BlockMaterial m;
+            m.id      = id;
             m.density = number(1);
             m.young   = number(2);
             m.poisson = number(3);

@@ -239,4 +239,14 @@ namespace rockdda::dda
     return u[k] + v[k] * tau + 0.5 * a[k] * tau * tau
            + (a[k + 1] - a[k]) * tau * tau * tau / (6. * dt);
   }
+
+
+  double
+  GroundMotionIntegral::peak_velocity() const
+  {
+    double m = 0.;
+    for (const double x : v)
+      m = std::max(m, std::abs(x));
+    return m;
+  }
 } // namespace rockdda::dda

@@ -9,6 +9,7 @@
 #include <rockdda/dda/vtu_output.h>
 #include <rockdda/io/checkpoint.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/interrupt.h>
 #include <rockdda/io/parameters.h>
 #include <rockdda/io/progress.h>
 #include <rockdda/seismic/ground_motion.h>
@@ -289,6 +290,20 @@ namespace rockdda::dda
           end_time > 0., prm_file, "DDA/End time", end_time, "end time > 0 s");
         io::require(
           c.time_step > 0., prm_file, "DDA/Time step", c.time_step, "dt > 0 s");
+        {
+          // The planned step count (cuts add more): an absurd one is a
+          // mistake in the keys, not a run to start.
+          const double n = io::planned_steps(0., end_time, c.time_step);
+          if (n > io::max_planned_steps)
+            throw InputError(
+              prm_file + ": keys 'DDA/End time' = "
+              + io::format_number(end_time) + " s and 'DDA/Time step' = "
+              + io::format_number(c.time_step) + " s plan "
+              + io::format_number(n, 4)
+              + " time steps (End time / Time step); at most "
+              + io::format_number(io::max_planned_steps)
+              + " are allowed: raise the time step or shorten the run");
+        }
         io::require(c.law.shear_ratio > 0.,
                     prm_file,
                     "DDA/Shear penalty ratio",
@@ -355,6 +370,12 @@ namespace rockdda::dda
             << settling_steps << ", seismic input " << mode;
           fingerprint = f.str();
         }
+      }
+
+      bool
+      resumes() const override
+      {
+        return resume;
       }
 
       void
@@ -517,11 +538,20 @@ namespace rockdda::dda
           = static_cast<unsigned long>(100. * end_time
                                        / dda->controls().time_step)
             + 1000;
+        // Stopped early by SIGINT / SIGTERM (polled after every step).
+        int interrupted = 0;
         {
-          io::ProgressBar progress("dda", end_time);
+          io::ProgressBar progress(
+            "dda",
+            dda->time(),
+            end_time,
+            dda->n_steps
+              + static_cast<unsigned long>(io::planned_steps(
+                dda->time(), end_time, dda->controls().time_step)));
           try
             {
-              while (dda->time() < end_time - 1e-9 * dda->controls().time_step)
+              while (dda->time() < end_time - 1e-9 * dda->controls().time_step
+                     && (interrupted = io::interrupt_signal()) == 0)
                 {
                   // One step, landing exactly on output times.
                   double target
@@ -574,11 +604,27 @@ namespace rockdda::dda
                               .count();
         // At the End time, unless just taken there (the run can be
         // extended); a checkpoint writes statistics.csv too.
-        if (checkpoint_interval > 0. && failure.empty()
+        // An interrupted run always writes a checkpoint (Resume = true
+        // continues it bit for bit), with statistics.csv so far.
+        if ((checkpoint_interval > 0. || interrupted != 0) && failure.empty()
             && saved_at != dda->time())
           save_checkpoint();
-        else if (checkpoint_interval <= 0. || !failure.empty())
+        else if ((checkpoint_interval <= 0. && interrupted == 0)
+                 || !failure.empty())
           context.output.write("statistics.csv", table.csv());
+        if (interrupted != 0 && failure.empty())
+          {
+            // statistics.csv has the rows reported so far; the state
+            // reached is in the summary and the checkpoint.
+            context.stopped_early = true;
+            context.stopped_note
+              = "DDA stopped at t = " + io::format_number(dda->time(), 8)
+                + " s of " + io::format_number(end_time, 8) + " s (step "
+                + std::to_string(dda->n_steps)
+                + "); statistics.csv so far and checkpoint.bin written (set "
+                  "'DDA/Resume' = true to continue).";
+            context.log.line(context.stopped_note);
+          }
         if (!failure.empty())
           {
             context.log.line("DDA stopped: " + failure);
@@ -631,7 +677,9 @@ namespace rockdda::dda
                          + std::to_string(ls.separator_size()) + " blocks, "
                          + std::to_string(ls.n_threads()) + " thread(s)";
         context.log.line("linear solver (last step): " + solver_text);
-        context.log.line("DDA finished: " + std::to_string(dda->n_steps)
+        context.log.line(std::string(interrupted != 0 ? "DDA stopped early: "
+                                                      : "DDA finished: ")
+                         + std::to_string(dda->n_steps)
                          + " steps, " + std::to_string(dda->n_cuts) + " cuts, "
                          + io::format_number(wall, 3) + " s wall");
       }

@@ -124,6 +124,7 @@ namespace rockdda::dda
     if (scene.seismic.mode != SeismicInput::Mode::none)
       ground = GroundMotionIntegral(scene.seismic.record, scene.seismic.g);
     clamped_block = clamped_blocks(scene);
+    add_plausibility_warnings();
   }
 
 
@@ -587,6 +588,10 @@ namespace rockdda::dda
         return false;
       }
 
+    // The energy at the start of the step, and what a rejected state must
+    // restore.
+    const double energy_before   = energy().balance();
+    const double friction_before = friction_work, load_before = load_work;
     // Accepted: energy flows of the step, and joints broken by the
     // accepted states.
     for (std::size_t c = 0; c < contacts.size(); ++c)
@@ -614,11 +619,29 @@ namespace rockdda::dda
         load_work += -a_ground * assembler.masses()[b](0, 0)
                      * scene.seismic.direction.dot(x.segment<2>(6 * b));
 
+    const auto blocks_before      = scene.blocks;
+    const auto fixed_before       = scene.fixed_points;
+    const auto loads_before       = scene.load_points;
+    const auto measurement_before = scene.measurement_points;
     update(x, h);
-    current_contacts = std::move(contacts);
+    std::swap(current_contacts, contacts);
+    t += h;
+    const std::string implausible = implausible_state(energy_before);
+    if (!implausible.empty())
+      {
+        scene.blocks             = blocks_before;
+        scene.fixed_points       = fixed_before;
+        scene.load_points        = loads_before;
+        scene.measurement_points = measurement_before;
+        std::swap(current_contacts, contacts);
+        t -= h;
+        friction_work = friction_before;
+        load_work     = load_before;
+        why           = implausible;
+        return false;
+      }
     contact_set.store(current_contacts);
     last_solution = x;
-    t += h;
     ++n_steps;
     report.time       = t;
     report.dt         = h;
@@ -828,6 +851,19 @@ namespace rockdda::dda
     e.contact   = contact_energy();
     e.potential = potential_energy();
     e.friction  = friction_work;
+    // Fixed-point springs of the blocks that are not clamped.
+    const double ug = scene.seismic.mode == SeismicInput::Mode::displacement
+                        ? ground.displacement(t)
+                        : 0.;
+    for (const auto &f : scene.fixed_points)
+      if (!clamped_block[f.block])
+        {
+          const geometry::Point target
+            = f.anchor
+              + (f.moves_with_ground ? ug : 0.) * scene.seismic.direction;
+          e.fixed
+            += 0.5 * ctrl.fixed_penalty * (f.point - target).squaredNorm();
+        }
     e.load_work = load_work;
     return e;
   }

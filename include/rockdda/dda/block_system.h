@@ -33,6 +33,10 @@ namespace rockdda::dda
     double poisson = 0.25;
     /// Plane strain (true) or plane stress (false).
     bool plane_strain = false;
+    /// The user's material id from the block file (written as the blocks'
+    /// `material` in the VTU output); -1 = none (a scene built in code: the
+    /// outputs use the index into BlockSystem::materials).
+    int id = -1;
   };
 
   /// Mohr-Coulomb strength of a joint (contact) material.
@@ -180,6 +184,9 @@ namespace rockdda::dda
     /// final velocity.
     double
     displacement(const double t) const;
+    /// Largest |ground velocity| (m/s) of the record.
+    double
+    peak_velocity() const;
 
   private:
     double              dt = 0.;

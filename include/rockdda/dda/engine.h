@@ -13,6 +13,7 @@
 #include <rockdda/dda/contact_set.h>
 #include <rockdda/dda/linear_solver.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -72,6 +73,21 @@ namespace rockdda::dda
     double growth = 1.3;
     /// Factor by which a step is cut (> 1).
     double cut_factor = 3.;
+    /// Physical sanity checks of every step (engine_sanity.cc): a step is
+    /// cut when the energy ledger gains more than energy_tolerance x the
+    /// energy in play (1: the ledger is not exact across lock/slide
+    /// changes; a settling block at a penalty of 0.1 E gains 25 % of the
+    /// energy in play in one legitimate step, while a blow-up creates
+    /// hundreds of times it), a closed contact penetrates deeper than
+    /// penetration_ratio x the smaller block's size, a block strains by more
+    /// than strain_limit, or a block moves faster than speed_factor x the
+    /// fastest motion the scene can produce (free fall since t = 0 plus the
+    /// ground velocity plus the initial speeds). If cutting does not help,
+    /// the run stops with a diagnosis.
+    double energy_tolerance  = 1.;
+    double penetration_ratio = 0.01;
+    double strain_limit      = 0.05;
+    double speed_factor      = 2.;
     /// Stop (DdaFailure) after this many steps in one run_until() call;
     /// 0 = 100 * (duration / time_step) + 1000.
     unsigned long max_steps = 0;
@@ -99,19 +115,30 @@ namespace rockdda::dda
    * the blocks by point loads and the seismic inertial load. In exact
    * dynamics balance() stays at its initial value; the time integration
    * (Newmark beta = 1/2, gamma = 1) may only lower it. Not included: the
-   * work of fixed points that move (displacement-mode seismic input) and
-   * the energy of the penalty springs of pinned blocks (one or two fixed
-   * points), so the balance closes only without them.
+   * work of fixed points that move (displacement-mode seismic input), so
+   * the balance closes only without it.
    */
   struct EnergyLedger
   {
     double kinetic = 0., strain = 0., contact = 0., potential = 0.;
+    /// Springs of the fixed points of blocks that are not clamped.
+    double fixed    = 0.;
     double friction = 0., load_work = 0.;
-    /// kinetic + strain + contact + potential + friction - load_work.
+    /// kinetic + strain + contact + potential + fixed + friction -
+    /// load_work.
     double
     balance() const
     {
-      return kinetic + strain + contact + potential + friction - load_work;
+      return kinetic + strain + contact + potential + fixed + friction
+             - load_work;
+    }
+    /// Sum of the magnitudes of the terms (J/m): the energy in play.
+    double
+    scale() const
+    {
+      return std::abs(kinetic) + std::abs(strain) + std::abs(contact)
+             + std::abs(potential) + std::abs(fixed) + std::abs(friction)
+             + std::abs(load_work);
     }
   };
 
@@ -283,6 +310,18 @@ namespace rockdda::dda
                 const Eigen::VectorXd      &x_hat,
                 const std::vector<double>  &tolerance_factor,
                 const std::vector<double>  &hold_tolerance) const;
+    /// Warnings about parameters outside the plausible range for rock
+    /// (engine_sanity.cc): E, density, the record's PGA, a penalty too low
+    /// for the weight of the blocks.
+    void
+    add_plausibility_warnings();
+    /**
+     * The physical sanity checks of an attempted step (Controls): returns
+     * an empty string if the state after update() is plausible, else the
+     * diagnosis (block, contact, quantity, likely cause).
+     */
+    std::string
+    implausible_state(const double energy_before) const;
     /// Mohr-Coulomb on the resultant of each face group (Assembler::groups):
     /// its locked members slide together or not at all (a held member adds
     /// its hold tolerance, N/m, to the group's).
@@ -313,6 +352,9 @@ namespace rockdda::dda
     /// Energy flows since t = 0 (J/m): dissipated by friction, work of
     /// the loads.
     double friction_work = 0., load_work = 0.;
+    /// Fastest motion the scene can produce apart from gravity (m/s): the
+    /// initial block speeds and the largest ground velocity of the record.
+    double speed_bound = 0.;
     /// Contacts found by the first detection are intact joints (cohesion
     /// and tensile strength); contacts that form later are not bonded.
     bool first_detection = true;

@@ -1,7 +1,15 @@
 /**
  * @file
  * ParaView output of a DDA state: blocks as polygon cells and contacts as
- * line cells in VTK XML unstructured-grid files (ASCII), and PVD series.
+ * line cells in VTK XML unstructured-grid files, and PVD series.
+ *
+ * The files are binary: every DataArray is format="binary" (base64 inline),
+ * zlib-compressed (compressor="vtkZLibDataCompressor", header_type UInt64)
+ * when deal.II was built with zlib, uncompressed otherwise. The fields,
+ * their units and the contact state codes are listed in an XML comment at
+ * the top of each file and in doc/user-guide.md (section "ParaView output
+ * of dda"). scripts/read_vtu.py reads them with the Python standard
+ * library.
  */
 #ifndef ROCKDDA_DDA_VTU_OUTPUT_H
 #define ROCKDDA_DDA_VTU_OUTPUT_H
@@ -14,13 +22,38 @@
 
 namespace rockdda::dda
 {
-  /// Blocks: cell data id, material, displacement (m), velocity (m/s),
-  /// rotation (rad), stress (Pa).
+  /**
+   * Blocks as polygons (points in global coordinates, m). Cell data:
+   * - `block_id` (Int32): the block's id from the block file;
+   * - `material` (Int32): the user's material id from the block file (a
+   *   scene built in code without ids: the index of the material);
+   * - `displacement` (m) and `velocity` (m/s) of the centroid, 3 components
+   *   (z = 0);
+   * - `rotation` (rad), cumulative;
+   * - `stress` (Pa, tension positive): symmetric tensor of 6 components in
+   *   ParaView's order XX, YY, ZZ, XY, YZ, XZ; the in-plane values are the
+   *   engine's (sigma_x, sigma_y, tau_xy), ZZ, YZ and XZ are written as 0.
+   */
   std::string
   blocks_vtu(const DdaSystem &dda);
 
-  /// Contacts as lines from the vertex to its projection on the edge: cell
-  /// data state (0 open, 1 sliding, 2 locked), normal and shear force (N/m).
+  /**
+   * Contacts as lines from the contact vertex to its projection on the
+   * contact edge, with the current block geometry. Cell data:
+   * - `state` (Int32): 0 open, 1 sliding, 2 locked (ContactState);
+   * - `vertex_block`, `edge_block` (Int32): the block ids (from the block
+   *   file) of the block whose vertex touches and of the block whose edge
+   *   is touched;
+   * - `normal_gap` (m): signed distance of the vertex from the edge's line,
+   *   along the edge's outward normal; negative = penetration (a
+   *   compressed contact);
+   * - `shear_slip` (m): displacement of the vertex along the edge from the
+   *   contact's shear reference point (locked: the elastic shear spring
+   *   displacement; sliding: the slip since the contact started to slide);
+   * - `normal_force` (N/m, compression positive) and `shear_force` (N/m)
+   *   of the last solve;
+   * - `normal` (-): the edge's unit outward normal, 3 components (z = 0).
+   */
   std::string
   contacts_vtu(const DdaSystem &dda);
 

@@ -1,0 +1,182 @@
+/**
+ * @file
+ * Physical sanity of a DDA run (issue 11): warnings for parameters outside
+ * the plausible range for rock, and the checks of every attempted step
+ * (energy, penetration, strain, speed) that cut the step, or stop the run
+ * with a diagnosis, instead of accepting a physically impossible state.
+ * The checks and what the user sees are listed in doc/user-guide-checks.md.
+ */
+#include <rockdda/dda/block_matrices.h>
+#include <rockdda/dda/engine.h>
+#include <rockdda/io/output.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rockdda::dda
+{
+  namespace
+  {
+    std::string
+    num(const double x)
+    {
+      return io::format_number(x, 3);
+    }
+  } // namespace
+
+
+
+  void
+  DdaSystem::add_plausibility_warnings()
+  {
+    const double g = scene.gravity.norm();
+    for (std::size_t m = 0; m < scene.materials.size(); ++m)
+      {
+        const auto &mat = scene.materials[m];
+        // Intact rock: E from ~0.1 GPa (weak chalk, marl) to ~200 GPa;
+        // density 1,000-6,000 kg/m^3 (pumice to ore).
+        if (mat.young < 1e8 || mat.young > 2e11)
+          warning_list.push_back(
+            "material " + std::to_string(m + 1) + ": Young's modulus "
+            + num(mat.young)
+            + " Pa is outside the range of rock (1e8 to 2e11 Pa); check "
+              "the units (Pa, not MPa or GPa)");
+        if (mat.density < 1000. || mat.density > 6000.)
+          warning_list.push_back(
+            "material " + std::to_string(m + 1) + ": density "
+            + num(mat.density)
+            + " kg/m^3 is outside the range of rock (1000 to 6000 kg/m^3)");
+      }
+    if (scene.seismic.mode != SeismicInput::Mode::none)
+      {
+        const double pga = scene.seismic.record.peak();
+        if (pga > 2.)
+          warning_list.push_back(
+            "seismic record '" + scene.seismic.record.name + "': PGA "
+            + num(pga)
+            + " g is above any recorded earthquake (~4 g); if the record is "
+              "in cm/s^2 it is "
+            + num(pga / 100. * scene.seismic.g / 9.80665)
+            + " m/s^2 = " + num(pga / 100. / 9.80665) + " g (check Units)");
+      }
+    // Penetration of the heaviest block resting on one contact under its
+    // own weight, against 1e-3 of its size.
+    double worst = 0.;
+    int    block = -1;
+    double need  = 0.;
+    for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+      {
+        const auto  &blk = scene.blocks[b];
+        const double weight
+          = scene.materials[blk.material].density * blk.polygon.area() * g;
+        const double ratio = weight / ctrl.law.normal_penalty / block_size[b];
+        if (ratio > worst)
+          {
+            worst = ratio;
+            block = static_cast<int>(b);
+            need  = weight / (1e-3 * block_size[b]);
+          }
+      }
+    if (block >= 0 && worst > 1e-3)
+      warning_list.push_back(
+        "contact penalty " + num(ctrl.law.normal_penalty) + " N/m lets block "
+        + std::to_string(scene.blocks[block].id) + " sink " + num(worst * 100.)
+        + " % of its size into a contact under its own weight; use at "
+          "least "
+        + num(need) + " N/m (10 to 100 x E is usual)");
+    // Speed bound: initial block speeds and the ground velocity.
+    speed_bound = 0.;
+    for (const auto &b : scene.blocks)
+      speed_bound = std::max(speed_bound, b.velocity.head<2>().norm());
+    if (scene.seismic.mode != SeismicInput::Mode::none)
+      speed_bound += ground.peak_velocity();
+  }
+
+
+
+  std::string
+  DdaSystem::implausible_state(const double energy_before) const
+  {
+    const auto at = [&]() { return " at t = " + num(t) + " s"; };
+    // Energy: the ledger may only lose energy (the time integration
+    // dissipates); a gain beyond the tolerance is energy created by the
+    // contact treatment (a penalty spring fired from a deep penetration,
+    // a sliver, a time step too long for the contact stiffness).
+    if (scene.seismic.mode != SeismicInput::Mode::displacement)
+      {
+        const EnergyLedger e     = energy();
+        const double       gain  = e.balance() - energy_before;
+        const double       allow = ctrl.energy_tolerance * e.scale();
+        if (gain > allow && gain > 0.)
+          {
+            // The block that gained most kinetic energy.
+            int    block = 0;
+            double most  = -1.;
+            for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+              {
+                const auto  &blk = scene.blocks[b];
+                const double m
+                  = scene.materials[blk.material].density * blk.polygon.area();
+                const double k = 0.5 * m * blk.velocity.head<2>().squaredNorm();
+                if (k > most)
+                  {
+                    most  = k;
+                    block = static_cast<int>(b);
+                  }
+              }
+            return "the energy ledger gained " + num(gain) + " J/m" + at()
+                   + " (allowed " + num(allow) + " J/m), fastest block "
+                   + std::to_string(scene.blocks[block].id)
+                   + ": energy created by the contacts (penalty too low or "
+                     "too high for the time step, or a sliver block)";
+          }
+      }
+    // Penetration of closed contacts.
+    for (const auto &c : current_contacts)
+      {
+        if (c.state == ContactState::open)
+          continue;
+        const int    i = c.geometry.block_i;
+        const int    j = c.geometry.block_j;
+        const double depth
+          = std::max(0., c.normal_force) / ctrl.law.normal_penalty;
+        const double size = std::min(block_size[i], block_size[j]);
+        if (depth > ctrl.penetration_ratio * size)
+          return "block " + std::to_string(scene.blocks[i].id)
+                 + " penetrates block " + std::to_string(scene.blocks[j].id)
+                 + " by " + num(depth) + " m" + at() + ", more than "
+                 + num(ctrl.penetration_ratio) + " x the block size "
+                 + num(size) + " m: the contact penalty "
+                 + num(ctrl.law.normal_penalty)
+                 + " N/m is too low for the load";
+      }
+    // Strain (DDA blocks are small-strain).
+    for (const auto &b : scene.blocks)
+      {
+        const double e = b.strain.cwiseAbs().maxCoeff();
+        if (e > ctrl.strain_limit)
+          return "block " + std::to_string(b.id) + " is strained by " + num(e)
+                 + at() + ", beyond the small strains of DDA ("
+                 + num(ctrl.strain_limit) + "): Young's modulus "
+                 + num(scene.materials[b.material].young)
+                 + " Pa is too low for the load (check its units)";
+      }
+    // Speed.
+    const double bound
+      = ctrl.speed_factor * (scene.gravity.norm() * t + speed_bound)
+        + 1e-9 * domain / ctrl.time_step;
+    for (const auto &b : scene.blocks)
+      {
+        const double v = b.velocity.head<2>().norm();
+        if (v > bound)
+          return "block " + std::to_string(b.id) + " moves at " + num(v)
+                 + " m/s" + at()
+                 + ", faster than anything the scene can "
+                   "produce ("
+                 + num(bound)
+                 + " m/s: free fall since t = 0, the ground velocity and "
+                   "the initial speeds): a contact released energy";
+      }
+    return "";
+  }
+} // namespace rockdda::dda
