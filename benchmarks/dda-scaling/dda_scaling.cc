@@ -249,13 +249,8 @@ namespace
               times.push_back(ms);
             }
           std::sort(times.begin(), times.end());
-          double diff = 0.;
-          for (std::size_t b = 0; b < result.blocks.size(); ++b)
-            for (std::size_t v = 0; v < 4; ++v)
-              diff = std::max(diff,
-                              (result.blocks[b].polygon.vertices[v]
-                               - direct.blocks[b].polygon.vertices[v])
-                                .norm());
+          const double diff
+            = test_scenes::max_vertex_difference(result, direct);
           std::printf("%.0e,%s,%.3f,%.1f,%.3e\n",
                       tol,
                       pc == Preconditioner::block_dilu ? "block-dilu"

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 
@@ -130,6 +131,21 @@ namespace rockdda::dda::test_scenes
           add_block(s, rectangle(2. * columns - 1., r * 1., 1., 1.));
         }
     return s;
+  }
+
+  /// Largest distance (m) between corresponding vertices of two states of
+  /// the same scene.
+  inline double
+  max_vertex_difference(const BlockSystem &a, const BlockSystem &b)
+  {
+    double diff = 0.;
+    for (std::size_t k = 0; k < a.blocks.size(); ++k)
+      for (std::size_t v = 0; v < a.blocks[k].polygon.vertices.size(); ++v)
+        diff = std::max(diff,
+                        (a.blocks[k].polygon.vertices[v]
+                         - b.blocks[k].polygon.vertices[v])
+                          .norm());
+    return diff;
   }
 
   inline Controls

@@ -922,13 +922,7 @@ TEST(DdaSolvers, IterativeMatchesDirectOnABrickWall)
     {
       const BlockSystem iterative
         = run(SolverType::iterative, preconditioner, limit);
-      double diff = 0.;
-      for (std::size_t b = 0; b < s.blocks.size(); ++b)
-        for (std::size_t v = 0; v < 4; ++v)
-          diff = std::max(diff,
-                          (direct.blocks[b].polygon.vertices[v]
-                           - iterative.blocks[b].polygon.vertices[v])
-                            .norm());
+      const double diff = max_vertex_difference(direct, iterative);
       std::printf("direct vs iterative (%s%s): max vertex difference %.3e m\n",
                   preconditioner == Preconditioner::block_dilu ? "block-dilu"
                                                                : "block-jacobi",

@@ -137,13 +137,7 @@ TEST(DdaOpenClose, AcceptedStepDoesNotDependOnTheInexactSolves)
     {
       const auto [exact, cg_exact, s_exact]       = run(1., steps);
       const auto [inexact, cg_inexact, s_inexact] = run(1000., steps);
-      double diff                                 = 0.;
-      for (std::size_t b = 0; b < wall.blocks.size(); ++b)
-        for (std::size_t v = 0; v < 4; ++v)
-          diff = std::max(diff,
-                          (exact.blocks[b].polygon.vertices[v]
-                           - inexact.blocks[b].polygon.vertices[v])
-                            .norm());
+      const double diff = max_vertex_difference(exact, inexact);
       std::printf("%d steps, exact vs inexact solves: max vertex difference "
                   "%.3e m (band %.3e m), settlement %.6e vs %.6e m; CG "
                   "iterations %lu vs %lu\n",
