@@ -1,29 +1,19 @@
 #!/usr/bin/python3
 """Mean settlement (m) of the top row of blocks between the first and the
-last blocks-*.vtu of a rockdda DDA output folder (ASCII VTU, blocks in the
-order of the block file). Usage: settlement.py OUTPUT_DIR"""
+last blocks-*.vtu of a rockdda DDA output folder (ASCII or binary VTU, read
+by scripts/read_vtu.py; blocks in the order of the block file). Usage:
+settlement.py OUTPUT_DIR"""
 import glob
-import re
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "..", "scripts"))
+import read_vtu  # noqa: E402
 
 
 def blocks(path):
-    text = open(path).read()
-
-    def array(name):
-        m = re.search(r'Name="%s"[^>]*>(.*?)</DataArray>' % name, text, re.S)
-        return m.group(1).split()
-
-    pts = re.search(r'<Points>\s*<DataArray[^>]*>(.*?)</DataArray>', text,
-                    re.S).group(1).split()
-    xy = [(float(pts[i]), float(pts[i + 1])) for i in range(0, len(pts), 3)]
-    conn = [int(v) for v in array("connectivity")]
-    offsets = [int(v) for v in array("offsets")]
-    out, start = [], 0
-    for end in offsets:
-        out.append([xy[k] for k in conn[start:end]])
-        start = end
-    return out
+    return read_vtu.polygons(read_vtu.read(path))
 
 
 def main():

@@ -3,9 +3,9 @@
  * VTK XML output of DDA blocks and contacts: binary (base64) DataArrays,
  * zlib-compressed when deal.II was built with zlib.
  */
-#include <deal.II/base/config.h>
-
 #include <rockdda/dda/vtu_output.h>
+
+#include <deal.II/base/config.h>
 
 #ifdef DEAL_II_WITH_ZLIB
 #  include <zlib.h>
@@ -55,15 +55,15 @@ namespace rockdda::dda
     void
     append_base64(std::string &out, const unsigned char *data, std::size_t n)
     {
-      static const char digits[] =
-        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+      static const char digits[]
+        = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
       out.reserve(out.size() + 4 * ((n + 2) / 3));
       std::size_t i = 0;
       for (; i + 3 <= n; i += 3)
         {
-          const std::uint32_t w =
-            (std::uint32_t(data[i]) << 16) | (std::uint32_t(data[i + 1]) << 8) |
-            std::uint32_t(data[i + 2]);
+          const std::uint32_t w = (std::uint32_t(data[i]) << 16)
+                                  | (std::uint32_t(data[i + 1]) << 8)
+                                  | std::uint32_t(data[i + 2]);
           out += digits[(w >> 18) & 63];
           out += digits[(w >> 12) & 63];
           out += digits[(w >> 6) & 63];
@@ -72,8 +72,8 @@ namespace rockdda::dda
       if (i < n)
         {
           const bool          two = i + 1 < n;
-          const std::uint32_t w   = (std::uint32_t(data[i]) << 16) |
-                                  (two ? std::uint32_t(data[i + 1]) << 8 : 0);
+          const std::uint32_t w   = (std::uint32_t(data[i]) << 16)
+                                  | (two ? std::uint32_t(data[i + 1]) << 8 : 0);
           out += digits[(w >> 18) & 63];
           out += digits[(w >> 12) & 63];
           out += two ? digits[(w >> 6) & 63] : '=';
@@ -128,7 +128,8 @@ namespace rockdda::dda
                         &bound,
                         data + b * block,
                         size,
-                        Z_BEST_SPEED) != Z_OK)
+                        Z_BEST_SPEED)
+              != Z_OK)
             throw std::runtime_error("VTU output: zlib compression failed");
           compressed.resize(at + bound);
           header.push_back(bound);
@@ -232,13 +233,13 @@ namespace rockdda::dda
   std::string
   blocks_vtu(const DdaSystem &dda)
   {
-    const auto               &scene  = dda.system();
-    const auto               &blocks = scene.blocks;
-    const std::size_t         n      = blocks.size();
-    const geometry::Point     o      = scene.origin;
-    std::vector<double>       xyz;
-    std::vector<std::int64_t> offsets;
-    std::vector<std::int32_t> id(n), material(n);
+    const auto                  &scene  = dda.system();
+    const auto                  &blocks = scene.blocks;
+    const std::size_t            n      = blocks.size();
+    const geometry::Point        o      = scene.origin;
+    std::vector<double>          xyz;
+    std::vector<std::int64_t>    offsets;
+    std::vector<std::int32_t>    id(n), material(n);
     std::vector<geometry::Point> displacement(n), velocity(n);
     std::vector<double>          rotation(n), stress;
     stress.reserve(6 * n);
@@ -250,12 +251,12 @@ namespace rockdda::dda
           xyz.insert(xyz.end(), {o.x() + v.x(), o.y() + v.y(), 0.});
         offsets.push_back(static_cast<std::int64_t>(xyz.size() / 3));
         id[i] = b.id;
-        const int user_material =
-          b.material >= 0 &&
-              b.material < static_cast<int>(scene.materials.size()) &&
-              scene.materials[b.material].id >= 0 ?
-            scene.materials[b.material].id :
-            b.material;
+        const int user_material
+          = b.material >= 0
+                && b.material < static_cast<int>(scene.materials.size())
+                && scene.materials[b.material].id >= 0
+              ? scene.materials[b.material].id
+              : b.material;
         material[i]     = user_material;
         displacement[i] = dda.centroid_displacement(static_cast<int>(i));
         velocity[i]     = geometry::Point(b.velocity[0], b.velocity[1]);
@@ -283,11 +284,7 @@ namespace rockdda::dda
     data_array(s, "displacement", 3, planar_vectors(displacement));
     data_array(s, "velocity", 3, planar_vectors(velocity));
     data_array(s, "rotation", 1, rotation);
-    data_array(s,
-               "stress",
-               6,
-               stress,
-               {"XX", "YY", "ZZ", "XY", "YZ", "XZ"});
+    data_array(s, "stress", 6, stress, {"XX", "YY", "ZZ", "XY", "YZ", "XZ"});
     s << "</CellData>\n";
     footer(s);
     return s.str();
@@ -298,39 +295,45 @@ namespace rockdda::dda
   std::string
   contacts_vtu(const DdaSystem &dda)
   {
-    const auto               &contacts = dda.contacts();
-    const auto               &scene    = dda.system();
-    const auto               &blocks   = scene.blocks;
-    const geometry::Point     o        = scene.origin;
-    const std::size_t         n        = contacts.size();
-    std::vector<double>       xyz, gap(n), slip(n), fn(n), fs(n);
-    std::vector<std::int64_t> offsets(n);
-    std::vector<std::int32_t> state(n), vertex_block(n), edge_block(n);
+    const auto                  &contacts = dda.contacts();
+    const auto                  &scene    = dda.system();
+    const auto                  &blocks   = scene.blocks;
+    const geometry::Point        o        = scene.origin;
+    const std::size_t            n        = contacts.size();
+    std::vector<double>          xyz, gap(n), slip(n), fn(n), fs(n);
+    std::vector<std::int64_t>    offsets(n);
+    std::vector<std::int32_t>    state(n), vertex_block(n), edge_block(n);
     std::vector<geometry::Point> normal(n);
     for (std::size_t c = 0; c < n; ++c)
       {
         // The contact's vertex and edge in the current geometry (the
         // contact records hold the detection at the start of the step).
-        const auto                &g  = contacts[c].geometry;
-        const auto                &vi = blocks[g.block_i].polygon.vertices;
-        const auto                &vj = blocks[g.block_j].polygon.vertices;
-        const geometry::Point      P  = vi[g.vertex];
-        const geometry::Point      Q0 = vj[g.edge];
-        const geometry::Point      E  = vj[(g.edge + 1) % vj.size()] - Q0;
-        const double               l  = E.norm();
-        const geometry::Point      t  = E / l;
-        const geometry::Point      nn(t.y(), -t.x()); // out of block j
-        const double               xi = std::clamp(t.dot(P - Q0) / l, 0., 1.);
-        const geometry::Point      P0 = Q0 + xi * E;
+        const auto           &g  = contacts[c].geometry;
+        const auto           &vi = blocks[g.block_i].polygon.vertices;
+        const auto           &vj = blocks[g.block_j].polygon.vertices;
+        const geometry::Point P  = vi[g.vertex];
+        const geometry::Point Q0 = vj[g.edge];
+        const geometry::Point E  = vj[(g.edge + 1) % vj.size()] - Q0;
+        const double          l  = E.norm();
+        const geometry::Point t  = E / l;
+        const geometry::Point nn(t.y(), -t.x()); // out of block j
+        const double          xi = std::clamp(t.dot(P - Q0) / l, 0., 1.);
+        const geometry::Point P0 = Q0 + xi * E;
         xyz.insert(xyz.end(),
-                   {o.x() + P.x(), o.y() + P.y(), 0., o.x() + P0.x(),
-                    o.y() + P0.y(), 0.});
+                   {o.x() + P.x(),
+                    o.y() + P.y(),
+                    0.,
+                    o.x() + P0.x(),
+                    o.y() + P0.y(),
+                    0.});
         offsets[c]      = static_cast<std::int64_t>(2 * (c + 1));
         state[c]        = static_cast<std::int32_t>(contacts[c].state);
         vertex_block[c] = blocks[g.block_i].id;
         edge_block[c]   = blocks[g.block_j].id;
         gap[c]          = nn.dot(P - Q0);
-        slip[c]         = t.dot(P - (Q0 + contacts[c].xi_ref * E));
+        slip[c]         = contacts[c].state == ContactState::open
+                            ? 0.
+                            : t.dot(P - (Q0 + contacts[c].xi_ref * E));
         fn[c]           = contacts[c].normal_force;
         fs[c]           = contacts[c].shear_force;
         normal[c]       = nn;
@@ -344,10 +347,12 @@ namespace rockdda::dda
            "vertex_block, edge_block: block file ids of the block whose "
            "vertex\n"
            "touches and of the block whose edge is touched;\n"
-           "normal_gap (m, negative = penetration), shear_slip (m, along "
-           "the edge\n"
-           "from the shear reference), normal_force (N/m, compression "
-           "positive),\n"
+           "normal_gap (m, negative = penetration);\n"
+           "shear_slip (m, along the edge from the shear reference: "
+           "locked, the\n"
+           "elastic shear displacement; sliding, the slip of the last "
+           "step; open, 0);\n"
+           "normal_force (N/m, compression positive), "
            "shear_force (N/m), normal (outward unit normal of the edge).\n",
            2 * n,
            n);

@@ -37,6 +37,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include "heat_flux.h"
 #include "heat_internal.h"
 #include "heat_solver_mpi.h"
 #include <arkode/arkode_arkstep.h>
@@ -1662,16 +1663,21 @@ namespace rockdda::thermal
     if (distributed)
       throw std::logic_error("heat: vtu() of the distributed solver; use "
                              "vtu_files()");
-    DataOut<2> data_out;
+    const internal::HeatFluxPostprocessor heat_flux(impl->prm);
+    DataOut<2>                            data_out;
     data_out.attach_dof_handler(impl->dof_handler);
     data_out.add_data_vector(impl->solution, "temperature");
+    data_out.add_data_vector(impl->solution, heat_flux);
     Vector<float> block(impl->tria.n_active_cells());
     for (const auto &cell : impl->tria.active_cell_iterators())
       block[cell->active_cell_index()] = cell->material_id();
     data_out.add_data_vector(block, "block");
     data_out.build_patches(impl->fe.degree);
+    // Binary, zlib-compressed when deal.II has zlib (write_vtu).
     DataOutBase::VtkFlags flags;
-    flags.time = impl->time;
+    flags.time              = impl->time;
+    flags.compression_level = DataOutBase::VtkFlags::best_speed;
+    flags.physical_units    = {{"heat_flux", "W/m^2"}};
     data_out.set_flags(flags);
     std::ostringstream out;
     data_out.write_vtu(out);

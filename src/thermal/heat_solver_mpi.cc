@@ -7,6 +7,8 @@
  */
 #include "heat_solver_mpi.h"
 
+#include "heat_flux.h"
+
 #include <rockdda/io/binary_stream.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
@@ -901,9 +903,11 @@ namespace rockdda::thermal::internal
   DistributedHeat::vtu_files(const std::string &name) const
   {
     impl->update_ghosts();
-    DataOut<2> data_out;
+    const internal::HeatFluxPostprocessor heat_flux(impl->prm);
+    DataOut<2>                            data_out;
     data_out.attach_dof_handler(impl->dof_handler);
     data_out.add_data_vector(impl->ghosted, "temperature");
+    data_out.add_data_vector(impl->ghosted, heat_flux);
     Vector<float> block(impl->tria.n_active_cells()),
       subdomain(impl->tria.n_active_cells());
     for (const auto &cell : impl->tria.active_cell_iterators())
@@ -916,7 +920,9 @@ namespace rockdda::thermal::internal
     data_out.add_data_vector(subdomain, "rank");
     data_out.build_patches(impl->fe.degree);
     DataOutBase::VtkFlags flags;
-    flags.time = impl->time;
+    flags.time              = impl->time;
+    flags.compression_level = DataOutBase::VtkFlags::best_speed;
+    flags.physical_units    = {{"heat_flux", "W/m^2"}};
     data_out.set_flags(flags);
     std::ostringstream piece;
     data_out.write_vtu(piece);

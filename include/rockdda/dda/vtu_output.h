@@ -47,9 +47,12 @@ namespace rockdda::dda
    * - `normal_gap` (m): signed distance of the vertex from the edge's line,
    *   along the edge's outward normal; negative = penetration (a
    *   compressed contact);
-   * - `shear_slip` (m): displacement of the vertex along the edge from the
-   *   contact's shear reference point (locked: the elastic shear spring
-   *   displacement; sliding: the slip since the contact started to slide);
+   * - `shear_slip` (m): displacement of the vertex along the edge (in the
+   *   edge's direction) from the contact's shear reference point. Locked:
+   *   the elastic displacement of the shear spring (shear force = shear
+   *   penalty x slip); sliding: the slip of the last step (the reference
+   *   of a sliding contact is its position at the start of the step);
+   *   open: 0;
    * - `normal_force` (N/m, compression positive) and `shear_force` (N/m)
    *   of the last solve;
    * - `normal` (-): the edge's unit outward normal, 3 components (z = 0).
