@@ -73,7 +73,9 @@ namespace rockdda::dda
                     "s",
                     "Largest (and initial) time step, > 0. Steps are cut "
                     "when the open-close iteration does not converge or a "
-                    "vertex moves too far, and grow back afterwards.");
+                    "vertex moves too far, and grow back afterwards. End "
+                    "time / Time step (the planned steps) must be at most "
+                    "1e8.");
         io::declare(prm,
                     "Minimum time step",
                     "0",
@@ -296,12 +298,12 @@ namespace rockdda::dda
           const double n = io::planned_steps(0., end_time, c.time_step);
           if (n > io::max_planned_steps)
             throw InputError(
-              prm_file + ": keys 'DDA/End time' = "
-              + io::format_number(end_time) + " s and 'DDA/Time step' = "
-              + io::format_number(c.time_step) + " s plan "
-              + io::format_number(n, 4)
+              prm_file
+              + ": keys 'DDA/End time' = " + io::format_number(end_time)
+              + " s and 'DDA/Time step' = " + io::format_number(c.time_step)
+              + " s plan " + io::format_number(n, 4)
               + " time steps (End time / Time step); at most "
-              + io::format_number(io::max_planned_steps)
+              + io::format_number(io::max_planned_steps, 3)
               + " are allowed: raise the time step or shorten the run");
         }
         io::require(c.law.shear_ratio > 0.,
@@ -679,8 +681,8 @@ namespace rockdda::dda
         context.log.line("linear solver (last step): " + solver_text);
         context.log.line(std::string(interrupted != 0 ? "DDA stopped early: "
                                                       : "DDA finished: ")
-                         + std::to_string(dda->n_steps)
-                         + " steps, " + std::to_string(dda->n_cuts) + " cuts, "
+                         + std::to_string(dda->n_steps) + " steps, "
+                         + std::to_string(dda->n_cuts) + " cuts, "
                          + io::format_number(wall, 3) + " s wall");
       }
 

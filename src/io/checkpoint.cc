@@ -86,7 +86,9 @@ namespace rockdda::io
             "Model time between checkpoints: checkpoint.bin (the full "
             "state, for 'Resume') and statistics.csv so far are written "
             "atomically into the output directory "
-              + when + "; 0 = no checkpoints.");
+              + when
+              + "; 0 = no checkpoints. A run stopped by SIGINT or SIGTERM "
+                "writes one too.");
     declare(prm,
             "Resume",
             "false",

@@ -1,5 +1,6 @@
 #include <rockdda/io/analysis.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/interrupt.h>
 #include <rockdda/io/parameters.h>
 #include <rockdda/io/provenance.h>
 #include <rockdda/seismic/ground_motion.h>
@@ -7,6 +8,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -234,7 +236,12 @@ namespace rockdda::io
     Summary    summary;
     try
       {
-        OutputDirectory     output(output_path, root);
+        OutputDirectory output(output_path, root);
+        // The files of an earlier run into this folder go first (unless
+        // this run continues it), so that no stale file (e.g. a VTU
+        // snapshot beyond the new series) is mistaken for a result.
+        const std::size_t removed
+          = analysis->resumes() ? 0 : output.remove_earlier_run();
         const RunProvenance provenance = RunProvenance::current(argc, argv);
         output.write("parameters.prm",
                      resolved_parameters(prm, provenance, prm_file));
@@ -242,10 +249,16 @@ namespace rockdda::io
         log.line("run " + provenance.date + " on " + provenance.host + " in "
                  + provenance.working_directory + ": "
                  + provenance.command_line);
+        if (removed > 0)
+          log.line("removed " + std::to_string(removed)
+                   + " files of an earlier run from " + output.path() + "/");
         for (const auto &[name, value] : provenance.fields())
           summary.add_text(name, value);
         log.line("rockdda " + analysis->name() + ": " + prm_file);
         RunContext context{output, log, summary};
+        // SIGINT / SIGTERM only set a flag from here on: 'dda' and 'heat'
+        // stop after the current step and write what they have.
+        InterruptGuard guard;
         try
           {
             analysis->run(context);
@@ -256,15 +269,36 @@ namespace rockdda::io
             output.write("log.txt", log.text());
             throw;
           }
-        const double seconds = std::chrono::duration<double>(
+        const int    received = interrupt_signal_all_ranks();
+        const double seconds  = std::chrono::duration<double>(
                                  std::chrono::steady_clock::now() - start)
                                  .count();
+        summary.add("completed", context.stopped_early ? 0. : 1., "-");
         summary.add("wall_time", seconds, "s");
         output.write("summary.csv", summary.csv());
         log.line("summary:\n" + summary.text());
-        log.line("results in "
-                 + std::filesystem::absolute(output.path()).string() + "/");
+        const std::string folder
+          = std::filesystem::absolute(output.path()).string() + "/";
+        if (received == 0 && !context.stopped_early)
+          {
+            log.line("results in " + folder);
+            output.write("log.txt", log.text());
+            return 0;
+          }
+        const std::string message
+          = context.stopped_early
+              ? "interrupted by " + signal_name(received)
+                  + "; the run stopped early and is incomplete "
+                    "(summary.csv: completed = 0). "
+                  + context.stopped_note + " Partial results in " + folder
+              : "interrupted by " + signal_name(received)
+                  + " after the analysis had finished; the results in " + folder
+                  + " are complete";
+        log.record(message);
         output.write("log.txt", log.text());
+        if (root)
+          std::cerr << "rockdda: " << message << std::endl;
+        return 128 + (received != 0 ? received : SIGINT);
       }
     catch (const InputError &e)
       {

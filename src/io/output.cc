@@ -36,11 +36,74 @@ namespace rockdda::io
 
 
   void
+  OutputDirectory::own(const std::string &pattern) const
+  {
+    if (!enabled || !owned.insert(pattern).second)
+      return;
+    std::ofstream out(file(manifest_name), std::ios::app);
+    if (out.tellp() == 0)
+      out << "# Files written by rockdda runs into this folder; the next run "
+             "that does not resume deletes them.\n";
+    out << pattern << "\n";
+    if (!out)
+      throw std::runtime_error("cannot write " + file(manifest_name));
+  }
+
+
+
+  std::size_t
+  OutputDirectory::remove_earlier_run() const
+  {
+    if (!enabled)
+      return 0;
+    std::ifstream in(file(manifest_name));
+    if (!in)
+      return 0;
+    // Patterns: exact names, or a prefix (trailing '*'); each also covers
+    // its leftover temporary files (NAME.tmp.PID).
+    std::vector<std::string> exact, prefixes;
+    std::string              line;
+    while (std::getline(in, line))
+      {
+        if (line.empty() || line[0] == '#'
+            || line.find('/') != std::string::npos || line == "."
+            || line == "..")
+          continue;
+        if (line.back() == '*')
+          prefixes.push_back(line.substr(0, line.size() - 1));
+        else
+          exact.push_back(line);
+      }
+    in.close();
+    std::size_t     removed = 0;
+    std::error_code ec;
+    for (const auto &entry : std::filesystem::directory_iterator(folder, ec))
+      {
+        if (!entry.is_regular_file(ec))
+          continue;
+        const std::string name = entry.path().filename().string();
+        bool              ours = false;
+        for (const auto &p : prefixes)
+          ours = ours || (!p.empty() && name.rfind(p, 0) == 0);
+        for (const auto &e : exact)
+          ours = ours || name == e || name.rfind(e + ".tmp.", 0) == 0;
+        if (ours && std::filesystem::remove(entry.path(), ec))
+          ++removed;
+      }
+    std::filesystem::remove(file(manifest_name), ec);
+    owned.clear();
+    return removed;
+  }
+
+
+
+  void
   OutputDirectory::write(const std::string &name,
                          const std::string &content) const
   {
     if (!enabled)
       return;
+    own(name);
     const std::string target = file(name);
     const std::string tmp
       = target + ".tmp." + std::to_string(static_cast<long>(::getpid()));
@@ -264,5 +327,13 @@ namespace rockdda::io
     buffer << text << '\n';
     if (echo)
       std::cout << text << std::endl;
+  }
+
+
+
+  void
+  Log::record(const std::string &text)
+  {
+    buffer << text << '\n';
   }
 } // namespace rockdda::io

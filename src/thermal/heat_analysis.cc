@@ -6,6 +6,7 @@
  */
 #include <rockdda/io/checkpoint.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/interrupt.h>
 #include <rockdda/io/parameters.h>
 #include <rockdda/io/progress.h>
 #include <rockdda/thermal/analyses.h>
@@ -135,6 +136,12 @@ namespace rockdda::thermal
 
       void
       run(io::RunContext &context) override;
+
+      bool
+      resumes() const override
+      {
+        return resume;
+      }
 
     private:
       HeatParameters           parameters;
@@ -336,7 +343,9 @@ namespace rockdda::thermal
                     io::DoubleInterval::positive(),
                     "s",
                     "Fixed step of the theta scheme; initial step of "
-                    "ARKODE. > 0.");
+                    "ARKODE. > 0. With the theta scheme the run plans "
+                    "(spin-up cycles x spin-up period + End time - Start "
+                    "time) / Time step steps; more than 1e8 are rejected.");
         io::declare(prm,
                     "Start time",
                     "0",
@@ -705,6 +714,42 @@ namespace rockdda::thermal
                   "Heat/Time stepping/ARKODE absolute tolerance",
                   p.arkode_absolute_tolerance,
                   "> 0 K");
+      if (p.stepper != TimeStepper::arkode)
+        {
+          // The planned step counts (fixed steps): an absurd one is a
+          // mistake in the keys, not a run to start.
+          const std::string ts      = "Heat/Time stepping/";
+          const std::string dt_text = "'" + ts + "Time step' = "
+                                      + io::format_number(p.time_step) + " s";
+          const double spin
+            = spin_up_cycles
+              * io::planned_steps(0., spin_up_period, p.time_step);
+          const double record
+            = io::planned_steps(p.start_time, end_time, p.time_step);
+          const std::string limit
+            = "; at most " + io::format_number(io::max_planned_steps, 3)
+              + " are allowed: raise the time step or shorten the ";
+          if (spin > io::max_planned_steps)
+            throw InputError(
+              prm_file + ": keys '" + ts
+              + "Spin-up cycles' = " + std::to_string(spin_up_cycles) + ", '"
+              + ts + "Spin-up period' = " + io::format_number(spin_up_period)
+              + " s and " + dt_text + " plan " + io::format_number(spin, 4)
+              + " spin-up time steps (cycles x period / time step)" + limit
+              + "spin-up");
+          if (record > io::max_planned_steps
+              || spin + record > io::max_planned_steps)
+            throw InputError(
+              prm_file + ": keys '" + ts
+              + "Start time' = " + io::format_number(p.start_time) + " s, '"
+              + ts + "End time' = " + io::format_number(end_time) + " s and "
+              + dt_text + " plan " + io::format_number(record, 4)
+              + " time steps ((End time - Start time) / time step)"
+              + (spin > 0.
+                   ? " after " + io::format_number(spin, 4) + " spin-up steps"
+                   : std::string())
+              + limit + "run");
+        }
       p.start_time -= spin_up_cycles * spin_up_period;
       const double first_time = p.start_time;
 
@@ -996,6 +1041,7 @@ namespace rockdda::thermal
       double            saved_at   = std::numeric_limits<double>::quiet_NaN();
       const auto        save_checkpoint = [&]() {
         io::BinaryWriter w = checkpoint_file.begin();
+        context.output.own("checkpoint-mesh*");
         w.put_string(solver.checkpoint(mesh_files));
         w.put<std::uint32_t>(spin_up_done);
         w.put<std::uint8_t>(recording ? 1 : 0);
@@ -1045,23 +1091,38 @@ namespace rockdda::thermal
                            + io::format_number(solver.time(), 10) + " s");
         }
 
+      // Planned steps from the current time to @p end (0: adaptive).
+      const auto planned_to = [&](const double end) -> unsigned long {
+        if (parameters.stepper == TimeStepper::arkode)
+          return 0;
+        return solver.statistics().n_steps
+               + static_cast<unsigned long>(
+                 io::planned_steps(solver.time(), end, parameters.time_step));
+      };
+      // Stopped early by SIGINT / SIGTERM, polled (on every MPI rank alike)
+      // between spin-up cycles and between output times.
+      int interrupted = 0;
       {
-        io::ProgressBar progress("heat spin-up", record_start);
-        while (spin_up_done < spin_up_cycles)
+        io::ProgressBar progress("heat spin-up",
+                                 solver.time(),
+                                 record_start,
+                                 planned_to(record_start));
+        while (spin_up_done < spin_up_cycles
+               && (interrupted = io::interrupt_signal_all_ranks()) == 0)
           {
             solver.advance_to(parameters.start_time
                               + (spin_up_done + 1) * spin_up_period);
             ++spin_up_done;
-            progress.update(spin_up_done, solver.time());
+            progress.update(solver.statistics().n_steps, solver.time());
             if (spin_up_done < spin_up_cycles)
               checkpoint_if_due();
           }
       }
-      if (spin_up_cycles > 0 && !resume)
+      if (spin_up_cycles > 0 && !resume && interrupted == 0)
         context.log.line("spin-up: " + std::to_string(spin_up_cycles)
                          + " cycles of " + io::format_number(spin_up_period, 8)
                          + " s");
-      if (!recording)
+      if (!recording && interrupted == 0)
         {
           e0        = solver.stored_heat();
           q0        = solver.boundary_heat_in();
@@ -1069,34 +1130,55 @@ namespace rockdda::thermal
           record();
           checkpoint_if_due();
         }
-      {
-        io::ProgressBar progress("heat", end_time);
-        while (solver.time() < end_time - 1e-9 * output_interval)
-          {
-            double next
-              = std::min(end_time,
-                         record_start + (n_records + 1) * output_interval);
-            ++n_records;
-            while (!vtu_pending.empty() && vtu_pending.front() <= next)
-              {
-                if (vtu_pending.front() > solver.time())
-                  solver.advance_to(vtu_pending.front());
-                if (vtu_pending.front() >= record_start - 1e-9)
-                  write_vtu();
-                vtu_pending.erase(vtu_pending.begin());
-              }
-            solver.advance_to(next);
-            record();
-            progress.update(n_records, solver.time());
-            checkpoint_if_due();
-          }
-      }
+      if (interrupted == 0)
+        {
+          io::ProgressBar progress("heat",
+                                   solver.time(),
+                                   end_time,
+                                   planned_to(end_time));
+          while (solver.time() < end_time - 1e-9 * output_interval
+                 && (interrupted = io::interrupt_signal_all_ranks()) == 0)
+            {
+              double next
+                = std::min(end_time,
+                           record_start + (n_records + 1) * output_interval);
+              ++n_records;
+              while (!vtu_pending.empty() && vtu_pending.front() <= next)
+                {
+                  if (vtu_pending.front() > solver.time())
+                    solver.advance_to(vtu_pending.front());
+                  if (vtu_pending.front() >= record_start - 1e-9)
+                    write_vtu();
+                  vtu_pending.erase(vtu_pending.begin());
+                }
+              solver.advance_to(next);
+              record();
+              progress.update(solver.statistics().n_steps, solver.time());
+              checkpoint_if_due();
+            }
+        }
       // At the End time, unless just taken there (the run can be
-      // extended); a checkpoint writes statistics.csv too.
-      if (checkpoint_interval > 0. && saved_at != solver.time())
+      // extended); a checkpoint writes statistics.csv too. An interrupted
+      // run always writes one (Resume = true continues it bit for bit).
+      if ((checkpoint_interval > 0. || interrupted != 0)
+          && saved_at != solver.time())
         save_checkpoint();
-      else if (checkpoint_interval <= 0.)
+      else if (checkpoint_interval <= 0. && interrupted == 0)
         context.output.write("statistics.csv", table.csv());
+      if (interrupted != 0)
+        {
+          context.stopped_early = true;
+          context.stopped_note
+            = "heat stopped at t = " + io::format_number(solver.time(), 10)
+              + " s of " + io::format_number(end_time, 10) + " s"
+              + (spin_up_done < spin_up_cycles
+                   ? " (spin-up cycle " + std::to_string(spin_up_done) + " of "
+                       + std::to_string(spin_up_cycles) + ")"
+                   : std::string())
+              + "; statistics.csv so far and checkpoint.bin written (set "
+                "'Heat/Time stepping/Resume' = true to continue).";
+          context.log.line(context.stopped_note);
+        }
       if (n_vtu > 0)
         context.output.write("temperature.pvd",
                              pvd + "</Collection>\n</VTKFile>\n");
@@ -1140,7 +1222,7 @@ namespace rockdda::thermal
       bool closed = true;
       for (const auto &bc : parameters.boundary_conditions)
         closed = closed && bc.type != BoundaryCondition::Type::temperature;
-      if (closed && parameters.stepper != TimeStepper::arkode)
+      if (closed && recording && parameters.stepper != TimeStepper::arkode)
         {
           // Heat added by the (non-conservative) field transfer onto
           // adapted meshes counts as input.
@@ -1158,7 +1240,7 @@ namespace rockdda::thermal
             + io::format_number(rel, 3));
         }
 
-      if (halfspace_check)
+      if (halfspace_check && interrupted == 0)
         {
           // Fit over the last whole period of the recorded samples.
           const double omega = 2. * M_PI / halfspace_period;

@@ -8,6 +8,7 @@
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
 #include <rockdda/io/parameters.h>
+#include <rockdda/io/progress.h>
 #include <rockdda/io/provenance.h>
 #include <rockdda/seismic/record.h>
 
@@ -83,8 +84,50 @@ TEST(Output, AtomicWriteLeavesNoTemporaryFile)
   EXPECT_EQ(text, "2");
   unsigned int n = 0;
   for (const auto &e : fs::directory_iterator(dir / "a" / "b"))
-    n += e.is_regular_file();
+    n += e.is_regular_file()
+         && e.path().filename() != rockdda::io::OutputDirectory::manifest_name;
   EXPECT_EQ(n, 1u); // no *.tmp.* left behind
+}
+
+
+
+TEST(Output, NewRunRemovesOnlyTheFilesOfTheEarlierRun)
+{
+  const auto dir = scratch("earlier-run");
+  {
+    const rockdda::io::OutputDirectory out(dir.string());
+    for (const char *name : {"blocks-00000.vtu", "blocks-00001.vtu", "a.csv"})
+      out.write(name, "x\n");
+    out.own("checkpoint-mesh*");
+    std::ofstream(dir / "checkpoint-mesh-0_fixed.data") << "p4est\n";
+    std::ofstream(dir / "blocks-00001.vtu.tmp.123") << "killed\n";
+  }
+  std::ofstream(dir / "user-notes.vtu") << "not rockdda's\n";
+  const rockdda::io::OutputDirectory out(dir.string());
+  EXPECT_EQ(out.remove_earlier_run(), 5u);
+  std::vector<std::string> left;
+  for (const auto &e : fs::directory_iterator(dir))
+    left.push_back(e.path().filename().string());
+  EXPECT_EQ(left, std::vector<std::string>{"user-notes.vtu"});
+  // The new run's names go into a new manifest.
+  out.write("blocks-00000.vtu", "y\n");
+  EXPECT_TRUE(fs::exists(dir / rockdda::io::OutputDirectory::manifest_name));
+  EXPECT_EQ(out.remove_earlier_run(), 1u);
+}
+
+
+
+TEST(Progress, LineShowsStepOfPlannedStepsAndEta)
+{
+  const rockdda::io::ProgressBar bar("dda", 0., 3., 3000);
+  EXPECT_EQ(bar.text(1200, 1.2, 8.),
+            "dda  step 1200/3000  t = 1.2 s of 3 s   40.0 %  ETA 12 s   ");
+  const rockdda::io::ProgressBar adaptive("heat", 10.);
+  EXPECT_EQ(adaptive.text(7, 0., 1.),
+            "heat  step 7  t = 0 s of 10 s    0.0 %  ETA -   ");
+  EXPECT_EQ(rockdda::io::planned_steps(0., 1., 0.001), 1000.);
+  EXPECT_EQ(rockdda::io::planned_steps(0., 1.00005, 0.001), 1001.);
+  EXPECT_EQ(rockdda::io::planned_steps(0., 12 * 31557600., 1.), 378691200.);
 }
 
 

@@ -29,6 +29,16 @@ namespace rockdda::io
     const OutputDirectory &output;
     Log                   &log;
     Summary               &summary;
+    /**
+     * Set by an analysis that stopped early on SIGINT or SIGTERM
+     * (interrupt_signal() polled between steps) after writing what it has:
+     * statistics.csv so far, the summary of the state reached and, if it
+     * supports them, a checkpoint. The driver then writes summary.csv with
+     * the row 'completed,0,-' and log.txt, and exits with 128 + the signal.
+     */
+    bool stopped_early = false;
+    /// What the analysis wrote when it stopped early (for the message).
+    std::string stopped_note;
   };
 
   /**
@@ -67,6 +77,17 @@ namespace rockdda::io
     virtual void
     run(RunContext &context)
       = 0;
+
+    /**
+     * True if the run continues an earlier one from its checkpoint (key
+     * 'Resume'); the driver then keeps the earlier run's files in the output
+     * folder instead of deleting them.
+     */
+    virtual bool
+    resumes() const
+    {
+      return false;
+    }
   };
 
   /// Every analysis type the driver knows.
@@ -85,7 +106,7 @@ namespace rockdda::io
   /**
    * The driver: rockdda [--validate] [--print-parameters] [FILE.prm].
    * Returns the process exit code (0 success, 1 bad input, 2 usage, 3 run-time
-   * failure).
+   * failure, 128 + N after signal N: 130 for SIGINT, 143 for SIGTERM).
    */
   int
   run_driver(int argc, char **argv);

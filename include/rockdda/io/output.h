@@ -6,6 +6,7 @@
 #ifndef ROCKDDA_IO_OUTPUT_H
 #define ROCKDDA_IO_OUTPUT_H
 
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,6 +17,13 @@ namespace rockdda::io
    * The folder one run writes into. Every file goes through write(), which
    * writes a temporary file in the same folder and renames it into place, so
    * an interrupted run never leaves a half-written file that looks valid.
+   *
+   * Every name written is first appended to the manifest
+   * rockdda-files.txt in the folder; remove_earlier_run() deletes the files
+   * it lists (the driver calls it before a run that does not resume), so a
+   * new run into the same folder leaves no files of the earlier one, e.g.
+   * VTU snapshots beyond its own series. Files rockdda did not write are
+   * never touched.
    */
   class OutputDirectory
   {
@@ -41,9 +49,31 @@ namespace rockdda::io
     void
     write(const std::string &name, const std::string &content) const;
 
+    /**
+     * Record in the manifest that this run writes file @p pattern (a name
+     * in the folder; a trailing '*' stands for any ending, for files
+     * written by other libraries such as p4est's checkpoint files). write()
+     * records its names itself.
+     */
+    void
+    own(const std::string &pattern) const;
+
+    /**
+     * Delete the files of earlier runs into this folder that the manifest
+     * lists (and their leftover temporary files), then the manifest.
+     * Returns the number of files deleted.
+     */
+    std::size_t
+    remove_earlier_run() const;
+
+    /// The manifest's name.
+    static constexpr const char *manifest_name = "rockdda-files.txt";
+
   private:
     std::string folder;
     bool        enabled;
+    /// Names already in the manifest (by this process).
+    mutable std::set<std::string> owned;
   };
 
   /**
@@ -184,6 +214,10 @@ namespace rockdda::io
     /// Append a line (a newline is added).
     void
     line(const std::string &text);
+
+    /// Append a line to log.txt only, without echoing it.
+    void
+    record(const std::string &text);
 
     /// Everything logged so far.
     std::string
