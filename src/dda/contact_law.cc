@@ -3,6 +3,7 @@
  * Mohr-Coulomb contact states of the open-close iteration (Shi 1988,
  * ch. 4; Shi 1993).
  */
+#include <rockdda/dda/block_matrices.h>
 #include <rockdda/dda/contact_law.h>
 
 #include <algorithm>
@@ -112,5 +113,21 @@ namespace rockdda::dda
       }
     r.changed = r.state != contact.state;
     return r;
+  }
+
+
+  double
+  automatic_penalty(const BlockSystem &scene, const double g)
+  {
+    double p = 0.;
+    for (const auto &m : scene.materials)
+      p = std::max(p, 10. * m.young * 1.);
+    for (const auto &b : scene.blocks)
+      {
+        const double weight
+          = scene.materials[b.material].density * b.polygon.area() * g;
+        p = std::max(p, weight / (1e-4 * block_size(b.polygon)));
+      }
+    return p;
   }
 } // namespace rockdda::dda

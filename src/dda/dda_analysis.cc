@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -148,11 +149,15 @@ namespace rockdda::dda
                     "distance of a block is 2.5 times its limit.");
         io::declare(prm,
                     "Contact penalty",
-                    "0",
-                    Double(0.),
+                    "auto",
+                    dealii::Patterns::Anything(),
                     "N/m",
-                    "Normal contact spring stiffness per metre of thickness; "
-                    "0 = 10 x the largest Young's modulus (x 1 m).");
+                    "Normal contact spring stiffness per metre of thickness: "
+                    "a positive number, or 'auto' (also 0) = the larger of "
+                    "10 x the largest Young's modulus (x 1 m) and the "
+                    "stiffness with which the heaviest block, on one "
+                    "contact under its own weight, sinks by at most 1e-4 of "
+                    "its size. The value used is in log.txt.");
         io::declare(prm,
                     "Shear penalty ratio",
                     "0.4",
@@ -267,21 +272,34 @@ namespace rockdda::dda
         c.hold_fraction  = prm.get_double("Hold fraction");
         c.inexact_factor = prm.get_double("Inexact solve factor");
         c.max_displacement_ratio = prm.get_double("Maximum displacement ratio");
-        c.law.normal_penalty     = prm.get_double("Contact penalty");
-        c.law.shear_ratio        = prm.get_double("Shear penalty ratio");
-        c.fixed_penalty          = prm.get_double("Fixed point penalty");
-        const std::string solver = prm.get("Linear solver");
-        c.solver.type            = solver == "direct"      ? SolverType::direct
-                                   : solver == "iterative" ? SolverType::iterative
-                                                           : SolverType::automatic;
-        c.solver.tolerance       = prm.get_double("Solver tolerance");
-        c.solver.threads         = prm.get_integer("Threads");
-        c.solver.preconditioner  = prm.get("Preconditioner") == "block-jacobi"
-                                     ? Preconditioner::block_jacobi
-                                     : Preconditioner::block_dilu;
-        settling_steps           = prm.get_integer("Settling steps");
-        checkpoint_interval      = prm.get_double("Checkpoint interval");
-        resume                   = prm.get_bool("Resume");
+        {
+          const std::string p   = prm.get("Contact penalty");
+          char             *end = nullptr;
+          const double      v   = std::strtod(p.c_str(), &end);
+          if (p == "auto")
+            c.law.normal_penalty = 0.;
+          else if (end != p.c_str() && *end == '\0' && std::isfinite(v)
+                   && v >= 0.)
+            c.law.normal_penalty = v;
+          else
+            throw InputError(prm_file + ": key 'DDA/Contact penalty' = '" + p
+                             + "'; valid: 'auto' or a stiffness >= 0 N/m "
+                               "(0 = auto)");
+        }
+        c.law.shear_ratio         = prm.get_double("Shear penalty ratio");
+        c.fixed_penalty           = prm.get_double("Fixed point penalty");
+        const std::string solver  = prm.get("Linear solver");
+        c.solver.type             = solver == "direct"      ? SolverType::direct
+                                    : solver == "iterative" ? SolverType::iterative
+                                                            : SolverType::automatic;
+        c.solver.tolerance        = prm.get_double("Solver tolerance");
+        c.solver.threads          = prm.get_integer("Threads");
+        c.solver.preconditioner   = prm.get("Preconditioner") == "block-jacobi"
+                                      ? Preconditioner::block_jacobi
+                                      : Preconditioner::block_dilu;
+        settling_steps            = prm.get_integer("Settling steps");
+        checkpoint_interval       = prm.get_double("Checkpoint interval");
+        resume                    = prm.get_bool("Resume");
         const double      gravity = prm.get_double("Gravity");
         const std::string mode    = prm.get("Seismic input");
         output_interval           = prm.get_double("Output interval");
@@ -330,12 +348,7 @@ namespace rockdda::dda
         BlockSystem scene = read_block_file(path);
         scene.gravity     = geometry::Point(0., -gravity);
         if (c.law.normal_penalty == 0.)
-          {
-            double e_max = 0.;
-            for (const auto &m : scene.materials)
-              e_max = std::max(e_max, m.young);
-            c.law.normal_penalty = 10. * e_max * 1.;
-          }
+          c.law.normal_penalty = automatic_penalty(scene, gravity);
         if (mode != "none")
           {
             motion.parse_parameters(prm, prm_file);

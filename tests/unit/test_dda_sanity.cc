@@ -8,6 +8,7 @@
  * ran to the end without a word (block 4.67 m through the incline; every
  * block dropped 19.6 m; PGA 407 g).
  */
+#include <rockdda/dda/block_matrices.h>
 #include <rockdda/dda/engine.h>
 
 #include <gtest/gtest.h>
@@ -103,4 +104,33 @@ TEST(DdaSanity, RecordInTheWrongUnitsIsFlagged)
     a /= 981.;
   DdaSystem plausible(s, controls(1e-3, 1., 1e11));
   EXPECT_FALSE(any_contains(plausible.warnings(), "cm/s^2"));
+}
+
+
+
+TEST(DdaSanity, AutomaticPenaltyKeepsPenetrationSmall)
+{
+  // 'Contact penalty = auto': at least 10 E x 1 m, and stiff enough that
+  // the heaviest block sinks by at most 1e-4 of its size under its own
+  // weight; the plausibility check then has nothing to say. A 40 m x 20 m
+  // block of E = 0.1 GPa needs more than 10 E.
+  for (const double size : {1., 40.})
+    {
+      BlockSystem s = incline_scene(0., 40., size, 0.5 * size, 4. * size);
+      s.materials[0].young = 1e8;
+      const double p       = automatic_penalty(s, g_earth);
+      const double weight  = 2700. * 0.5 * size * size * g_earth;
+      EXPECT_GE(p, 10. * 1e8);
+      if (size > 10.)
+        EXPECT_GT(p, 10. * 1e8);
+      const double b_size = block_size(s.blocks[1].polygon);
+      EXPECT_LE(weight / p, 1e-4 * b_size * (1. + 1e-12));
+      DdaSystem dda(s, controls(1e-3, 1., p));
+      EXPECT_FALSE(any_contains(dda.warnings(), "contact penalty")) << size;
+      std::printf("block %g m: automatic penalty %.3e N/m, sinks %.2e of "
+                  "its size\n",
+                  size,
+                  p,
+                  weight / p / b_size);
+    }
 }

@@ -96,6 +96,16 @@ namespace rockdda::dda
               const ContactLaw        &law,
               const JointMaterial     &joint);
 
+  /**
+   * Automatic normal penalty (N/m) for @p scene under gravity @p g (m/s^2):
+   * the larger of 10 x the largest Young's modulus x 1 m (the usual DDA
+   * choice, Shi 1993) and the stiffness with which the heaviest block,
+   * resting on one contact under its own weight, sinks by at most 1e-4 of
+   * its size.
+   */
+  double
+  automatic_penalty(const BlockSystem &scene, const double g);
+
   /// Whether a contact carries no shear at all: no friction and no intact
   /// cohesion.
   inline bool
