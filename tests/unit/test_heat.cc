@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "heat_test_scenes.h"
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -570,18 +571,12 @@ namespace
       0., 0., l1, 1., {"adiabatic", "joint", "adiabatic", "left end"});
     Block b2 = rectangle(
       l1, 0., l1 + l2, 1., {"adiabatic", "right end", "adiabatic", "joint"});
-    b1.name     = "left block";
-    b2.name     = "right block";
-    b2.material = 1;
-    p.blocks    = {b1, b2};
-    BoundaryCondition left, right;
-    left.tag              = "left end";
-    left.type             = BoundaryCondition::Type::temperature;
-    left.value            = [tl](double, double, double) { return tl; };
-    right                 = left;
-    right.tag             = "right end";
-    right.value           = [tr](double, double, double) { return tr; };
-    p.boundary_conditions = {left, right, constant_flux("joint", 0.)};
+    b1.name               = "left block";
+    b2.name               = "right block";
+    b2.material           = 1;
+    p.blocks              = {b1, b2};
+    p.boundary_conditions = test_scenes::fixed_end_temperatures(tl, tr);
+    p.boundary_conditions.push_back(constant_flux("joint", 0.));
     p.joint_contact       = contact;
     p.joint_conductance   = hj;
     p.degree              = 2;

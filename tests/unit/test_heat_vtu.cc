@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "heat_test_scenes.h"
 #include "vtu_reader.h"
 #include <algorithm>
 #include <cmath>
@@ -63,16 +64,9 @@ TEST(HeatVtu, HeatFluxOfSteadyConduction)
   Block b1 = rectangle(0., l1, {"adiabatic", "joint", "adiabatic", "left end"});
   Block b2
     = rectangle(l1, l1 + l2, {"adiabatic", "right end", "adiabatic", "joint"});
-  b2.material = 1;
-  p.blocks    = {b1, b2};
-  BoundaryCondition left, right;
-  left.tag              = "left end";
-  left.type             = BoundaryCondition::Type::temperature;
-  left.value            = [tl](double, double, double) { return tl; };
-  right                 = left;
-  right.tag             = "right end";
-  right.value           = [tr](double, double, double) { return tr; };
-  p.boundary_conditions = {left, right};
+  b2.material           = 1;
+  p.blocks              = {b1, b2};
+  p.boundary_conditions = test_scenes::fixed_end_temperatures(tl, tr);
   p.joint_contact       = HeatParameters::JointContact::perfect;
   p.degree              = 2;
   p.coarse_cell_size    = 0.25;
