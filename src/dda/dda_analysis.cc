@@ -128,15 +128,18 @@ namespace rockdda::dda
                     "holding.");
         io::declare(prm,
                     "Inexact solve factor",
-                    "1000",
+                    "1",
                     Double(1., 1e6),
                     "-",
                     "While the contact states settle, CG solves to this "
                     "factor x Solver tolerance (inexact Newton); the settled "
                     "states are then confirmed by a solve to Solver "
-                    "tolerance, so the accepted step is unchanged. 1: every "
-                    "solve to Solver tolerance. No effect with the direct "
-                    "solver.");
+                    "tolerance, so the accepted step is unchanged. 1 (the "
+                    "default): every solve to Solver tolerance; 1000 halved "
+                    "the CG iterations on a wall from rest but, once the "
+                    "first solve of each step is exact, no longer saves "
+                    "time and costs extra iterations on large walls. No "
+                    "effect with the direct solver.");
         io::declare(prm,
                     "Maximum displacement ratio",
                     "0.01",

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace rockdda::dda
 {
@@ -256,5 +257,6 @@ namespace rockdda::dda
     friction_work       = friction;
     load_work           = loads;
     first_detection     = first;
+    accepted_balance    = std::numeric_limits<double>::quiet_NaN();
   }
 } // namespace rockdda::dda

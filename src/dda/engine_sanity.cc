@@ -95,7 +95,8 @@ namespace rockdda::dda
 
 
   std::string
-  DdaSystem::implausible_state(const double energy_before) const
+  DdaSystem::implausible_state(const double energy_before,
+                               double      &balance) const
   {
     const auto at = [&]() { return " at t = " + num(t) + " s"; };
     // Energy: the ledger may only lose energy (the time integration
@@ -104,9 +105,10 @@ namespace rockdda::dda
     // a sliver, a time step too long for the contact stiffness).
     if (scene.seismic.mode != SeismicInput::Mode::displacement)
       {
-        const EnergyLedger e     = energy();
-        const double       gain  = e.balance() - energy_before;
-        const double       allow = ctrl.energy_tolerance * e.scale();
+        const EnergyLedger e = energy();
+        balance              = e.balance();
+        const double gain    = balance - energy_before;
+        const double allow   = ctrl.energy_tolerance * e.scale();
         if (gain > allow && gain > 0.)
           {
             // The block that gained most kinetic energy.

@@ -14,6 +14,7 @@
 #include <rockdda/dda/linear_solver.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -60,7 +61,7 @@ namespace rockdda::dda
     /// CG tolerance while the contact states settle = inexact_factor x the
     /// solver tolerance; the settled states are confirmed by one solve to
     /// the solver tolerance (<= 1: every solve to the solver tolerance).
-    double inexact_factor = 1000.;
+    double inexact_factor = 1.;
     /// Contact springs.
     ContactLaw law;
     /// Fixed-point spring stiffness (N/m); 0 = 10 * the normal penalty.
@@ -318,10 +319,11 @@ namespace rockdda::dda
     /**
      * The physical sanity checks of an attempted step (Controls): returns
      * an empty string if the state after update() is plausible, else the
-     * diagnosis (block, contact, quantity, likely cause).
+     * diagnosis (block, contact, quantity, likely cause). Sets @p balance
+     * to the energy balance of the state (when it is computed).
      */
     std::string
-    implausible_state(const double energy_before) const;
+    implausible_state(const double energy_before, double &balance) const;
     /// Mohr-Coulomb on the resultant of each face group (Assembler::groups):
     /// its locked members slide together or not at all (a held member adds
     /// its hold tolerance, N/m, to the group's).
@@ -355,6 +357,10 @@ namespace rockdda::dda
     /// Fastest motion the scene can produce apart from gravity (m/s): the
     /// initial block speeds and the largest ground velocity of the record.
     double speed_bound = 0.;
+    /// Energy balance after the last accepted step (NaN: to be computed),
+    /// and the state a rejected step restores (kept buffers).
+    double      accepted_balance = std::numeric_limits<double>::quiet_NaN();
+    BlockSystem backup;
     /// Contacts found by the first detection are intact joints (cohesion
     /// and tensile strength); contacts that form later are not bonded.
     bool first_detection = true;
