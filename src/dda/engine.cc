@@ -388,7 +388,6 @@ namespace rockdda::dda
           }
       const double mean_force = n_closed > 0 ? force_sum / n_closed : 0.;
       std::vector<StateCheck> checks(contacts.size());
-      update_factors();
       for_each_half(halves(),
                     contacts.size(),
                     [&](int, const std::size_t lo, const std::size_t hi) {
@@ -508,10 +507,12 @@ namespace rockdda::dda
         // Line search along the Newton direction (engine_line_search.cc),
         // from the second iteration on (the first starts from the previous
         // step's increments, not from a point of the current states).
+        // The state check's tolerances for this iteration (they depend on
+        // the state changes so far), used by the search and the check.
+        update_factors();
         double alpha = 1.;
         if (ctrl.line_search && it > 1 && !damped_last)
           {
-            update_factors();
             alpha = line_search(contacts, x_prev, x, factor, hold);
             if (alpha < 1.)
               x = x_prev + alpha * (x - x_prev);

@@ -7,8 +7,6 @@
  */
 #include "heat_solver_mpi.h"
 
-#include "heat_flux.h"
-
 #include <rockdda/io/binary_stream.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
@@ -40,6 +38,7 @@
 #include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include "heat_flux.h"
 #include "heat_internal.h"
 #include <cmath>
 #include <fstream>
