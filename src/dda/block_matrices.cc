@@ -157,6 +157,16 @@ namespace rockdda::dda
   }
 
 
+  Eigen::Vector3d
+  thermal_eigenstrain(const BlockMaterial &material, const double free_strain)
+  {
+    const double e = material.plane_strain
+                       ? (1. + material.poisson) * free_strain
+                       : free_strain;
+    return Eigen::Vector3d(e, e, 0.);
+  }
+
+
 
   geometry::Point
   move_point(const geometry::Point &c,

@@ -620,6 +620,21 @@ namespace rockdda::dda
       load_work += l.force.dot(
         displacement_matrix(assembler.moments()[l.block].centroid, l.point)
         * x.segment<6>(6 * l.block));
+    // Work of the eigenstrain change on the stress, -A sigma_mid . d eps*
+    // (exact: the stress is linear in the step).
+    for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+      {
+        const Block &block = scene.blocks[b];
+        if (block.eigenstrain == block.applied_eigenstrain)
+          continue;
+        const Eigen::Vector3d de
+          = block.eigenstrain - block.applied_eigenstrain;
+        const Eigen::Matrix3d C
+          = elasticity_matrix(scene.materials[block.material]);
+        const Eigen::Vector3d sigma_mid
+          = block.stress + 0.5 * C * (x.segment<3>(6 * b + 3) - de);
+        load_work += -assembler.moments()[b].area * sigma_mid.dot(de);
+      }
     if (a_ground != 0.)
       for (std::size_t b = 0; b < scene.blocks.size(); ++b)
         load_work += -a_ground * assembler.masses()[b](0, 0)
@@ -630,6 +645,7 @@ namespace rockdda::dda
     backup.fixed_points       = scene.fixed_points;
     backup.load_points        = scene.load_points;
     backup.measurement_points = scene.measurement_points;
+    attempt_length            = h;
     update(x, h);
     std::swap(current_contacts, contacts);
     t += h;
@@ -756,7 +772,13 @@ namespace rockdda::dda
         block.velocity = (2. / h) * D - ctrl.dynamic * block.velocity;
         const Eigen::Matrix3d C
           = elasticity_matrix(scene.materials[block.material]);
-        Eigen::Vector3d sigma = block.stress + C * D.segment<3>(3);
+        // The eigenstrain change of the step is not elastic strain.
+        Eigen::Vector3d sigma
+          = block.stress
+            + C
+                * (D.segment<3>(3)
+                   - (block.eigenstrain - block.applied_eigenstrain));
+        block.applied_eigenstrain = block.eigenstrain;
         // Rotate the accumulated stress and strain with the block.
         const double    cr = std::cos(D[2]), sr = std::sin(D[2]);
         Eigen::Matrix2d R;
@@ -783,6 +805,33 @@ namespace rockdda::dda
       m.point = move_point(moments[m.block].centroid,
                            x.segment<6>(6 * m.block),
                            m.point);
+  }
+
+
+
+  void
+  DdaSystem::set_eigenstrains(const std::vector<Eigen::Vector3d> &eigenstrains)
+  {
+    if (eigenstrains.size() != scene.blocks.size())
+      throw InputError("set_eigenstrains: "
+                       + std::to_string(eigenstrains.size())
+                       + " eigenstrains for "
+                       + std::to_string(scene.blocks.size()) + " blocks");
+    eigenstrain_motion = 0.;
+    for (std::size_t b = 0; b < eigenstrains.size(); ++b)
+      {
+        eigenstrain_motion
+          = std::max(eigenstrain_motion,
+                     (eigenstrains[b] - scene.blocks[b].applied_eigenstrain)
+                         .cwiseAbs()
+                         .maxCoeff()
+                       * domain);
+        if (!eigenstrains[b].allFinite())
+          throw InputError("set_eigenstrains: the eigenstrain of block "
+                           + std::to_string(scene.blocks[b].id)
+                           + " is not finite");
+        scene.blocks[b].eigenstrain = eigenstrains[b];
+      }
   }
 
 

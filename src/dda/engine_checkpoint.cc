@@ -17,7 +17,7 @@ namespace rockdda::dda
   namespace
   {
     constexpr char          magic[]        = "rockdda DDA checkpoint";
-    constexpr std::uint32_t format_version = 3;
+    constexpr std::uint32_t format_version = 4;
     using io::BinaryReader;
     using io::BinaryWriter;
 
@@ -85,6 +85,8 @@ namespace rockdda::dda
         put_vector<6>(w, b.velocity);
         put_vector<3>(w, b.stress);
         put_vector<3>(w, b.strain);
+        put_vector<3>(w, b.eigenstrain);
+        put_vector<3>(w, b.applied_eigenstrain);
         put_point(w, b.initial_centroid);
         w.put(b.rotation);
       }
@@ -162,6 +164,8 @@ namespace rockdda::dda
         get_vector<6>(r, b.velocity);
         get_vector<3>(r, b.stress);
         get_vector<3>(r, b.strain);
+        get_vector<3>(r, b.eigenstrain);
+        get_vector<3>(r, b.applied_eigenstrain);
         b.initial_centroid = get_point(r);
         b.rotation         = r.get<double>();
       }

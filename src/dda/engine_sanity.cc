@@ -164,9 +164,10 @@ namespace rockdda::dda
                  + " Pa is too low for the load (check its units)";
       }
     // Speed.
-    const double bound
-      = ctrl.speed_factor * (scene.gravity.norm() * t + speed_bound)
-        + 1e-9 * domain / ctrl.time_step;
+    const double bound = ctrl.speed_factor
+                           * (scene.gravity.norm() * t + speed_bound
+                              + 2. * eigenstrain_motion / attempt_length)
+                         + 1e-9 * domain / ctrl.time_step;
     for (const auto &b : scene.blocks)
       {
         const double v = b.velocity.head<2>().norm();
@@ -176,8 +177,9 @@ namespace rockdda::dda
                  + ", faster than anything the scene can "
                    "produce ("
                  + num(bound)
-                 + " m/s: free fall since t = 0, the ground velocity and "
-                   "the initial speeds): a contact released energy";
+                 + " m/s: free fall since t = 0, the ground velocity, "
+                   "the initial speeds and the eigenstrain change): a "
+                   "contact released energy";
       }
     return "";
   }

@@ -66,6 +66,15 @@ namespace rockdda::dda
   elasticity_matrix(const BlockMaterial &material);
 
   /**
+   * In-plane eigenstrain (eps_x, eps_y, gamma_xy) of an isotropic free
+   * expansion @p free_strain = alpha (T - T_ref) (-): (1 + nu) alpha dT in
+   * plane strain (the out-of-plane strain is held at zero, so the block
+   * expands more in its plane), alpha dT in plane stress.
+   */
+  Eigen::Vector3d
+  thermal_eigenstrain(const BlockMaterial &material, const double free_strain);
+
+  /**
    * New position of a material point under the block increment @p d with
    * the rotation treated exactly: x' = c + (u0, v0) + R(r0) (I + E)(x - c),
    * E = [[eps_x, gamma/2], [gamma/2, eps_y]]. A pure rotation keeps lengths

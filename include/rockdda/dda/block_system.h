@@ -72,6 +72,15 @@ namespace rockdda::dda
     Eigen::Vector3d stress = Eigen::Vector3d::Zero();
     /// Accumulated strain (eps_x, eps_y, gamma_xy) (-).
     Eigen::Vector3d strain = Eigen::Vector3d::Zero();
+    /// Eigenstrain (eps_x, eps_y, gamma_xy) in the scene's frame (-): the
+    /// in-plane strain the block would take if it were free, e.g. thermal
+    /// expansion (thermal_eigenstrain()). Set by the caller between steps
+    /// (DdaSystem::set_eigenstrains); the stress is C (strain - eigenstrain)
+    /// and the next step loads the block by the change, an initial-strain
+    /// load A C (eigenstrain - applied_eigenstrain) on its strain terms.
+    Eigen::Vector3d eigenstrain = Eigen::Vector3d::Zero();
+    /// The eigenstrain already in the block's stress (-).
+    Eigen::Vector3d applied_eigenstrain = Eigen::Vector3d::Zero();
     /// Centroid at t = 0 (m); displacement = centroid now - this.
     geometry::Point initial_centroid = geometry::Point::Zero();
     /// Cumulative rotation (rad).

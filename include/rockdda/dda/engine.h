@@ -182,6 +182,15 @@ namespace rockdda::dda
     void
     settle(const unsigned int steps);
 
+    /**
+     * Set the eigenstrain of every block (in the order of the scene's
+     * blocks; Block::eigenstrain), e.g. thermal strains from the coupling.
+     * The next step loads each block by the change since the last step.
+     * Throws InputError if the size differs or a value is not finite.
+     */
+    void
+    set_eigenstrains(const std::vector<Eigen::Vector3d> &eigenstrains);
+
     /// Advance until @p end_time (s); the last step is shortened to end
     /// there. Returns the report of the last step.
     StepReport
@@ -357,6 +366,10 @@ namespace rockdda::dda
     /// Fastest motion the scene can produce apart from gravity (m/s): the
     /// initial block speeds and the largest ground velocity of the record.
     double speed_bound = 0.;
+    /// Largest motion the last eigenstrain change can produce (m): the
+    /// change times the domain size; and the length of the step being
+    /// attempted (s). Together they bound the speed of the thermal motion.
+    double eigenstrain_motion = 0., attempt_length = 0.;
     /// Energy balance after the last accepted step (NaN: to be computed),
     /// and the state a rejected step restores (kept buffers).
     double      accepted_balance = std::numeric_limits<double>::quiet_NaN();
