@@ -14,6 +14,7 @@ namespace rockdda::analytical
     list.push_back(internal::make_yield_analysis());
     list.push_back(internal::make_rate_state_analysis());
     list.push_back(internal::make_back_analysis());
+    list.push_back(internal::make_ratchet_analytical_analysis());
     return list;
   }
 

@@ -1,7 +1,8 @@
 /**
  * @file
  * The analysis types of the analytical subsystem (sliding blocks, yield
- * acceleration, rate-and-state friction, back-analysis) as the driver sees
+ * acceleration, rate-and-state friction, back-analysis, the analytical
+ * thermal ratchet) as the driver sees
  * them, and the shared "Friction" parameter section.
  */
 #ifndef ROCKDDA_ANALYTICAL_ANALYSES_H
@@ -32,6 +33,8 @@ namespace rockdda::analytical
     make_rate_state_analysis();
     std::unique_ptr<io::Analysis>
     make_back_analysis();
+    std::unique_ptr<io::Analysis>
+    make_ratchet_analytical_analysis();
   } // namespace internal
 
   /// Declare the shared "Friction" section (once; later calls do nothing).
