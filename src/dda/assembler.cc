@@ -46,12 +46,43 @@ namespace rockdda::dda
     // representation error of the coordinates in the local frame.
     k.tolerance = round_off_tolerance(
       std::min(block_size[c.block_i], block_size[c.block_j]), P, Q0);
-    // Force scale: the weight of the lighter block.
-    const double weight = std::min(mass[c.block_i](0, 0), mass[c.block_j](0, 0))
-                          * params.body_acceleration.norm();
-    k.force_tolerance
-      = std::max(1e-4 * weight, params.law.normal_penalty * k.tolerance);
+    // The springs of a rigid joint (the penalty); set_springs() puts the
+    // joint's stiffness in series once the contact length is known.
+    k.normal_stiffness = params.law.normal_penalty;
+    k.shear_stiffness  = params.law.shear_penalty();
+    k.force_tolerance  = force_tolerance_of(k, c.block_i, c.block_j);
     return k;
+  }
+
+
+
+  double
+  Assembler::force_tolerance_of(const ContactKinematics &k,
+                                const int                block_i,
+                                const int                block_j) const
+  {
+    // Force scale: the weight of the lighter block.
+    const double weight = std::min(mass[block_i](0, 0), mass[block_j](0, 0))
+                          * params.body_acceleration.norm();
+    return std::max(1e-4 * weight, k.normal_stiffness * k.tolerance);
+  }
+
+
+
+  void
+  Assembler::set_springs(const int c, const Contact &contact)
+  {
+    ContactKinematics   &k = contact_kinematics[c];
+    const ContactSprings springs
+      = contact_springs(params.law, joints[contact.joint], k.length);
+    if (springs.normal == k.normal_stiffness
+        && springs.shear == k.shear_stiffness)
+      return;
+    k.normal_stiffness = springs.normal;
+    k.shear_stiffness  = springs.shear;
+    k.force_tolerance  = force_tolerance_of(k,
+                                           contact.geometry.block_i,
+                                           contact.geometry.block_j);
   }
 
 
@@ -273,6 +304,11 @@ namespace rockdda::dda
         n_groups += b - a > 1 ? 1 : 0;
         a = b;
       }
+    // The joints' stiffness over the contact lengths, in series with the
+    // penalty.
+    if (any_joint_stiffness(joints))
+      for (std::size_t c = 0; c < contacts.size(); ++c)
+        set_springs(static_cast<int>(c), contacts[c]);
     std::vector<std::pair<int, int>> unique_pairs = pairs;
     std::sort(unique_pairs.begin(), unique_pairs.end());
     unique_pairs.erase(std::unique(unique_pairs.begin(), unique_pairs.end()),
@@ -291,10 +327,47 @@ namespace rockdda::dda
                                  const int          index,
                                  const Contact     &contact)
   {
-    const double length = contact_kinematics[index].length;
-    contact_kinematics[index]
-      = contact_kinematics_of(system, contact.geometry, contact.xi_ref);
-    contact_kinematics[index].length = length;
+    // Only the shear reference changes: the length, the springs and the
+    // force tolerance stay.
+    const ContactKinematics old = contact_kinematics[index];
+    ContactKinematics      &k   = contact_kinematics[index];
+    k        = contact_kinematics_of(system, contact.geometry, contact.xi_ref);
+    k.length = old.length;
+    k.normal_stiffness = old.normal_stiffness;
+    k.shear_stiffness  = old.shear_stiffness;
+    k.force_tolerance  = old.force_tolerance;
+  }
+
+
+
+  std::vector<double>
+  Assembler::contact_lengths(const BlockSystem          &system,
+                             const std::vector<Contact> &contacts)
+  {
+    // The rule of prepare_step(): each pair of faces' overlap shared
+    // equally by its vertex contacts.
+    std::vector<double>                        length(contacts.size(), 0.);
+    std::vector<double>                        overlap(contacts.size(), 0.);
+    std::vector<std::pair<std::uint64_t, int>> faces;
+    for (std::size_t c = 0; c < contacts.size(); ++c)
+      {
+        const auto [o, key] = face_overlap(system, contacts[c].geometry);
+        overlap[c]          = o;
+        if (o > 0.)
+          faces.emplace_back(key, static_cast<int>(c));
+      }
+    std::sort(faces.begin(), faces.end());
+    for (std::size_t a = 0; a < faces.size();)
+      {
+        std::size_t b = a;
+        while (b < faces.size() && faces[b].first == faces[a].first)
+          ++b;
+        for (std::size_t k = a; k < b; ++k)
+          length[faces[k].second]
+            = overlap[faces[k].second] / static_cast<double>(b - a);
+        a = b;
+      }
+    return length;
   }
 
 
@@ -313,9 +386,7 @@ namespace rockdda::dda
       }
     for (auto &m : K.off)
       m.setZero();
-    const double p          = params.law.normal_penalty;
-    const double ps         = params.law.shear_penalty();
-    auto         add_spring = [&](const int      c,
+    auto add_spring = [&](const int      c,
                           const double   k,
                           const Vector6 &e,
                           const Vector6 &h,
@@ -337,9 +408,9 @@ namespace rockdda::dda
         const ContactKinematics &kin = contact_kinematics[c];
         if (ct.state == ContactState::open)
           continue;
-        add_spring(c, p, kin.en, kin.hn, kin.g0);
+        add_spring(c, kin.normal_stiffness, kin.en, kin.hn, kin.g0);
         if (ct.state == ContactState::locked)
-          add_spring(c, ps, kin.es, kin.hs, kin.s0);
+          add_spring(c, kin.shear_stiffness, kin.es, kin.hs, kin.s0);
         else
           {
             // Sliding: the friction force opposes the sliding direction.

@@ -6,6 +6,7 @@
 #include <rockdda/io/error.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -102,7 +103,12 @@ namespace rockdda::dda
           }
         else if (keyword == "joint")
           {
-            expect(4, 4, "joint ID FRICTION_DEG COHESION TENSILE");
+            const char *form = "joint ID FRICTION_DEG COHESION TENSILE "
+                               "[NORMAL_STIFFNESS SHEAR_STIFFNESS]";
+            expect(4, 6, form);
+            if (words.size() == 5)
+              throw InputError(where + "expected '" + form
+                               + "' (both stiffnesses or neither)");
             const int id = integer(0);
             if (joints.count(id))
               throw InputError(where + "joint " + std::to_string(id)
@@ -111,7 +117,22 @@ namespace rockdda::dda
             j.friction_deg = number(1);
             j.cohesion     = number(2);
             j.tensile      = number(3);
-            joints[id]     = static_cast<int>(system.joints.size());
+            if (words.size() == 6)
+              for (const std::size_t k : {std::size_t(4), std::size_t(5)})
+                {
+                  char        *end = nullptr;
+                  const double v   = std::strtod(words[k].c_str(), &end);
+                  if (end == words[k].c_str() || *end != '\0'
+                      || !std::isfinite(v) || !(v >= 0.))
+                    throw InputError(
+                      where + "joint " + std::to_string(id) + ": "
+                      + (k == 4 ? "normal" : "shear") + " stiffness '"
+                      + words[k]
+                      + "' Pa/m; valid: a number >= 0 (0: a rigid joint, "
+                        "only the contact penalty acts)");
+                  (k == 4 ? j.normal_stiffness : j.shear_stiffness) = v;
+                }
+            joints[id] = static_cast<int>(system.joints.size());
             system.joints.push_back(j);
           }
         else if (keyword == "block")

@@ -39,16 +39,17 @@ namespace rockdda::dda
               const ContactKinematics &kin,
               const double             g,
               const double             s,
-              const ContactLaw        &law,
               const JointMaterial     &joint)
   {
     StateCheck r;
-    r.state             = contact.state;
-    r.slide_direction   = contact.slide_direction;
-    r.normal_force      = 0.;
-    r.shear_force       = 0.;
-    const double p      = law.normal_penalty;
-    const double ps     = law.shear_penalty();
+    r.state           = contact.state;
+    r.slide_direction = contact.slide_direction;
+    r.normal_force    = 0.;
+    r.shear_force     = 0.;
+    // The contact's springs: the penalty, in series with the joint's
+    // stiffness over the contact length if it has one.
+    const double p      = kin.normal_stiffness;
+    const double ps     = kin.shear_stiffness;
     const double f      = kin.force_tolerance;
     const double f_hold = std::max(f, kin.hold_tolerance);
 

@@ -160,13 +160,19 @@ namespace rockdda::dda
                     "10 x the largest Young's modulus (x 1 m) and the "
                     "stiffness with which the heaviest block, on one "
                     "contact under its own weight, sinks by at most 1e-4 of "
-                    "its size. The value used is in log.txt.");
+                    "its size. The value used is in log.txt. A joint with "
+                    "a normal or shear stiffness (block file, 'joint' "
+                    "lines, Pa/m) acts in series with the penalty over "
+                    "each contact's length l: keep the penalty at 100 x "
+                    "k l or more for the joint's own stiffness within 1 % "
+                    "(doc/theory/dda.md, Joint stiffness).");
         io::declare(prm,
                     "Shear penalty ratio",
                     "0.4",
                     io::DoubleInterval::positive(),
                     "-",
-                    "Shear spring stiffness / normal penalty, > 0.");
+                    "Shear penalty / normal penalty, > 0 (in series with "
+                    "a joint's shear stiffness, if it has one).");
         io::declare(prm,
                     "Fixed point penalty",
                     "0",

@@ -104,6 +104,16 @@ namespace rockdda::dda
     if (!(ctrl.law.shear_ratio > 0.))
       throw InputError("shear penalty ratio " + num(ctrl.law.shear_ratio)
                        + "; valid: > 0");
+    for (std::size_t j = 0; j < scene.joints.size(); ++j)
+      for (const auto &[what, k] :
+           {std::pair<const char *, double>{"normal",
+                                            scene.joints[j].normal_stiffness},
+            {"shear", scene.joints[j].shear_stiffness}})
+        if (!(k >= 0.) || !std::isfinite(k))
+          throw InputError("joint material " + std::to_string(j + 1) + ": "
+                           + what + " stiffness " + num(k)
+                           + " Pa/m; valid: >= 0 and finite (0: a rigid "
+                             "joint, only the contact penalty acts)");
     if (!(ctrl.max_displacement_ratio > 0.))
       throw InputError("maximum displacement ratio "
                        + num(ctrl.max_displacement_ratio) + "; valid: > 0");
@@ -365,7 +375,7 @@ namespace rockdda::dda
             {
               const auto &g = contacts[c].geometry;
               hold[c]
-                = ctrl.law.shear_penalty() * ctrl.hold_fraction
+                = assembler.kinematics()[c].shear_stiffness * ctrl.hold_fraction
                   * std::min(block_size[g.block_i], block_size[g.block_j]);
             }
         }
@@ -409,7 +419,6 @@ namespace rockdda::dda
                                           *k,
                                           assembler.gap(ci, x),
                                           assembler.shear_displacement(ci, x),
-                                          ctrl.law,
                                           scene.joints[contacts[c].joint]);
                         }
                     });
@@ -449,11 +458,10 @@ namespace rockdda::dda
                     {
                       // Force continuity: the shear spring starts from
                       // the friction force the contact carried, i.e.
-                      // at displacement dir * strength / p_s from its
+                      // at displacement dir * strength / k_s from its
                       // reference, instead of dropping to zero.
-                      ct.xi_ref
-                        += r.shear_force
-                           / (ctrl.law.shear_penalty() * kin.edge_length);
+                      ct.xi_ref += r.shear_force
+                                   / (kin.shear_stiffness * kin.edge_length);
                     }
                   assembler.set_shear_reference(scene, ci, ct);
                 }
@@ -701,7 +709,6 @@ namespace rockdda::dda
     const auto         &member = assembler.group_members();
     std::vector<int>    members;
     std::vector<double> sense;
-    const double        ps = ctrl.law.shear_penalty();
     for (std::size_t g = 0; g + 1 < start.size(); ++g)
       {
         // Members: contacts that are locked, or closing, and stay closed.
@@ -733,7 +740,8 @@ namespace rockdda::dda
             const auto &g   = contacts[c].geometry;
             sense[m]        = (g.block_i < g.block_j ? 1. : -1.)
                        * (kin.tangent.dot(u) >= 0. ? 1. : -1.);
-            resultant += sense[m] * ps * assembler.shear_displacement(c, x);
+            resultant += sense[m] * kin.shear_stiffness
+                         * assembler.shear_displacement(c, x);
             strength += shear_strength(contacts[c],
                                        checks[c].normal_force,
                                        kin.length,
@@ -872,13 +880,25 @@ namespace rockdda::dda
     double       e  = 0.;
     const double p  = ctrl.law.normal_penalty;
     const double ps = ctrl.law.shear_penalty();
-    for (const auto &c : current_contacts)
+    // With joint stiffnesses each contact's springs depend on its length,
+    // taken at the current geometry by the rule of the assembly: the
+    // penalty and the joint in series store N^2 / 2 (1/p + 1/(k_n l)).
+    const bool          compliant = any_joint_stiffness(scene.joints);
+    std::vector<double> length;
+    if (compliant)
+      length = Assembler::contact_lengths(scene, current_contacts);
+    for (std::size_t k = 0; k < current_contacts.size(); ++k)
       {
+        const Contact &c = current_contacts[k];
         if (c.state == ContactState::open)
           continue;
-        e += 0.5 * c.normal_force * c.normal_force / p;
+        const ContactSprings springs
+          = compliant
+              ? contact_springs(ctrl.law, scene.joints[c.joint], length[k])
+              : ContactSprings{p, ps};
+        e += 0.5 * c.normal_force * c.normal_force / springs.normal;
         if (c.state == ContactState::locked)
-          e += 0.5 * c.shear_force * c.shear_force / ps;
+          e += 0.5 * c.shear_force * c.shear_force / springs.shear;
       }
     return e;
   }

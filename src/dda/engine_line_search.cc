@@ -6,12 +6,13 @@
  * With the shear strengths held fixed, the DDA step minimises the convex,
  * piecewise quadratic energy
  *   Pi(x) = 1/2 x^T A x - b^T x
- *           + sum_c [ 1/2 p <-g_c(x)>_+^2 + psi_c(s_c(x)) ],
+ *           + sum_c [ 1/2 p_c <-g_c(x)>_+^2 + psi_c(s_c(x)) ],
  * A and b the block terms (inertia, elasticity, loads, fixed points), g_c
- * and s_c the linearised gap and shear displacement of contact c and psi_c
- * its elastic-perfectly plastic shear spring. The open-close iteration is
- * Newton's method on grad Pi = 0 with the contact states as the active set
- * (a semismooth Newton method; Hueber & Wohlmuth 2005) and can cycle
+ * and s_c the linearised gap and shear displacement of contact c, p_c its
+ * normal spring and psi_c its elastic-perfectly plastic shear spring (the
+ * penalty, in series with the joint's stiffness if it has one). The open-close
+ * iteration is Newton's method on grad Pi = 0 with the contact states as the
+ * active set (a semismooth Newton method; Hueber & Wohlmuth 2005) and can cycle
  * between active sets when it takes full steps. The line search takes the
  * step x_k + alpha (x_hat - x_k) at which the directional derivative of
  * the energy vanishes, with each contact's force law following the state
@@ -42,14 +43,12 @@ namespace rockdda::dda
     const double a = d.dot(Kd);
     if (!(a > 0.) || !std::isfinite(a))
       return 1.;
-    const double p  = ctrl.law.normal_penalty;
-    const double ps = ctrl.law.shear_penalty();
-
     // Per contact: the gap and shear displacement at x_k and their change
     // along d, and the terms of the assembled (linearised) system.
     struct Term
     {
       double               g, dg, s, ds;
+      double               p, ps; // the contact's normal and shear spring
       bool                 closed, linear_normal;
       double               lin_shear_k, lin_shear_f; // linearised: k s + f
       double               S, o; // true: clip(ps s + o, +-(S(N) + S))
@@ -75,6 +74,8 @@ namespace rockdda::dda
         t.dg     = assembler.gap(ci, x_hat) - t.g;
         t.s      = assembler.shear_displacement(ci, x_k);
         t.ds     = assembler.shear_displacement(ci, x_hat) - t.s;
+        t.p      = kin.normal_stiffness;
+        t.ps     = kin.shear_stiffness;
         t.closed = ct.state != ContactState::open;
         t.f      = kin.force_tolerance * tolerance_factor[c];
         t.f_hold = std::max(t.f, hold_tolerance[c]);
@@ -105,7 +106,7 @@ namespace rockdda::dda
             if (ct.state == ContactState::locked)
               {
                 // slides when |p_s s| exceeds S + f;
-                t.lin_shear_k = ps;
+                t.lin_shear_k = t.ps;
                 t.S           = t.f_hold;
               }
             else
@@ -129,6 +130,7 @@ namespace rockdda::dda
       for (const Term &t : terms)
         {
           const double g = t.g + alpha * t.dg;
+          const double p = t.p;
           if (!t.linear_normal)
             {
               // With the state check's tolerance: a closed contact opens
@@ -145,17 +147,18 @@ namespace rockdda::dda
               // A locked contact slides on the strength of its normal
               // force at this point; a sliding one keeps the friction
               // force of the assembly (its update is the friction loop).
-              const double S      = t.lin_shear_k == 0.
-                                      ? t.S_sliding
-                                      : shear_strength(*t.contact,
+              const double S = t.lin_shear_k == 0.
+                                 ? t.S_sliding
+                                 : shear_strength(*t.contact,
                                                   -std::min(p * g, t.f_open),
                                                   t.length,
                                                   *t.joint);
-              const double o      = t.lin_shear_k == 0.
-                                      ? t.o + t.contact->slide_direction * S
-                                      : 0.;
-              const double f_true = std::clamp(ps * s + o, -(S + t.S), S + t.S);
-              const double f_lin  = t.lin_shear_k * s + t.lin_shear_f;
+              const double o = t.lin_shear_k == 0.
+                                 ? t.o + t.contact->slide_direction * S
+                                 : 0.;
+              const double f_true
+                = std::clamp(t.ps * s + o, -(S + t.S), S + t.S);
+              const double f_lin = t.lin_shear_k * s + t.lin_shear_f;
               v += t.ds * (f_true - f_lin);
             }
         }

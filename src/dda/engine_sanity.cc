@@ -12,6 +12,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <tuple>
+#include <vector>
 
 namespace rockdda::dda
 {
@@ -84,6 +87,35 @@ namespace rockdda::dda
         + " % of its size into a contact under its own weight; use at "
           "least "
         + num(need) + " N/m (10 to 100 x E is usual)");
+    // Joint stiffness against the penalty in series with it: the penalty
+    // adds k l / (p + k l) to a contact's compliance. A contact's length is
+    // at most the smaller of its two blocks' sizes, so at most the second
+    // largest block size (the largest if there is one block).
+    std::vector<double> sizes = block_size;
+    std::sort(sizes.begin(), sizes.end(), std::greater<double>());
+    const double largest = sizes.size() > 1 ? sizes[1] : sizes[0];
+    for (std::size_t j = 0; j < scene.joints.size(); ++j)
+      for (const auto &[what, k, p] : {std::tuple<const char *, double, double>{
+                                         "normal",
+                                         scene.joints[j].normal_stiffness,
+                                         ctrl.law.normal_penalty},
+                                       {"shear",
+                                        scene.joints[j].shear_stiffness,
+                                        ctrl.law.shear_penalty()}})
+        {
+          const double kl = k * largest;
+          if (kl > 0.01 * p)
+            warning_list.push_back(
+              "joint material " + std::to_string(j + 1) + ": its " + what
+              + " stiffness " + num(k) + " Pa/m over " + num(largest)
+              + " m (the largest possible contact length) is " + num(kl)
+              + " N/m; the penalty in series with it (" + num(p)
+              + " N/m) adds up to " + num(100. * kl / (p + kl))
+              + " % to the joint's compliance: for the joint's own "
+                "stiffness within 1 %, raise 'DDA/Contact penalty' (or the "
+                "shear penalty ratio) until the penalty is at least 100 x "
+                "that (doc/theory/dda.md, Joint stiffness)");
+        }
     // Speed bound: initial block speeds and the ground velocity.
     speed_bound = 0.;
     for (const auto &b : scene.blocks)
@@ -133,7 +165,10 @@ namespace rockdda::dda
                      "too high for the time step, or a sliver block)";
           }
       }
-    // Penetration of closed contacts.
+    // Penetration of closed contacts: only the numerical part of the
+    // closure, N / p. With a joint stiffness the penalty is in series with
+    // the joint and carries the same force N; the joint's share N / (k_n l)
+    // is the physical closure of the joint, not a penetration.
     for (const auto &c : current_contacts)
       {
         if (c.state == ContactState::open)

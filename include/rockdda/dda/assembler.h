@@ -70,7 +70,8 @@ namespace rockdda::dda
                         const int          index,
                         const Contact     &contact);
 
-    /// Kinematics of each contact (same order as the contacts).
+    /// Kinematics of each contact (same order as the contacts), with its
+    /// length and springs.
     const std::vector<ContactKinematics> &
     kinematics() const
     {
@@ -118,11 +119,22 @@ namespace rockdda::dda
     }
 
     /// Kinematics of a contact at the current geometry, with its shear
-    /// reference @p xi_ref.
+    /// reference @p xi_ref (length 0, the penalty springs of a rigid joint).
     ContactKinematics
     contact_kinematics_of(const BlockSystem      &system,
                           const ContactCandidate &candidate,
                           const double            xi_ref) const;
+
+    /**
+     * The contact length (m) of each of @p contacts at the current geometry
+     * of @p system, by the rule of prepare_step(): a vertex contact between
+     * two faces that are parallel within ~6 degrees gets an equal share of
+     * the length over which they overlap, a corner on a face 0. The shares
+     * of one pair of faces add up to its overlap.
+     */
+    static std::vector<double>
+    contact_lengths(const BlockSystem          &system,
+                    const std::vector<Contact> &contacts);
 
     /// Shear displacement (m) of contact @p index for the increments @p x.
     double
@@ -132,6 +144,17 @@ namespace rockdda::dda
     gap(const int index, const Eigen::VectorXd &x) const;
 
   private:
+    /// Force tolerance of a contact with the normal spring and round-off
+    /// of @p k between blocks @p block_i and @p block_j (N/m).
+    double
+    force_tolerance_of(const ContactKinematics &k,
+                       const int                block_i,
+                       const int                block_j) const;
+    /// Put the stiffness of contact @p c's joint (over its length) in
+    /// series with the penalty springs.
+    void
+    set_springs(const int c, const Contact &contact);
+
     StepParameters            params;
     std::vector<Matrix6>      base_matrix, mass;
     std::vector<Vector6>      base_rhs;

@@ -16,8 +16,9 @@ namespace rockdda::dda
   /**
    * Read a block file into a scene (gravity and seismic input are left at
    * their defaults). Throws InputError naming the file and line for an
-   * unknown keyword, a malformed number, a duplicate or unknown id, or a
-   * block with fewer than 3 vertices.
+   * unknown keyword, a malformed number, a duplicate or unknown id, a
+   * negative joint stiffness (naming the joint), or a block with fewer
+   * than 3 vertices.
    */
   BlockSystem
   read_block_file(const std::string &file_name);

@@ -39,7 +39,8 @@ namespace rockdda::dda
     int id = -1;
   };
 
-  /// Mohr-Coulomb strength of a joint (contact) material.
+  /// Mohr-Coulomb strength and elastic stiffness of a joint (contact)
+  /// material.
   struct JointMaterial
   {
     /// Friction angle (deg), in [0, 90).
@@ -48,6 +49,14 @@ namespace rockdda::dda
     double cohesion = 0.;
     /// Tensile strength (Pa), >= 0.
     double tensile = 0.;
+    /// Physical normal and shear stiffness of the joint (Pa/m: stress per
+    /// metre of closure or elastic slip; over a joint length l, per metre
+    /// of thickness, a spring of k l N/m), >= 0. A contact's springs are
+    /// this stiffness over its contact length in series with the numerical
+    /// penalty (contact_springs(), doc/theory/dda.md "Joint stiffness").
+    /// 0: a rigid joint, only the penalty acts.
+    double normal_stiffness = 0.;
+    double shear_stiffness  = 0.;
   };
 
   /// One block: a simple polygon with its state.

@@ -1,6 +1,7 @@
 /**
  * @file
- * The contact law of 2D DDA: penalty normal and shear springs, Mohr-Coulomb
+ * The contact law of 2D DDA: normal and shear springs (the numerical
+ * penalty in series with the joint's physical stiffness), Mohr-Coulomb
  * strength with friction, cohesion and tensile strength, and the state
  * check of the open-close iteration.
  */
@@ -11,15 +12,18 @@
 #include <rockdda/dda/contact_set.h>
 
 #include <limits>
+#include <vector>
 
 namespace rockdda::dda
 {
-  /// Spring stiffnesses (N/m per m thickness).
+  /// The numerical penalty springs (N/m per m thickness), the same for
+  /// every contact; a joint's physical stiffness acts in series with them
+  /// (contact_springs()).
   struct ContactLaw
   {
     /// Normal penalty p (N/m).
     double normal_penalty = 1e11;
-    /// Shear spring = shear_ratio * p.
+    /// Shear penalty p_s = shear_ratio * p.
     double shear_ratio = 0.4;
 
     double
@@ -29,18 +33,66 @@ namespace rockdda::dda
     }
   };
 
+  /// The normal and shear spring of one contact (N/m per m thickness).
+  struct ContactSprings
+  {
+    double normal = 0., shear = 0.;
+  };
+
+  /**
+   * The springs of a contact of length @p length (m, ContactKinematics::
+   * length) on @p joint: the joint's stiffness over that length in series
+   * with the penalty,
+   *   k_n = 1 / (1/p + 1/(k_n,joint l)),  k_s = 1 / (1/p_s + 1/(k_s,joint l)).
+   * The penalty alone (exactly p and p_s) where the joint's stiffness is 0
+   * (a rigid joint) or the length is 0 (a corner on a face: no joint
+   * surface to deform).
+   */
+  inline ContactSprings
+  contact_springs(const ContactLaw    &law,
+                  const JointMaterial &joint,
+                  const double         length)
+  {
+    ContactSprings k{law.normal_penalty, law.shear_penalty()};
+    if (length > 0.)
+      {
+        if (joint.normal_stiffness > 0.)
+          k.normal
+            = 1. / (1. / k.normal + 1. / (joint.normal_stiffness * length));
+        if (joint.shear_stiffness > 0.)
+          k.shear = 1. / (1. / k.shear + 1. / (joint.shear_stiffness * length));
+      }
+    return k;
+  }
+
+  /// Whether any joint of @p joints has a physical stiffness (otherwise
+  /// every contact spring is the penalty).
+  inline bool
+  any_joint_stiffness(const std::vector<JointMaterial> &joints)
+  {
+    for (const auto &j : joints)
+      if (j.normal_stiffness > 0. || j.shear_stiffness > 0.)
+        return true;
+    return false;
+  }
+
   /**
    * The linearised kinematics of one contact: normal gap
    * g = g0 + e_n . D_i + h_n . D_j and shear displacement
    * s = s0 + e_s . D_i + h_s . D_j (m), with e = T_i(P)^T n,
    * h = -T_j(P0)^T n (P the vertex, P0 its projection on the edge; the
-   * shear uses the edge tangent and the locked reference point), and the
-   * contact length l (m) over which cohesion and tensile strength act.
+   * shear uses the edge tangent and the locked reference point), the
+   * contact length l (m) over which cohesion, tensile strength and the
+   * joint's stiffness act, and the contact's springs.
    */
   struct ContactKinematics
   {
     double  g0 = 0., s0 = 0., length = 0.;
     Vector6 en, hn, es, hs;
+    /// Normal and shear spring of the contact (N/m): contact_springs() of
+    /// its joint and length; the normal force is -normal_stiffness g, the
+    /// shear force of a locked contact shear_stiffness s.
+    double normal_stiffness = 0., shear_stiffness = 0.;
     /// Unit tangent of the edge (m/m) and the edge's length (m).
     geometry::Point tangent;
     double          edge_length = 0.;
@@ -50,7 +102,7 @@ namespace rockdda::dda
     double tolerance = 0.;
     /// Force below which a state change is noise (N/m): 1e-4 of the
     /// weight of the lighter block (its mass times the body acceleration),
-    /// and at least the penalty times the round-off tolerance. A contact
+    /// and at least the normal spring times the round-off tolerance. A contact
     /// closes when it would carry more than this in compression, opens
     /// when its tension exceeds the tensile strength by more than this,
     /// slides when the shear force exceeds the strength by more than this,
@@ -80,20 +132,20 @@ namespace rockdda::dda
   /**
    * Mohr-Coulomb check of the open-close iteration for a contact whose
    * latest gap is @p g and shear displacement @p s (m), with force
-   * criteria (f the force tolerance):
-   * - open -> locked when the compressive force -p g exceeds f;
-   * - closed -> open when the tensile force p g exceeds T l + f (T only
+   * criteria (f the force tolerance; k_n and k_s the contact's springs,
+   * ContactKinematics::normal_stiffness and shear_stiffness):
+   * - open -> locked when the compressive force -k_n g exceeds f;
+   * - closed -> open when the tensile force k_n g exceeds T l + f (T only
    *   while the joint is intact and locked);
-   * - locked -> sliding when |p_s s| > strength + f (direction of s);
+   * - locked -> sliding when |k_s s| > strength + f (direction of s);
    * - sliding -> locked when the slip reverses against the sliding
-   *   direction by more than f / p_s.
+   *   direction by more than f / k_s.
    */
   StateCheck
   check_state(const Contact           &contact,
               const ContactKinematics &kinematics,
               const double             g,
               const double             s,
-              const ContactLaw        &law,
               const JointMaterial     &joint);
 
   /**
