@@ -273,8 +273,16 @@ namespace rockdda::dda
                                                   0.05 * Q.a1.norm(),
                                                   0.05 * Q.a2.norm()});
               const bool   coincident = dist <= ctol;
+              // Approaching vertices: within the vertex reach, and closer
+              // than half the shortest edge at either corner (a vertex
+              // farther than that is nearer to another feature: the far
+              // corner of a slender block is not a contact).
+              const double local
+                = 0.5
+                  * std::min(
+                    {P.a1.norm(), P.a2.norm(), Q.a1.norm(), Q.a2.norm()});
               if (coincident
-                  || (dist <= dv
+                  || (dist <= std::min(dv, local)
                       && (beyond_corner(P.P, Q) || beyond_corner(Q.P, P))))
                 {
                   resolve_vertex_vertex(static_cast<int>(k),
@@ -373,7 +381,24 @@ namespace rockdda::dda
             // (Outside the box: outside the block.)
             const bool in_box = P.P.x() >= bb[0] && P.P.x() <= bb[2]
                                 && P.P.y() >= bb[1] && P.P.y() <= bb[3];
-            if (!in_box || !pb.contains(P.P))
+            // A vertex on the boundary (within round-off of an edge) is
+            // not inside, whatever contains() says: otherwise, where an
+            // edge next to it fails the entrance rule, a far edge would be
+            // taken as its exit, at a depth of the block's width (slices
+            // standing side by side on a foot).
+            const auto on_boundary = [&]() {
+              const Corner *cb = corners[1 - side];
+              for (int e = 0; e < nb; ++e)
+                {
+                  const Point  r  = P.P - cb[e].P;
+                  const double xr = cb[e].t.dot(r) / cb[e].l;
+                  if (xr >= -1e-12 && xr <= 1. + 1e-12
+                      && std::abs(cb[e].n.dot(r)) <= 1e-9 * d)
+                    return true;
+                }
+              return false;
+            };
+            if (!in_box || !pb.contains(P.P) || on_boundary())
               {
                 // Outside: every edge the vertex projects onto within the
                 // search distance (both edges of a reflex corner).

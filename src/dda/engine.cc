@@ -732,6 +732,7 @@ namespace rockdda::dda
           continue;
         const geometry::Point u = assembler.kinematics()[members[0]].tangent;
         double                resultant = 0., strength = 0., tolerance = 0.;
+        double                most = 0., least = 0.;
         sense.resize(members.size());
         for (std::size_t m = 0; m < members.size(); ++m)
           {
@@ -740,14 +741,23 @@ namespace rockdda::dda
             const auto &g   = contacts[c].geometry;
             sense[m]        = (g.block_i < g.block_j ? 1. : -1.)
                        * (kin.tangent.dot(u) >= 0. ? 1. : -1.);
-            resultant += sense[m] * kin.shear_stiffness
-                         * assembler.shear_displacement(c, x);
+            const double f = sense[m] * kin.shear_stiffness
+                             * assembler.shear_displacement(c, x);
+            most  = std::max(most, f);
+            least = std::min(least, f);
+            resultant += f;
             strength += shear_strength(contacts[c],
                                        checks[c].normal_force,
                                        kin.length,
                                        scene.joints[contacts[c].joint]);
             tolerance += std::max(kin.force_tolerance, hold[c]);
           }
+        // Members pulled in opposite senses beyond the tolerance: the face
+        // is being stretched or shortened (e.g. by a thermal strain), not
+        // dragged as a rigid face, and each member slips on its own (the
+        // individual checks stand).
+        if (most > tolerance && least < -tolerance)
+          continue;
         const bool slides = std::abs(resultant) > strength + tolerance;
         for (std::size_t m = 0; m < members.size(); ++m)
           {

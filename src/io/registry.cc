@@ -1,4 +1,5 @@
 #include <rockdda/analytical/analyses.h>
+#include <rockdda/coupling/analyses.h>
 #include <rockdda/dda/analyses.h>
 #include <rockdda/io/analysis.h>
 #include <rockdda/structure/analyses.h>
@@ -17,6 +18,8 @@ namespace rockdda::io
     for (auto &a : dda::make_analyses())
       list.push_back(std::move(a));
     for (auto &a : structure::make_analyses())
+      list.push_back(std::move(a));
+    for (auto &a : coupling::make_analyses())
       list.push_back(std::move(a));
     return list;
   }

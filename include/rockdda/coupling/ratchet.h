@@ -1,0 +1,138 @@
+/**
+ * @file
+ * The coupled thermo-mechanical ratchet: annual cycles of quasi-static DDA
+ * steps of a RatchetScene loaded by the thermal eigenstrains of the
+ * periodic block temperatures (thesis 5.4; the study driver's core).
+ */
+#ifndef ROCKDDA_COUPLING_RATCHET_H
+#define ROCKDDA_COUPLING_RATCHET_H
+
+#include <rockdda/coupling/ratchet_scene.h>
+#include <rockdda/coupling/thermal_load.h>
+#include <rockdda/dda/engine.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rockdda::coupling
+{
+  /// Numerical controls of the quasi-static DDA of a ratchet run.
+  struct RatchetControls
+  {
+    /// Normal contact penalty (N/m); 0 = automatic (dda::automatic_penalty).
+    double penalty = 0.;
+    /// Pseudo time step of the static steps (s): only the inertia term
+    /// 2 M / dt^2 that regularises them depends on it.
+    double pseudo_time_step = 1.;
+    /// A sample is in equilibrium when a static step moves no vertex by more
+    /// than this fraction of the block height (1e-8: 0.15 um for Block 1,
+    /// 1e-3 of the ratchet per cycle; tighter tolerances meet the
+    /// micro-chatter of the infill's contacts, ~1e-7 m per step).
+    double equilibrium_tolerance = 1e-8;
+    /// Static steps allowed per sample before the run stops (DdaFailure).
+    unsigned int max_steps_per_sample = 400;
+    /// Static steps that settle the scene under gravity before cycle 1.
+    unsigned int settle_steps = 30;
+    /// Temperature samples per cycle at which the DDA is brought to
+    /// equilibrium (a divisor of the heat table's samples is exact).
+    unsigned int steps_per_cycle = 24;
+  };
+
+  /// What one cycle did (SI; displacement down the bedding plane).
+  struct CycleRecord
+  {
+    unsigned int cycle = 0;
+    /// Block displacement since the start and during this cycle (m).
+    double displacement = 0., permanent = 0.;
+    /// Change of the crack aperture at the top since the start (m).
+    double aperture = 0.;
+    /// Descent of the infill since the start (m).
+    double infill_descent = 0.;
+    /// Contacts per state at the end of the cycle.
+    unsigned int n_open = 0, n_sliding = 0, n_locked = 0;
+    /// Static DDA steps and step cuts of the cycle.
+    unsigned long steps = 0, cuts = 0;
+  };
+
+  /// One temperature sample within a cycle (the loop of thesis Fig. 5-6).
+  struct SampleRecord
+  {
+    double phase        = 0.; ///< fraction of the period
+    double air          = 0.; ///< air temperature, deg C
+    double block_mean   = 0.; ///< area mean temperature of the block, deg C
+    double displacement = 0.; ///< m, since the start
+    double aperture     = 0.; ///< m, change since the start
+  };
+
+  /**
+   * Runs the cycles. The DDA steps are static (dynamic control 0); at each
+   * sample the eigenstrains are set and static steps are taken until the
+   * motion per step is below the equilibrium tolerance, so the number of
+   * steps per season adapts: many while contacts change state, one or two
+   * while nothing moves.
+   */
+  class RatchetRun
+  {
+  public:
+    RatchetRun(const RatchetScene             &scene,
+               const PeriodicBlockTemperature &temperature,
+               const SeasonalForcing          &forcing,
+               const double                    alpha,
+               const RatchetControls          &controls);
+
+    /// Run the next cycle; @p samples (optional) receives its samples.
+    CycleRecord
+    run_cycle(std::vector<SampleRecord> *samples = nullptr);
+
+    /// Block displacement down the bedding plane since the start (m): the
+    /// mean of its base corners' displacements (the slip).
+    double
+    displacement() const;
+    /// Change of the crack aperture at the top since the start (m).
+    double
+    aperture() const;
+    /// Cycles done.
+    unsigned int
+    cycles() const
+    {
+      return n_cycles;
+    }
+    const dda::DdaSystem &
+    dda() const
+    {
+      return *engine;
+    }
+    /// The state to continue bit for bit (DDA state and cycle count).
+    std::string
+    checkpoint() const;
+    /// Continue from checkpoint() bytes (InputError naming @p source).
+    void
+    restore(const std::string &bytes, const std::string &source);
+
+  private:
+    /// Bring the scene to equilibrium at @p time; returns steps and cuts.
+    void
+    equilibrate(const double time, unsigned long &steps, unsigned long &cuts);
+    double
+    raw_aperture() const;
+    /// Current position of vertex (block, index).
+    const geometry::Point &
+    vertex(const std::pair<int, int> &v) const;
+
+    const RatchetScene             &scene;
+    const PeriodicBlockTemperature &temperature;
+    SeasonalForcing                 forcing;
+    double                          alpha;
+    RatchetControls                 ctrl;
+    std::unique_ptr<dda::DdaSystem> engine;
+    unsigned int                    n_cycles  = 0;
+    double                          aperture0 = 0., last_displacement = 0.;
+    double                          tolerance  = 0.;
+    double                          block_area = 0.;
+    /// Sum of the base corners' positions after settling (m).
+    geometry::Point base_corners0 = geometry::Point::Zero();
+  };
+} // namespace rockdda::coupling
+
+#endif

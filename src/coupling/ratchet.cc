@@ -1,0 +1,205 @@
+#include <rockdda/coupling/ratchet.h>
+#include <rockdda/dda/block_matrices.h>
+#include <rockdda/dda/contact_law.h>
+#include <rockdda/io/binary_stream.h>
+#include <rockdda/io/error.h>
+
+#include <cmath>
+
+namespace rockdda::coupling
+{
+  RatchetRun::RatchetRun(const RatchetScene             &scene_,
+                         const PeriodicBlockTemperature &temperature_,
+                         const SeasonalForcing          &forcing_,
+                         const double                    alpha_,
+                         const RatchetControls          &controls)
+      : scene(scene_)
+      , temperature(temperature_)
+      , forcing(forcing_)
+      , alpha(alpha_)
+      , ctrl(controls)
+  {
+    require_in_range(alpha >= 0.,
+                     "Ratchet/Thermal expansion coefficient",
+                     alpha,
+                     ">= 0 1/K");
+    require_in_range(ctrl.steps_per_cycle >= 4,
+                     "Ratchet/Steps per cycle",
+                     ctrl.steps_per_cycle,
+                     ">= 4");
+    dda::Controls c;
+    c.dynamic        = 0.;
+    c.time_step      = ctrl.pseudo_time_step;
+    c.max_iterations = 30;
+    c.law.normal_penalty
+      = ctrl.penalty > 0.
+          ? ctrl.penalty
+          : dda::automatic_penalty(scene.blocks, scene.blocks.gravity.norm());
+    engine        = std::make_unique<dda::DdaSystem>(scene.blocks, c);
+    double height = 0.;
+    for (const int b : scene.block_slices)
+      {
+        const auto &p = engine->system().blocks[b].polygon;
+        block_area += p.area();
+        height = std::max(height, (p.vertices[3] - p.vertices[0]).norm());
+      }
+    tolerance = ctrl.equilibrium_tolerance * height;
+    // Settle under gravity at the temperatures of phase 0.
+    engine->set_eigenstrains(thermal_eigenstrains(
+      engine->system(), scene.heat_index, temperature, forcing, alpha, 0.));
+    engine->settle(ctrl.settle_steps);
+    aperture0     = raw_aperture();
+    base_corners0 = vertex(scene.heel) + vertex(scene.toe);
+  }
+
+
+
+  const geometry::Point &
+  RatchetRun::vertex(const std::pair<int, int> &v) const
+  {
+    return engine->system().blocks[v.first].polygon.vertices[v.second];
+  }
+
+
+
+  double
+  RatchetRun::displacement() const
+  {
+    // The mean of the displacements of the base's two corners: the slip
+    // on the bedding plane, free of the block's own expansion (symmetric
+    // about the mid-base point) and of its rotation.
+    return 0.5
+           * (vertex(scene.heel) + vertex(scene.toe) - base_corners0)
+               .dot(scene.downslope);
+  }
+
+
+
+  double
+  RatchetRun::raw_aperture() const
+  {
+    const auto &s = engine->system();
+    return vertex(scene.back_top)[0]
+           - s.blocks[scene.cliff_slices.front()].polygon.vertices[2][0];
+  }
+
+
+
+  double
+  RatchetRun::aperture() const
+  {
+    return raw_aperture() - aperture0;
+  }
+
+
+
+  void
+  RatchetRun::equilibrate(const double   time,
+                          unsigned long &steps,
+                          unsigned long &cuts)
+  {
+    engine->set_eigenstrains(thermal_eigenstrains(
+      engine->system(), scene.heat_index, temperature, forcing, alpha, time));
+    for (unsigned int k = 0; k < ctrl.max_steps_per_sample; ++k)
+      {
+        const dda::StepReport r = engine->step();
+        ++steps;
+        cuts += r.cuts;
+        if (r.max_displacement <= tolerance && r.cuts == 0)
+          return;
+      }
+    throw dda::DdaFailure(
+      "cycle " + std::to_string(n_cycles + 1)
+      + ": the scene did not reach "
+        "equilibrium within "
+      + std::to_string(ctrl.max_steps_per_sample)
+      + " static steps at t = " + std::to_string(time)
+      + " s (motion per step above " + std::to_string(tolerance)
+      + " m): raise 'Max steps per sample' or the pseudo time step, or the "
+        "block is sliding away (check the friction and the slope)");
+  }
+
+
+
+  CycleRecord
+  RatchetRun::run_cycle(std::vector<SampleRecord> *samples)
+  {
+    CycleRecord r;
+    r.cycle = n_cycles + 1;
+    if (samples != nullptr)
+      samples->clear();
+    for (unsigned int k = 1; k <= ctrl.steps_per_cycle; ++k)
+      {
+        const double phase = static_cast<double>(k) / ctrl.steps_per_cycle;
+        const double time  = (n_cycles + phase) * forcing.period;
+        equilibrate(time, r.steps, r.cuts);
+        if (samples != nullptr)
+          {
+            SampleRecord s;
+            s.phase     = phase;
+            s.air       = forcing.air(time);
+            double mean = 0.;
+            for (const int b : scene.block_slices)
+              mean += engine->system().blocks[b].polygon.area()
+                      * temperature.mean(scene.heat_index[b], time);
+            s.block_mean   = mean / block_area;
+            s.displacement = displacement();
+            s.aperture     = aperture();
+            samples->push_back(s);
+          }
+      }
+    ++n_cycles;
+    r.displacement    = displacement();
+    r.permanent       = r.displacement - last_displacement;
+    last_displacement = r.displacement;
+    r.aperture        = aperture();
+    if (scene.infill >= 0)
+      r.infill_descent = -engine->centroid_displacement(scene.infill)[1];
+    for (const auto &c : engine->contacts())
+      {
+        if (c.state == dda::ContactState::open)
+          ++r.n_open;
+        else if (c.state == dda::ContactState::sliding)
+          ++r.n_sliding;
+        else
+          ++r.n_locked;
+      }
+    return r;
+  }
+
+
+
+  std::string
+  RatchetRun::checkpoint() const
+  {
+    io::BinaryWriter w;
+    w.put_string("rockdda ratchet");
+    w.put<std::uint32_t>(n_cycles);
+    w.put(aperture0);
+    w.put(last_displacement);
+    w.put(base_corners0[0]);
+    w.put(base_corners0[1]);
+    w.put_string(engine->checkpoint());
+    return w.bytes;
+  }
+
+
+
+  void
+  RatchetRun::restore(const std::string &bytes, const std::string &source)
+  {
+    io::BinaryReader r(bytes, source);
+    if (r.get_string() != "rockdda ratchet")
+      throw InputError(source + ": not a rockdda ratchet checkpoint");
+    const auto   cycles = r.get<std::uint32_t>();
+    const double a0     = r.get<double>();
+    const double last   = r.get<double>();
+    const double cx     = r.get<double>();
+    const double cy     = r.get<double>();
+    engine->restore(r.get_string(), source);
+    n_cycles          = cycles;
+    aperture0         = a0;
+    last_displacement = last;
+    base_corners0     = geometry::Point(cx, cy);
+  }
+} // namespace rockdda::coupling

@@ -1,0 +1,715 @@
+/**
+ * @file
+ * Analysis type "ratchet": N annual cycles of the coupled thermo-mechanical
+ * wedging ratchet (thesis 5.4): the heat solver's periodic block
+ * temperatures drive thermal eigenstrains in quasi-static DDA of a block, a
+ * tension crack with infill and the cliff. Writes the per-cycle permanent
+ * and cumulative displacement, the crack aperture, the infill's descent and
+ * the contact states, the within-cycle loop, the steady ratchet rate next
+ * to the analytical (Pasten 2012) estimate, and plots.
+ */
+#include <rockdda/analytical/ratchet.h>
+#include <rockdda/coupling/analyses.h>
+#include <rockdda/coupling/ratchet.h>
+#include <rockdda/io/checkpoint.h>
+#include <rockdda/io/error.h>
+#include <rockdda/io/interrupt.h>
+#include <rockdda/io/parameters.h>
+#include <rockdda/io/progress.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+namespace rockdda::coupling
+{
+  namespace
+  {
+    using dealii::Patterns::Bool;
+    using dealii::Patterns::Double;
+    using dealii::Patterns::Integer;
+    using io::DoubleInterval;
+
+    constexpr double pi = 3.14159265358979323846;
+
+    /// The "ratchet" analysis.
+    class RatchetAnalysis : public io::Analysis
+    {
+    public:
+      std::string
+      name() const override
+      {
+        return "ratchet";
+      }
+
+      std::string
+      description() const override
+      {
+        return "coupled thermo-mechanical wedging ratchet: annual heat "
+               "cycles drive thermal strain in DDA of a block, its tension "
+               "crack with infill and the cliff";
+      }
+
+      void
+      declare_parameters(dealii::ParameterHandler &prm) const override
+      {
+        prm.enter_subsection("Ratchet");
+        const auto positive = DoubleInterval::positive();
+        io::declare(prm,
+                    "Block length",
+                    "7",
+                    positive,
+                    "m",
+                    "Length L_B of the block along the horizontal at its "
+                    "base (> 0).");
+        io::declare(prm,
+                    "Block height",
+                    "15",
+                    positive,
+                    "m",
+                    "Height H of the block at its back face (> 0).");
+        io::declare(prm,
+                    "Slope",
+                    "19",
+                    DoubleInterval::right_open(0., 45.),
+                    "deg",
+                    "Dip eta of the bedding plane the block rests on "
+                    "(0 <= eta < 45).");
+        io::declare(prm,
+                    "Crack top width",
+                    "0.2",
+                    positive,
+                    "m",
+                    "Width of the tension crack at the top of the block "
+                    "(> 0; at least the bottom width: the crack narrows "
+                    "downward, so that the infill can descend).");
+        io::declare(prm,
+                    "Crack bottom width",
+                    "0.02",
+                    positive,
+                    "m",
+                    "Width of the tension crack at the bedding plane (> 0).");
+        io::declare(prm,
+                    "Cliff width",
+                    "8",
+                    positive,
+                    "m",
+                    "Extent of the cliff behind the crack (> 0); its "
+                    "farthest slice is fixed.");
+        io::declare(prm,
+                    "Base depth",
+                    "3",
+                    positive,
+                    "m",
+                    "Depth of the fixed base below the bedding plane at "
+                    "the toe (> 0).");
+        io::declare(prm,
+                    "Toe length",
+                    "3",
+                    Double(0.),
+                    "m",
+                    "Bedding plane in front of the block's toe.");
+        io::declare(prm,
+                    "Infill",
+                    "true",
+                    Bool(),
+                    "-",
+                    "A wedge of rock fragments in the crack (true), or a "
+                    "clean crack (false: the West-station control).");
+        io::declare(prm,
+                    "Infill top depth",
+                    "0.5",
+                    Double(0.),
+                    "m",
+                    "Depth of the infill's top below the top of the block.");
+        io::declare(prm,
+                    "Infill height",
+                    "2",
+                    positive,
+                    "m",
+                    "Height of the infill wedge (> 0); it must end above "
+                    "the bedding plane.");
+        io::declare(prm,
+                    "Infill width",
+                    "0",
+                    Double(0.),
+                    "m",
+                    "Width of the infill at its top; 0 = the crack's width "
+                    "there (it touches both faces). Narrower: it lies "
+                    "against the cliff and drops until it wedges; wider "
+                    "than the crack is an error.");
+        io::declare(prm,
+                    "Refinement depth",
+                    "1",
+                    positive,
+                    "-",
+                    "Depth, in seasonal skin depths S_d = sqrt(kappa "
+                    "t_exp / 2) (t_exp half the period), within which the "
+                    "block and the cliff are cut into bonded slices near "
+                    "the crack faces and the block's front (> 0).");
+        io::declare(prm,
+                    "Slices",
+                    "4",
+                    Integer(0, 1000),
+                    "-",
+                    "Bonded slices within the refinement depth of each "
+                    "exposed vertical face; 0 = the block is one DDA block "
+                    "with one uniform strain.");
+        io::declare(
+          prm, "Density", "2600", positive, "kg/m^3", "Rock density (> 0).");
+        io::declare(prm,
+                    "Young's modulus",
+                    "4e10",
+                    positive,
+                    "Pa",
+                    "Young's modulus of the rock (> 0).");
+        io::declare(prm,
+                    "Poisson's ratio",
+                    "0.2",
+                    DoubleInterval::right_open(0., 0.5),
+                    "-",
+                    "Poisson's ratio (0 <= nu < 0.5).");
+        io::declare(prm,
+                    "Plane strain",
+                    "true",
+                    Bool(),
+                    "-",
+                    "Plane strain (true: the section of a long block; the "
+                    "in-plane thermal strain is (1 + nu) alpha dT) or plane "
+                    "stress (alpha dT).");
+        io::declare(prm,
+                    "Thermal expansion coefficient",
+                    "8e-6",
+                    Double(0.),
+                    "1/K",
+                    "Linear thermal expansion coefficient alpha.");
+        io::declare(prm,
+                    "Bedding friction angle",
+                    "41",
+                    DoubleInterval::right_open(0., 90.),
+                    "deg",
+                    "Friction angle of the bedding plane (0 <= phi < 90).");
+        io::declare(prm,
+                    "Bedding shear stiffness",
+                    "1e9",
+                    Double(0.),
+                    "Pa/m",
+                    "Physical shear stiffness k_j of the bedding plane; "
+                    "0 = rigid (penalty only).");
+        io::declare(prm,
+                    "Bedding normal stiffness",
+                    "0",
+                    Double(0.),
+                    "Pa/m",
+                    "Physical normal stiffness of the bedding plane; 0 = "
+                    "rigid (penalty only).");
+        io::declare(prm,
+                    "Crack friction angle",
+                    "41",
+                    DoubleInterval::right_open(0., 90.),
+                    "deg",
+                    "Friction angle between the infill and the crack faces "
+                    "(0 <= phi < 90).");
+        io::declare(prm,
+                    "Cycles",
+                    "10",
+                    Integer(1, 1000000),
+                    "-",
+                    "Annual cycles to run.");
+        io::declare(prm,
+                    "Steps per cycle",
+                    "24",
+                    Integer(4, 100000),
+                    "-",
+                    "Temperature samples per cycle at which the DDA is "
+                    "brought to equilibrium (a divisor of 'Thermal "
+                    "forcing/Samples per cycle' uses its table exactly).");
+        io::declare(prm,
+                    "Equilibrium tolerance",
+                    "1e-8",
+                    positive,
+                    "-",
+                    "A sample is in equilibrium when a static step moves no "
+                    "vertex by more than this fraction of the block height "
+                    "(> 0).");
+        io::declare(prm,
+                    "Max steps per sample",
+                    "400",
+                    Integer(1, 1000000),
+                    "-",
+                    "Static steps allowed per sample before the run stops "
+                    "with a diagnosis.");
+        io::declare(prm,
+                    "Pseudo time step",
+                    "1",
+                    positive,
+                    "s",
+                    "Step of the static DDA steps (> 0): only the inertia "
+                    "term 2 M / dt^2 that regularises them depends on it.");
+        io::declare(prm,
+                    "Contact penalty",
+                    "0",
+                    Double(0.),
+                    "N/m",
+                    "Normal contact penalty; 0 = automatic (10 E x 1 m, or "
+                    "stiffer if the heaviest block needs it).");
+        io::declare(prm,
+                    "Settling steps",
+                    "30",
+                    Integer(0, 100000),
+                    "-",
+                    "Static steps under gravity before cycle 1.");
+        io::declare(prm,
+                    "Checkpoint cycles",
+                    "0",
+                    Integer(0, 1000000),
+                    "-",
+                    "Write checkpoint.bin (atomically) every this many "
+                    "cycles and at the end; 0 = only at the end and when "
+                    "interrupted.");
+        io::declare(prm,
+                    "Resume",
+                    "false",
+                    Bool(),
+                    "-",
+                    "Continue from checkpoint.bin in the output directory "
+                    "up to 'Cycles'.");
+        prm.leave_subsection();
+
+        prm.enter_subsection("Thermal forcing");
+        io::declare(prm,
+                    "Mean temperature",
+                    "20",
+                    Double(),
+                    "degC",
+                    "Mean air temperature, the stress-free reference.");
+        io::declare(prm,
+                    "Annual amplitude",
+                    "9",
+                    Double(0.),
+                    "K",
+                    "Amplitude of the annual air temperature (thesis "
+                    "Table 5-2: 9 K; peak to peak twice that).");
+        io::declare(prm,
+                    "Period",
+                    "31557600",
+                    positive,
+                    "s",
+                    "Length of the cycle (> 0; a year).");
+        io::declare(prm,
+                    "Daily amplitude",
+                    "0",
+                    Double(0.),
+                    "K",
+                    "Amplitude of the daily air temperature.");
+        io::declare(prm,
+                    "Daily cycles",
+                    "365",
+                    Integer(1, 100000),
+                    "-",
+                    "Days per cycle (the daily period is Period / this).");
+        io::declare(prm,
+                    "Heat transfer coefficient",
+                    "10",
+                    positive,
+                    "W/(m^2 K)",
+                    "Convective exchange of the exposed faces and the "
+                    "crack faces with the air (> 0).");
+        io::declare(prm,
+                    "Thermal conductivity",
+                    "1.7",
+                    positive,
+                    "W/(m K)",
+                    "Rock thermal conductivity lambda (> 0).");
+        io::declare(prm,
+                    "Specific heat capacity",
+                    "810",
+                    positive,
+                    "J/(kg K)",
+                    "Rock specific heat capacity c_p (> 0).");
+        io::declare(prm,
+                    "Finite element degree",
+                    "2",
+                    Integer(1, 3),
+                    "-",
+                    "Degree of the heat solver's FE_Q.");
+        io::declare(prm,
+                    "Cell size",
+                    "1",
+                    positive,
+                    "m",
+                    "Target coarse cell size of the heat mesh (> 0).");
+        io::declare(prm,
+                    "Time step",
+                    "86400",
+                    positive,
+                    "s",
+                    "Heat time step (Crank-Nicolson; rounded so that a "
+                    "whole number of steps fits between samples) (> 0).");
+        io::declare(prm,
+                    "Spin-up cycles",
+                    "4",
+                    Integer(0, 1000),
+                    "-",
+                    "Periods solved before the recorded one, so that the "
+                    "field is periodic.");
+        io::declare(prm,
+                    "Samples per cycle",
+                    "24",
+                    Integer(4, 1000000),
+                    "-",
+                    "Block mean temperatures recorded per period; later "
+                    "cycles reuse them (the field is periodic).");
+        prm.leave_subsection();
+      }
+
+      void
+      parse_parameters(dealii::ParameterHandler &prm,
+                       const std::string        &prm_file) override
+      {
+        prm.enter_subsection("Thermal forcing");
+        forcing.mean             = prm.get_double("Mean temperature");
+        forcing.annual_amplitude = prm.get_double("Annual amplitude");
+        forcing.period           = prm.get_double("Period");
+        forcing.daily_amplitude  = prm.get_double("Daily amplitude");
+        forcing.daily_cycles     = prm.get_integer("Daily cycles");
+        forcing.heat_transfer_coefficient
+          = prm.get_double("Heat transfer coefficient");
+        heat.material.conductivity  = prm.get_double("Thermal conductivity");
+        heat.material.heat_capacity = prm.get_double("Specific heat capacity");
+        heat.degree                 = prm.get_integer("Finite element degree");
+        heat.cell_size              = prm.get_double("Cell size");
+        heat.time_step              = prm.get_double("Time step");
+        heat.spin_up_cycles         = prm.get_integer("Spin-up cycles");
+        heat.samples_per_cycle      = prm.get_integer("Samples per cycle");
+        prm.leave_subsection();
+
+        prm.enter_subsection("Ratchet");
+        geometry.block_length       = prm.get_double("Block length");
+        geometry.block_height       = prm.get_double("Block height");
+        geometry.slope_deg          = prm.get_double("Slope");
+        geometry.crack_top_width    = prm.get_double("Crack top width");
+        geometry.crack_bottom_width = prm.get_double("Crack bottom width");
+        geometry.cliff_width        = prm.get_double("Cliff width");
+        geometry.base_depth         = prm.get_double("Base depth");
+        geometry.toe_length         = prm.get_double("Toe length");
+        geometry.infill             = prm.get_bool("Infill");
+        geometry.infill_top_depth   = prm.get_double("Infill top depth");
+        geometry.infill_height      = prm.get_double("Infill height");
+        geometry.infill_width       = prm.get_double("Infill width");
+        refinement_factor           = prm.get_double("Refinement depth");
+        geometry.slices             = prm.get_integer("Slices");
+        materials.rock.density      = prm.get_double("Density");
+        materials.rock.young        = prm.get_double("Young's modulus");
+        materials.rock.poisson      = prm.get_double("Poisson's ratio");
+        materials.rock.plane_strain = prm.get_bool("Plane strain");
+        alpha = prm.get_double("Thermal expansion coefficient");
+        materials.bedding_friction_deg
+          = prm.get_double("Bedding friction angle");
+        materials.bedding_shear_stiffness
+          = prm.get_double("Bedding shear stiffness");
+        materials.bedding_normal_stiffness
+          = prm.get_double("Bedding normal stiffness");
+        materials.crack_friction_deg = prm.get_double("Crack friction angle");
+        cycles                       = prm.get_integer("Cycles");
+        controls.steps_per_cycle     = prm.get_integer("Steps per cycle");
+        controls.equilibrium_tolerance
+          = prm.get_double("Equilibrium tolerance");
+        controls.max_steps_per_sample = prm.get_integer("Max steps per sample");
+        controls.pseudo_time_step     = prm.get_double("Pseudo time step");
+        controls.penalty              = prm.get_double("Contact penalty");
+        controls.settle_steps         = prm.get_integer("Settling steps");
+        checkpoint_cycles             = prm.get_integer("Checkpoint cycles");
+        resume                        = prm.get_bool("Resume");
+        prm.leave_subsection();
+
+        heat.material.density = materials.rock.density;
+        skin
+          = std::sqrt(0.5 * heat.material.diffusivity() * 0.5 * forcing.period);
+        geometry.refinement_depth = refinement_factor * skin;
+        // Build the scene now: bad geometry is an input error of the file.
+        io::with_parameter_file(prm_file, [&]() {
+          scene = make_ratchet_scene(geometry, materials);
+        });
+        file = prm_file;
+      }
+
+      bool
+      resumes() const override
+      {
+        return resume;
+      }
+
+      void
+      run(io::RunContext &context) override
+      {
+        auto &log = context.log;
+        log.line("ratchet scene: " + std::to_string(scene.blocks.blocks.size())
+                 + " DDA blocks (" + std::to_string(scene.block_slices.size())
+                 + " block slices, " + std::to_string(scene.cliff_slices.size())
+                 + " cliff slices" + (scene.infill >= 0 ? ", infill" : "")
+                 + "), skin depth " + io::format_number(skin, 4)
+                 + " m, refinement depth "
+                 + io::format_number(geometry.refinement_depth, 4) + " m");
+        const auto                     t0 = std::chrono::steady_clock::now();
+        const PeriodicBlockTemperature temperature(scene.heat_blocks,
+                                                   forcing,
+                                                   heat);
+        const auto                     t1 = std::chrono::steady_clock::now();
+        const double                   heat_seconds
+          = std::chrono::duration<double>(t1 - t0).count();
+        log.line("heat: " + std::to_string(heat.spin_up_cycles)
+                 + " spin-up periods and one recorded ("
+                 + std::to_string(temperature.n_steps) + " steps) in "
+                 + io::format_number(heat_seconds, 3) + " s");
+
+        RatchetRun run_(scene, temperature, forcing, alpha, controls);
+        io::Table  table;
+        for (const auto &[name, unit] :
+             std::vector<std::pair<std::string, std::string>>{
+               {"cycle", "-"},
+               {"time", "year"},
+               {"displacement", "m"},
+               {"permanent", "m"},
+               {"aperture", "m"},
+               {"infill_descent", "m"},
+               {"open", "-"},
+               {"sliding", "-"},
+               {"locked", "-"},
+               {"steps", "-"},
+               {"cuts", "-"}})
+          table.add_column(name, unit);
+        io::Table loop;
+        for (const auto &[name, unit] :
+             std::vector<std::pair<std::string, std::string>>{
+               {"cycle", "-"},
+               {"phase", "-"},
+               {"air_temperature", "degC"},
+               {"block_temperature", "degC"},
+               {"displacement", "m"},
+               {"aperture", "m"}})
+          loop.add_column(name, unit);
+
+        const io::RunCheckpoint checkpoint_file(context.output,
+                                                "ratchet",
+                                                fingerprint(),
+                                                "Ratchet");
+        const auto              save = [&]() {
+          io::BinaryWriter w = checkpoint_file.begin();
+          w.put_string(run_.checkpoint());
+          io::RunCheckpoint::put_rows(w, table);
+          io::RunCheckpoint::put_rows(w, loop);
+          checkpoint_file.write(w, table);
+        };
+        if (resume)
+          {
+            const std::string bytes = checkpoint_file.read();
+            io::BinaryReader  r     = checkpoint_file.reader(bytes);
+            run_.restore(r.get_string(), checkpoint_file.file());
+            io::RunCheckpoint::get_rows(r, table);
+            io::RunCheckpoint::get_rows(r, loop);
+            if (!r.at_end())
+              throw InputError(checkpoint_file.file() + ": trailing data");
+            log.line("resumed from " + checkpoint_file.file() + " after cycle "
+                     + std::to_string(run_.cycles()));
+          }
+
+        io::ProgressBar           progress("ratchet", cycles);
+        std::vector<SampleRecord> samples;
+        while (run_.cycles() < cycles)
+          {
+            const bool record_loop
+              = run_.cycles() == 0 || run_.cycles() + 1 == cycles;
+            const CycleRecord r
+              = run_.run_cycle(record_loop ? &samples : nullptr);
+            table.add_row({static_cast<double>(r.cycle),
+                           r.cycle * forcing.period / 31557600.,
+                           r.displacement,
+                           r.permanent,
+                           r.aperture,
+                           r.infill_descent,
+                           static_cast<double>(r.n_open),
+                           static_cast<double>(r.n_sliding),
+                           static_cast<double>(r.n_locked),
+                           static_cast<double>(r.steps),
+                           static_cast<double>(r.cuts)});
+            if (record_loop)
+              for (const auto &s : samples)
+                loop.add_row({static_cast<double>(r.cycle),
+                              s.phase,
+                              s.air,
+                              s.block_mean,
+                              s.displacement,
+                              s.aperture});
+            progress.update(run_.cycles(), run_.cycles());
+            if (checkpoint_cycles > 0 && run_.cycles() % checkpoint_cycles == 0)
+              save();
+            if (io::interrupt_signal() != 0 && run_.cycles() < cycles)
+              {
+                save();
+                context.stopped_early = true;
+                context.stopped_note  = "checkpoint.bin after cycle "
+                                       + std::to_string(run_.cycles())
+                                       + "; rerun with 'set Resume = true'";
+                break;
+              }
+          }
+        const auto   t2 = std::chrono::steady_clock::now();
+        const double dda_seconds
+          = std::chrono::duration<double>(t2 - t1).count();
+        if (!context.stopped_early)
+          save();
+        context.output.write("statistics.csv", table.csv());
+        context.output.write("cycle_loop.csv", loop.csv());
+
+        // The steady rate: the mean permanent displacement of the second
+        // half of the cycles (the first cycles settle the infill).
+        const std::size_t n     = table.n_rows();
+        const std::size_t first = n / 2;
+        double            rate  = 0.;
+        for (std::size_t k = first; k < n; ++k)
+          rate += table.row(k)[3];
+        rate /= std::max<std::size_t>(1, n - first);
+        const double years = forcing.period / 31557600.;
+        context.summary.add("ratchet_rate", 1e3 * rate / years, "mm/yr");
+        context.summary.add("displacement",
+                            n > 0 ? table.row(n - 1)[2] : 0.,
+                            "m");
+        context.summary.add("cycles", static_cast<double>(n), "-");
+        context.summary.add("skin_depth", skin, "m");
+        context.summary.add("dda_blocks",
+                            static_cast<double>(scene.blocks.blocks.size()),
+                            "-");
+        context.summary.add("heat_cells",
+                            static_cast<double>(temperature.n_cells),
+                            "-");
+        context.summary.add("heat_seconds", heat_seconds, "s");
+        context.summary.add("dda_seconds", dda_seconds, "s");
+        context.summary.add("dda_steps",
+                            static_cast<double>(run_.dda().n_steps),
+                            "-");
+
+        // The analytical estimate (Pasten 2012, thesis Eqs. 5.1-5.6) for
+        // the same block, wedge = the crack width at the infill's middle,
+        // beta = 0.45.
+        analytical::RatchetInput a;
+        a.block_length          = geometry.block_length;
+        a.block_height          = geometry.block_height;
+        a.wedge_length          = geometry.infill ? infill_width() : 0.;
+        a.slope_deg             = geometry.slope_deg;
+        a.friction_angle_deg    = materials.bedding_friction_deg;
+        a.density               = materials.rock.density;
+        a.youngs_modulus        = materials.rock.young;
+        a.joint_shear_stiffness = materials.bedding_shear_stiffness > 0.
+                                    ? materials.bedding_shear_stiffness
+                                    : 1e9;
+        a.thermal_expansion     = alpha;
+        a.temperature_change    = 2. * forcing.annual_amplitude;
+        a.conductivity          = heat.material.conductivity;
+        a.heat_capacity         = heat.material.heat_capacity;
+        a.exposure_time         = 0.5 * forcing.period;
+        try
+          {
+            const analytical::RatchetResult p = analytical::ratchet(a);
+            context.summary.add("analytical_rate_beta_0.45",
+                                1e3 * p.plastic_displacement / years,
+                                "mm/yr");
+            a.beta = 0.7;
+            context.summary.add("analytical_rate_beta_0.7",
+                                1e3
+                                  * analytical::ratchet(a).plastic_displacement
+                                  / years,
+                                "mm/yr");
+          }
+        catch (const InputError &e)
+          {
+            log.line(std::string("note: no analytical estimate: ") + e.what());
+          }
+        log.line("ratchet: " + std::to_string(n) + " cycles, steady rate "
+                 + io::format_number(1e3 * rate / years, 5) + " mm/yr, heat "
+                 + io::format_number(heat_seconds, 3) + " s, DDA "
+                 + io::format_number(dda_seconds, 3) + " s");
+        draw_plots(context);
+      }
+
+    private:
+      /// Width of the infill at its mid-height (m).
+      double
+      infill_width() const
+      {
+        const auto &v = scene.blocks.blocks[scene.infill].polygon.vertices;
+        return 0.5 * ((v[1] - v[0]).norm() + (v[2] - v[3]).norm());
+      }
+
+      /// The controls a resumed run must share.
+      std::string
+      fingerprint() const
+      {
+        std::string f;
+        for (const double v : {geometry.block_length,
+                               geometry.block_height,
+                               geometry.slope_deg,
+                               geometry.crack_top_width,
+                               geometry.crack_bottom_width,
+                               geometry.infill ? 1. : 0.,
+                               geometry.refinement_depth,
+                               static_cast<double>(geometry.slices),
+                               alpha,
+                               forcing.annual_amplitude,
+                               forcing.daily_amplitude,
+                               static_cast<double>(controls.steps_per_cycle),
+                               controls.equilibrium_tolerance,
+                               controls.penalty,
+                               materials.bedding_friction_deg,
+                               materials.bedding_shear_stiffness})
+          f += io::format_number(v, 17) + ";";
+        return f;
+      }
+
+      void
+      draw_plots(io::RunContext &context) const
+      {
+        const std::string script
+          = std::string(ROCKDDA_SOURCE_DIR) + "/scripts/plot_ratchet_cycles.py";
+        const std::string python = "/usr/bin/python3";
+        context.output.own("ratchet.png");
+        if (std::ifstream(python) && std::ifstream(script))
+          {
+            const std::string command = python + " '" + script + "' '"
+                                        + context.output.path()
+                                        + "' > /dev/null 2>&1";
+            if (std::system(command.c_str()) == 0)
+              context.log.line("plot: ratchet.png");
+            else
+              context.log.line("note: plotting failed (" + command
+                               + "); is python3-matplotlib installed?");
+          }
+        else
+          context.log.line("note: no plot (" + python + " or " + script
+                           + " missing)");
+      }
+
+      RatchetGeometry  geometry;
+      RatchetMaterials materials;
+      SeasonalForcing  forcing;
+      HeatControls     heat;
+      RatchetControls  controls;
+      RatchetScene     scene;
+      double           alpha = 8e-6, refinement_factor = 1., skin = 0.;
+      unsigned int     cycles = 10, checkpoint_cycles = 0;
+      bool             resume = false;
+      std::string      file;
+    };
+  } // namespace
+
+
+
+  std::vector<std::unique_ptr<io::Analysis>>
+  make_analyses()
+  {
+    std::vector<std::unique_ptr<io::Analysis>> list;
+    list.push_back(std::make_unique<RatchetAnalysis>());
+    return list;
+  }
+} // namespace rockdda::coupling

@@ -1,0 +1,351 @@
+#include <rockdda/coupling/ratchet_scene.h>
+#include <rockdda/io/error.h>
+
+#include <cmath>
+#include <string>
+
+namespace rockdda::coupling
+{
+  namespace
+  {
+    using geometry::Point;
+
+    constexpr double pi = 3.14159265358979323846;
+
+    /// Joint materials of the scene.
+    enum Joint : int
+    {
+      bedding = 0,
+      bonded  = 1,
+      crack   = 2
+    };
+
+    /**
+     * Fractions in [0, 1] of the slices of a length @p length cut at equal
+     * widths within @p depth of the end at 0 (and of the end at 1 if
+     * @p both_ends); the rest is one slice.
+     */
+    std::vector<double>
+    slice_fractions(const double       length,
+                    const double       depth,
+                    const unsigned int n,
+                    const bool         both_ends)
+    {
+      std::vector<double> f{0.};
+      if (n == 0)
+        {
+          f.push_back(1.);
+          return f;
+        }
+      const double band  = std::min(depth, both_ends ? 0.5 * length : length);
+      const double width = band / n;
+      for (unsigned int k = 1; k <= n; ++k)
+        f.push_back(k * width / length);
+      if (both_ends)
+        {
+          const double far = 1. - band / length;
+          if (far > f.back() + 1e-9)
+            f.push_back(far);
+          for (unsigned int k = 1; k < n; ++k)
+            f.push_back(far + k * width / length);
+        }
+      if (f.back() < 1. - 1e-9)
+        f.push_back(1.);
+      else
+        f.back() = 1.;
+      return f;
+    }
+
+    /// Append a DDA block with per-edge joints; returns its index.
+    int
+    add_block(dda::BlockSystem        &s,
+              const std::vector<Point> vertices,
+              const std::vector<int>   edge_joints)
+    {
+      dda::Block b;
+      b.id               = static_cast<int>(s.blocks.size());
+      b.polygon.vertices = vertices;
+      b.material         = 0;
+      b.joint            = bonded;
+      b.edge_joints      = edge_joints;
+      s.blocks.push_back(b);
+      return b.id;
+    }
+
+    thermal::Block
+    heat_block(const std::string              &name,
+               const std::vector<Point>       &vertices,
+               const std::vector<std::string> &tags)
+    {
+      thermal::Block b;
+      b.name = name;
+      for (const auto &v : vertices)
+        b.vertices.push_back({v[0], v[1]});
+      b.edge_tags = tags;
+      return b;
+    }
+  } // namespace
+
+
+
+  RatchetScene
+  make_ratchet_scene(const RatchetGeometry &g, const RatchetMaterials &m)
+  {
+    require_in_range(g.block_length > 0.,
+                     "Ratchet/Block length",
+                     g.block_length,
+                     "> 0 m");
+    require_in_range(g.block_height > 0.,
+                     "Ratchet/Block height",
+                     g.block_height,
+                     "> 0 m");
+    require_in_range(g.slope_deg >= 0. && g.slope_deg < 45.,
+                     "Ratchet/Slope",
+                     g.slope_deg,
+                     "0 <= slope < 45 deg");
+    require_in_range(g.crack_bottom_width > 0.,
+                     "Ratchet/Crack bottom width",
+                     g.crack_bottom_width,
+                     "> 0 m (the block must not touch the cliff at the "
+                     "bedding plane)");
+    require_in_range(g.crack_top_width >= g.crack_bottom_width
+                       && g.crack_top_width < 0.5 * g.block_length,
+                     "Ratchet/Crack top width",
+                     g.crack_top_width,
+                     ">= 'Crack bottom width' (a crack that narrows "
+                     "downward) and < half the block length");
+    require_in_range(g.cliff_width > 0.,
+                     "Ratchet/Cliff width",
+                     g.cliff_width,
+                     "> 0 m");
+    require_in_range(g.base_depth > 0.,
+                     "Ratchet/Base depth",
+                     g.base_depth,
+                     "> 0 m");
+    require_in_range(g.toe_length >= 0.,
+                     "Ratchet/Toe length",
+                     g.toe_length,
+                     ">= 0 m");
+    require_in_range(g.refinement_depth > 0.,
+                     "Ratchet/Refinement depth",
+                     g.refinement_depth,
+                     "> 0 m");
+
+    const double t  = std::tan(g.slope_deg * pi / 180.);
+    const auto   yb = [&](const double x) { return -t * x; }; // bedding plane
+    const double wb = g.crack_bottom_width, wt = g.crack_top_width;
+    const double y_top = yb(wb) + g.block_height;
+    // Block corners: back-bottom, front-bottom, front-top, back-top.
+    const Point B0(wb, yb(wb)),
+      F0(wb + g.block_length, yb(wb + g.block_length));
+    const Point F1(F0[0], y_top), B1(wt, y_top);
+    if (!(F0[1] < y_top - 0.1 * g.block_height))
+      throw InputError("key 'Ratchet/Block height' = "
+                       + std::to_string(g.block_height)
+                       + " m is too low for the block length and slope: the "
+                         "front face would be shorter than 10 % of it");
+
+    RatchetScene scene;
+    scene.downslope     = Point(std::cos(g.slope_deg * pi / 180.),
+                            -std::sin(g.slope_deg * pi / 180.));
+    dda::BlockSystem &s = scene.blocks;
+    s.materials.push_back(m.rock);
+    dda::JointMaterial bed;
+    bed.friction_deg     = m.bedding_friction_deg;
+    bed.normal_stiffness = m.bedding_normal_stiffness;
+    bed.shear_stiffness  = m.bedding_shear_stiffness;
+    s.joints.push_back(bed);
+    // Intact rock between slices: a strength no load of the scene reaches.
+    dda::JointMaterial intact;
+    intact.friction_deg = 60.;
+    intact.cohesion     = 1e3 * m.rock.young;
+    intact.tensile      = 1e3 * m.rock.young;
+    s.joints.push_back(intact);
+    dda::JointMaterial cr;
+    cr.friction_deg = m.crack_friction_deg;
+    s.joints.push_back(cr);
+    s.gravity = Point(0., -9.80665);
+
+    // The block's slices (vertices: bottom-left, bottom-right, top-right,
+    // top-left), refined near the crack face and the front face, standing
+    // on the foot (if sliced).
+    const auto fb
+      = slice_fractions(g.block_length, g.refinement_depth, g.slices, true);
+    const bool   foot = fb.size() > 2;
+    const double hf   = foot ? g.foot_height : 0.;
+    if (foot)
+      require_in_range(g.foot_height > 0.
+                         && g.foot_height < 0.5 * (F1[1] - F0[1]),
+                       "Ratchet/Foot height",
+                       g.foot_height,
+                       "> 0 m and below half the front face");
+    // The back face at the foot's top, and the front.
+    const Point Bf = B0 + hf / (g.block_height + t * (wt - wb)) * (B1 - B0);
+    const Point Ff = F0 + Point(0., hf);
+    std::vector<Point> foot_top; // slice corners on the foot, back to front
+    for (std::size_t k = 0; k + 1 < fb.size(); ++k)
+      {
+        const Point p0   = Bf + fb[k] * (Ff - Bf),
+                    p1   = Bf + fb[k + 1] * (Ff - Bf);
+        const Point q0   = B1 + fb[k] * (F1 - B1),
+                    q1   = B1 + fb[k + 1] * (F1 - B1);
+        const bool first = k == 0, last = k + 2 == fb.size();
+        const int  i = add_block(s,
+                                {p0, p1, q1, q0},
+                                {foot ? bonded : bedding,
+                                 last ? bedding : bonded,
+                                 bedding,
+                                 first ? crack : bonded});
+        scene.block_slices.push_back(i);
+        scene.heat_index.push_back(static_cast<int>(scene.heat_blocks.size()));
+        scene.heat_blocks.push_back(heat_block("block" + std::to_string(k),
+                                               {p0, p1, q1, q0},
+                                               {foot ? "interior" : "adiabatic",
+                                                last ? "exposed" : "interior",
+                                                "exposed",
+                                                first ? "crack" : "interior"}));
+        if (k > 0)
+          foot_top.push_back(p0);
+        if (first)
+          {
+            scene.heel     = {i, 0};
+            scene.back_top = {i, 3};
+          }
+        if (last)
+          scene.toe = {i, 1};
+      }
+    if (foot)
+      {
+        const int i
+          = add_block(s, {B0, F0, Ff, Bf}, {bedding, bedding, bonded, crack});
+        scene.heel = {i, 0};
+        scene.toe  = {i, 1};
+        scene.block_slices.push_back(i);
+        scene.heat_index.push_back(static_cast<int>(scene.heat_blocks.size()));
+        // The heat mesh must be conforming: the foot's top carries the
+        // slices' corners.
+        std::vector<Point>       v{B0, F0, Ff};
+        std::vector<std::string> tags{"adiabatic", "exposed"};
+        for (auto it = foot_top.rbegin(); it != foot_top.rend(); ++it)
+          {
+            v.push_back(*it);
+            tags.push_back("interior");
+          }
+        v.push_back(Bf);
+        tags.push_back("interior");
+        tags.push_back("crack");
+        scene.heat_blocks.push_back(heat_block("foot", v, tags));
+      }
+
+    // The cliff's slices, from the crack face backwards; the last is fixed.
+    const auto fc
+      = slice_fractions(g.cliff_width, g.refinement_depth, g.slices, false);
+    for (std::size_t k = 0; k + 1 < fc.size(); ++k)
+      {
+        const double             xr = -fc[k] * g.cliff_width;
+        const double             xl = -fc[k + 1] * g.cliff_width;
+        const std::vector<Point> v{Point(xl, yb(xl)),
+                                   Point(xr, yb(xr)),
+                                   Point(xr, y_top),
+                                   Point(xl, y_top)};
+        const bool               first = k == 0, last = k + 2 == fc.size();
+        const int                i
+          = add_block(s, v, {bonded, first ? crack : bonded, bonded, bonded});
+        scene.cliff_slices.push_back(i);
+        if (last)
+          {
+            for (const auto &p : v)
+              {
+                dda::FixedPoint f;
+                f.block = i;
+                f.point = p;
+                s.fixed_points.push_back(f);
+              }
+            scene.heat_index.push_back(-2);
+          }
+        else
+          scene.heat_index.push_back(
+            static_cast<int>(scene.heat_blocks.size()));
+        // The fixed slice still conducts heat: it is in the heat domain.
+        scene.heat_blocks.push_back(
+          heat_block("cliff" + std::to_string(k),
+                     v,
+                     {"adiabatic",
+                      first ? "crack" : "interior",
+                      "exposed",
+                      last ? "adiabatic" : "interior"}));
+      }
+
+    // The infill wedge, its faces on the crack faces.
+    if (g.infill)
+      {
+        const double ya = y_top - g.infill_top_depth;
+        const double yz = ya - g.infill_height;
+        require_in_range(g.infill_top_depth >= 0.
+                           && g.infill_top_depth < g.block_height,
+                         "Ratchet/Infill top depth",
+                         g.infill_top_depth,
+                         "0 <= depth < the block height");
+        require_in_range(g.infill_height > 0. && yz > 0.,
+                         "Ratchet/Infill height",
+                         g.infill_height,
+                         "> 0 m, and the infill must end above the bedding "
+                         "plane at the cliff face ("
+                           + std::to_string(ya) + " m below its top)");
+        // The block's back face at height y.
+        const auto back = [&](const double y) {
+          return B0[0] + (y - B0[1]) / (B1[1] - B0[1]) * (B1[0] - B0[0]);
+        };
+        const double crack_at_top = back(ya);
+        double       shift        = 0.;
+        if (g.infill_width > 0.)
+          {
+            if (g.infill_width > crack_at_top * (1. + 1e-12))
+              throw InputError(
+                "key 'Ratchet/Infill width' = " + std::to_string(g.infill_width)
+                + " m: the infill is wider than the crack at its top ("
+                + std::to_string(crack_at_top)
+                + " m): it would overlap the block or the cliff");
+            shift = crack_at_top - g.infill_width;
+          }
+        if (back(yz) - shift <= 0.)
+          throw InputError("key 'Ratchet/Infill width' = "
+                           + std::to_string(g.infill_width)
+                           + " m: the infill would taper to nothing above "
+                             "its bottom; make it wider or shorter");
+        const int i       = add_block(s,
+                                {Point(0., yz),
+                                       Point(back(yz) - shift, yz),
+                                       Point(back(ya) - shift, ya),
+                                       Point(0., ya)},
+                                {crack, crack, crack, crack});
+        s.blocks[i].joint = crack;
+        scene.infill      = i;
+        scene.heat_index.push_back(-1);
+      }
+
+    // The fixed base: the bedding plane from behind the cliff to beyond
+    // the toe, split in the crack (under the cliff the joint is intact).
+    {
+      const double             xl = -g.cliff_width, xr = F0[0] + g.toe_length;
+      const double             xs = 0.5 * wb, y_low = yb(xr) - g.base_depth;
+      const std::vector<Point> v{Point(xl, y_low),
+                                 Point(xr, y_low),
+                                 Point(xr, yb(xr)),
+                                 Point(xs, yb(xs)),
+                                 Point(xl, yb(xl))};
+      const int                i
+        = add_block(s, v, {bedding, bedding, bedding, bonded, bedding});
+      scene.base = i;
+      for (const auto &p : {v[0], v[1], v[2]})
+        {
+          dda::FixedPoint f;
+          f.block = i;
+          f.point = p;
+          s.fixed_points.push_back(f);
+        }
+      scene.heat_index.push_back(-2);
+    }
+    return scene;
+  }
+} // namespace rockdda::coupling

@@ -1,0 +1,121 @@
+#include <rockdda/coupling/thermal_load.h>
+#include <rockdda/dda/block_matrices.h>
+#include <rockdda/io/error.h>
+
+#include <cmath>
+
+namespace rockdda::coupling
+{
+  namespace
+  {
+    constexpr double two_pi = 6.28318530717958647692;
+  }
+
+
+
+  double
+  SeasonalForcing::air(const double time) const
+  {
+    return mean + annual_amplitude * std::sin(two_pi * time / period)
+           + daily_amplitude * std::sin(two_pi * time * daily_cycles / period);
+  }
+
+
+
+  PeriodicBlockTemperature::PeriodicBlockTemperature(
+    const std::vector<thermal::Block> &blocks,
+    const SeasonalForcing             &forcing_,
+    const HeatControls                &controls)
+      : forcing(forcing_)
+      , samples(controls.samples_per_cycle)
+  {
+    require_in_range(samples >= 4,
+                     "Thermal forcing/Samples per cycle",
+                     samples,
+                     ">= 4");
+    const double dt_sample = forcing.period / samples;
+    const double steps_per_sample
+      = std::max(1., std::round(dt_sample / controls.time_step));
+    thermal::HeatParameters p;
+    p.materials           = {controls.material};
+    p.blocks              = blocks;
+    p.joint_contact       = thermal::HeatParameters::JointContact::perfect;
+    p.degree              = controls.degree;
+    p.coarse_cell_size    = controls.cell_size;
+    p.stepper             = thermal::TimeStepper::crank_nicolson;
+    p.time_step           = dt_sample / steps_per_sample;
+    p.initial_temperature = forcing.mean;
+    thermal::BoundaryCondition air;
+    air.type = thermal::BoundaryCondition::Type::convective;
+    air.heat_transfer_coefficient = forcing.heat_transfer_coefficient;
+    const SeasonalForcing f       = forcing;
+    air.value
+      = [f](const double, const double, const double t) { return f.air(t); };
+    air.uniform = true;
+    for (const std::string tag : {"exposed", "crack"})
+      {
+        air.tag = tag;
+        p.boundary_conditions.push_back(air);
+      }
+    thermal::BoundaryCondition none;
+    none.type  = thermal::BoundaryCondition::Type::flux;
+    none.tag   = "adiabatic";
+    none.value = [](const double, const double, const double) { return 0.; };
+    p.boundary_conditions.push_back(none);
+
+    thermal::HeatSolver heat(p);
+    const double        t0 = controls.spin_up_cycles * forcing.period;
+    heat.advance_to(t0);
+    table.resize(samples);
+    for (unsigned int k = 0; k < samples; ++k)
+      {
+        heat.advance_to(t0 + k * dt_sample);
+        const auto moments = heat.block_moments();
+        table[k].resize(moments.size());
+        for (std::size_t b = 0; b < moments.size(); ++b)
+          table[k][b] = moments[b].mean;
+      }
+    n_steps = heat.statistics().n_steps;
+    n_cells = heat.statistics().n_cells;
+  }
+
+
+
+  double
+  PeriodicBlockTemperature::mean(const unsigned int b, const double time) const
+  {
+    double phase = std::fmod(time / forcing.period, 1.);
+    if (phase < 0.)
+      phase += 1.;
+    const double       x = phase * samples;
+    const unsigned int k = std::min(static_cast<unsigned int>(x), samples - 1);
+    const double       w = x - k;
+    return (1. - w) * table[k][b] + w * table[(k + 1) % samples][b];
+  }
+
+
+
+  std::vector<Eigen::Vector3d>
+  thermal_eigenstrains(const dda::BlockSystem         &scene,
+                       const std::vector<int>         &heat_index,
+                       const PeriodicBlockTemperature &temperature,
+                       const SeasonalForcing          &forcing,
+                       const double                    alpha,
+                       const double                    time)
+  {
+    std::vector<Eigen::Vector3d> e(scene.blocks.size(),
+                                   Eigen::Vector3d::Zero());
+    for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+      {
+        if (heat_index[b] == -2)
+          continue;
+        const double T = heat_index[b] == -1
+                           ? forcing.air(time)
+                           : temperature.mean(heat_index[b], time);
+        e[b]
+          = dda::thermal_eigenstrain(scene.materials[scene.blocks[b].material],
+                                     alpha * (T - forcing.mean));
+      }
+    return e;
+  }
+} // namespace rockdda::coupling
