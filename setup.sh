@@ -44,13 +44,11 @@ case "$mode" in
   run)
     out="$here/output-default"
     (cd "$here" && "$build/rockdda" parameter-files/default.prm)
-    /usr/bin/python3 "$here/scripts/plot_statistics.py" "$out" \
-      acceleration_normal_g velocity_normal_m_s displacement_normal_m \
-      displacement_inverted_m
     echo
-    echo "Results of the default scene are in $out/"
-    echo "  statistics.csv (time histories), statistics.png (plot), summary.csv (key results),"
-    echo "  log.txt, parameters.prm. Plot any run with scripts/plot_statistics.py OUTPUT_DIR"
+    echo "Results of the default scene (the thermal ratchet of Masada Block 1) are in $out/"
+    echo "  ratchet.png (cumulative displacement against years; one cycle against temperature),"
+    echo "  statistics.csv (per cycle), cycle_loop.csv (within a cycle), summary.csv (rate in mm/yr"
+    echo "  next to the analytical estimate), log.txt, parameters.prm."
     ;;
   test)
     ctest --test-dir "$build" -LE long --output-on-failure --parallel "$jobs"

@@ -3,6 +3,7 @@
 #include <rockdda/dda/contact_law.h>
 #include <rockdda/io/binary_stream.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/output.h>
 
 #include <cmath>
 
@@ -100,23 +101,27 @@ namespace rockdda::coupling
   {
     engine->set_eigenstrains(thermal_eigenstrains(
       engine->system(), scene.heat_index, temperature, forcing, alpha, time));
+    double last = 0.;
     for (unsigned int k = 0; k < ctrl.max_steps_per_sample; ++k)
       {
         const dda::StepReport r = engine->step();
         ++steps;
         cuts += r.cuts;
+        last = r.max_displacement;
         if (r.max_displacement <= tolerance && r.cuts == 0)
           return;
       }
     throw dda::DdaFailure(
       "cycle " + std::to_string(n_cycles + 1)
-      + ": the scene did not reach "
-        "equilibrium within "
-      + std::to_string(ctrl.max_steps_per_sample)
-      + " static steps at t = " + std::to_string(time)
-      + " s (motion per step above " + std::to_string(tolerance)
-      + " m): raise 'Max steps per sample' or the pseudo time step, or the "
-        "block is sliding away (check the friction and the slope)");
+      + ": the scene did not reach equilibrium within "
+      + std::to_string(ctrl.max_steps_per_sample) + " static steps at t = "
+      + io::format_number(time / forcing.period, 6)
+      + " periods (the last step moved a vertex by "
+      + io::format_number(last, 3) + " m, the tolerance is "
+      + io::format_number(tolerance, 3)
+      + " m): raise 'Max steps per sample' or 'Equilibrium tolerance', or "
+        "the block or the infill is sliding away (check the friction, the "
+        "slope and the infill's position)");
   }
 
 

@@ -119,7 +119,7 @@ namespace rockdda::coupling
                     "clean crack (false: the West-station control).");
         io::declare(prm,
                     "Infill top depth",
-                    "0.5",
+                    "6",
                     Double(0.),
                     "m",
                     "Depth of the infill's top below the top of the block.");
@@ -235,7 +235,7 @@ namespace rockdda::coupling
                     "(> 0).");
         io::declare(prm,
                     "Max steps per sample",
-                    "400",
+                    "2000",
                     Integer(1, 1000000),
                     "-",
                     "Static steps allowed per sample before the run stops "

@@ -290,8 +290,8 @@ namespace rockdda::coupling
                          "Ratchet/Infill height",
                          g.infill_height,
                          "> 0 m, and the infill must end above the bedding "
-                         "plane at the cliff face ("
-                           + std::to_string(ya) + " m below its top)");
+                         "plane at the cliff face (at most "
+                           + std::to_string(ya) + " m high)");
         // The block's back face at height y.
         const auto back = [&](const double y) {
           return B0[0] + (y - B0[1]) / (B1[1] - B0[1]) * (B1[0] - B0[0]);

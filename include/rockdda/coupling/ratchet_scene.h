@@ -43,7 +43,7 @@ namespace rockdda::coupling
     /// Infill wedge: present or not; depth of its top below the top of
     /// the block (m) and its height (m). Its faces lie on the crack faces.
     bool   infill           = true;
-    double infill_top_depth = 0.5;
+    double infill_top_depth = 6.;
     double infill_height    = 2.;
     /// Width of the infill at its top (m); 0 = the crack's width there (it
     /// touches both faces). A narrower infill lies against the cliff face
