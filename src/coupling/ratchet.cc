@@ -47,7 +47,7 @@ namespace rockdda::coupling
     tolerance = ctrl.equilibrium_tolerance * height;
     // Settle under gravity at the temperatures of phase 0.
     engine->set_eigenstrains(thermal_eigenstrains(
-      engine->system(), scene.heat_index, temperature, forcing, alpha, 0.));
+      engine->system(), scene.heat_map, temperature, forcing, alpha, 0.));
     engine->settle(ctrl.settle_steps);
     aperture0     = raw_aperture();
     base_corners0 = vertex(scene.heel) + vertex(scene.toe);
@@ -100,7 +100,7 @@ namespace rockdda::coupling
                           unsigned long &cuts)
   {
     engine->set_eigenstrains(thermal_eigenstrains(
-      engine->system(), scene.heat_index, temperature, forcing, alpha, time));
+      engine->system(), scene.heat_map, temperature, forcing, alpha, time));
     double last = 0.;
     for (unsigned int k = 0; k < ctrl.max_steps_per_sample; ++k)
       {
@@ -114,8 +114,8 @@ namespace rockdda::coupling
     throw dda::DdaFailure(
       "cycle " + std::to_string(n_cycles + 1)
       + ": the scene did not reach equilibrium within "
-      + std::to_string(ctrl.max_steps_per_sample) + " static steps at t = "
-      + io::format_number(time / forcing.period, 6)
+      + std::to_string(ctrl.max_steps_per_sample)
+      + " static steps at t = " + io::format_number(time / forcing.period, 6)
       + " periods (the last step moved a vertex by "
       + io::format_number(last, 3) + " m, the tolerance is "
       + io::format_number(tolerance, 3)
@@ -145,8 +145,9 @@ namespace rockdda::coupling
             s.air       = forcing.air(time);
             double mean = 0.;
             for (const int b : scene.block_slices)
-              mean += engine->system().blocks[b].polygon.area()
-                      * temperature.mean(scene.heat_index[b], time);
+              mean
+                += engine->system().blocks[b].polygon.area()
+                   * scene.heat_map.temperature(b, temperature, forcing, time);
             s.block_mean   = mean / block_area;
             s.displacement = displacement();
             s.aperture     = aperture();

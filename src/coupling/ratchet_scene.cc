@@ -182,7 +182,6 @@ namespace rockdda::coupling
     // The back face at the foot's top, and the front.
     const Point Bf = B0 + hf / (g.block_height + t * (wt - wb)) * (B1 - B0);
     const Point Ff = F0 + Point(0., hf);
-    std::vector<Point> foot_top; // slice corners on the foot, back to front
     for (std::size_t k = 0; k + 1 < fb.size(); ++k)
       {
         const Point p0   = Bf + fb[k] * (Ff - Bf),
@@ -197,15 +196,14 @@ namespace rockdda::coupling
                                  bedding,
                                  first ? crack : bonded});
         scene.block_slices.push_back(i);
-        scene.heat_index.push_back(static_cast<int>(scene.heat_blocks.size()));
+        scene.heat_map.index.push_back(
+          static_cast<int>(scene.heat_blocks.size()));
         scene.heat_blocks.push_back(heat_block("block" + std::to_string(k),
                                                {p0, p1, q1, q0},
                                                {foot ? "interior" : "adiabatic",
                                                 last ? "exposed" : "interior",
                                                 "exposed",
                                                 first ? "crack" : "interior"}));
-        if (k > 0)
-          foot_top.push_back(p0);
         if (first)
           {
             scene.heel     = {i, 0};
@@ -221,20 +219,27 @@ namespace rockdda::coupling
         scene.heel = {i, 0};
         scene.toe  = {i, 1};
         scene.block_slices.push_back(i);
-        scene.heat_index.push_back(static_cast<int>(scene.heat_blocks.size()));
-        // The heat mesh must be conforming: the foot's top carries the
-        // slices' corners.
-        std::vector<Point>       v{B0, F0, Ff};
-        std::vector<std::string> tags{"adiabatic", "exposed"};
-        for (auto it = foot_top.rbegin(); it != foot_top.rend(); ++it)
+        // For the heat solver the foot is one piece under each slice: the
+        // mesh is conforming, and no polygon has collinear vertices (which
+        // the heat mesher cannot split).
+        scene.heat_map.index.push_back(-3);
+        scene.heat_map.pieces.resize(s.blocks.size());
+        for (std::size_t k = 0; k + 1 < fb.size(); ++k)
           {
-            v.push_back(*it);
-            tags.push_back("interior");
+            const bool first = k == 0, last = k + 2 == fb.size();
+            scene.heat_map.pieces[i].push_back(
+              static_cast<int>(scene.heat_blocks.size()));
+            scene.heat_blocks.push_back(
+              heat_block("foot" + std::to_string(k),
+                         {B0 + fb[k] * (F0 - B0),
+                          B0 + fb[k + 1] * (F0 - B0),
+                          Bf + fb[k + 1] * (Ff - Bf),
+                          Bf + fb[k] * (Ff - Bf)},
+                         {"adiabatic",
+                          last ? "exposed" : "interior",
+                          "interior",
+                          first ? "crack" : "interior"}));
           }
-        v.push_back(Bf);
-        tags.push_back("interior");
-        tags.push_back("crack");
-        scene.heat_blocks.push_back(heat_block("foot", v, tags));
       }
 
     // The cliff's slices, from the crack face backwards; the last is fixed.
@@ -261,10 +266,10 @@ namespace rockdda::coupling
                 f.point = p;
                 s.fixed_points.push_back(f);
               }
-            scene.heat_index.push_back(-2);
+            scene.heat_map.index.push_back(-2);
           }
         else
-          scene.heat_index.push_back(
+          scene.heat_map.index.push_back(
             static_cast<int>(scene.heat_blocks.size()));
         // The fixed slice still conducts heat: it is in the heat domain.
         scene.heat_blocks.push_back(
@@ -321,7 +326,7 @@ namespace rockdda::coupling
                                 {crack, crack, crack, crack});
         s.blocks[i].joint = crack;
         scene.infill      = i;
-        scene.heat_index.push_back(-1);
+        scene.heat_map.index.push_back(-1);
       }
 
     // The fixed base: the bedding plane from behind the cliff to beyond
@@ -344,8 +349,9 @@ namespace rockdda::coupling
           f.point = p;
           s.fixed_points.push_back(f);
         }
-      scene.heat_index.push_back(-2);
+      scene.heat_map.index.push_back(-2);
     }
+    scene.heat_map.pieces.resize(s.blocks.size());
     return scene;
   }
 } // namespace rockdda::coupling

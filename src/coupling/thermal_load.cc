@@ -72,8 +72,18 @@ namespace rockdda::coupling
         heat.advance_to(t0 + k * dt_sample);
         const auto moments = heat.block_moments();
         table[k].resize(moments.size());
+        areas.resize(moments.size());
         for (std::size_t b = 0; b < moments.size(); ++b)
-          table[k][b] = moments[b].mean;
+          {
+            if (!std::isfinite(moments[b].mean))
+              throw InputError("the heat solution of block '" + blocks[b].name
+                               + "' is not finite at t = "
+                               + std::to_string(heat.time())
+                               + " s: check its polygon and the heat controls "
+                                 "(Thermal forcing/Cell size, Time step)");
+            table[k][b] = moments[b].mean;
+            areas[b]    = moments[b].area;
+          }
       }
     n_steps = heat.statistics().n_steps;
     n_cells = heat.statistics().n_cells;
@@ -95,9 +105,34 @@ namespace rockdda::coupling
 
 
 
+  double
+  BlockHeatMap::temperature(const unsigned int              b,
+                            const PeriodicBlockTemperature &heat,
+                            const SeasonalForcing          &forcing,
+                            const double                    time) const
+  {
+    if (index[b] >= 0)
+      return heat.mean(index[b], time);
+    if (index[b] == -1)
+      return forcing.air(time);
+    if (index[b] == -3)
+      {
+        double sum = 0., area = 0.;
+        for (const int p : pieces[b])
+          {
+            sum += heat.area(p) * heat.mean(p, time);
+            area += heat.area(p);
+          }
+        return sum / area;
+      }
+    return forcing.mean;
+  }
+
+
+
   std::vector<Eigen::Vector3d>
   thermal_eigenstrains(const dda::BlockSystem         &scene,
-                       const std::vector<int>         &heat_index,
+                       const BlockHeatMap             &map,
                        const PeriodicBlockTemperature &temperature,
                        const SeasonalForcing          &forcing,
                        const double                    alpha,
@@ -107,11 +142,9 @@ namespace rockdda::coupling
                                    Eigen::Vector3d::Zero());
     for (std::size_t b = 0; b < scene.blocks.size(); ++b)
       {
-        if (heat_index[b] == -2)
+        if (map.index[b] == -2)
           continue;
-        const double T = heat_index[b] == -1
-                           ? forcing.air(time)
-                           : temperature.mean(heat_index[b], time);
+        const double T = map.temperature(b, temperature, forcing, time);
         e[b]
           = dda::thermal_eigenstrain(scene.materials[scene.blocks[b].material],
                                      alpha * (T - forcing.mean));

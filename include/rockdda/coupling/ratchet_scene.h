@@ -10,6 +10,7 @@
 #ifndef ROCKDDA_COUPLING_RATCHET_SCENE_H
 #define ROCKDDA_COUPLING_RATCHET_SCENE_H
 
+#include <rockdda/coupling/thermal_load.h>
 #include <rockdda/dda/block_system.h>
 #include <rockdda/thermal/heat_solver.h>
 
@@ -84,9 +85,11 @@ namespace rockdda::coupling
     /// "exposed" (top, front), "crack" (crack faces), "adiabatic" (bedding
     /// plane and the cliff's far side), "interior" (shared faces).
     std::vector<thermal::Block> heat_blocks;
-    /// Per DDA block: its heat block, or -1 for the air temperature
-    /// (infill), -2 for none (the fixed base and the fixed cliff slice).
-    std::vector<int> heat_index;
+    /// Per DDA block, where its temperature comes from: its heat block, the
+    /// air (infill), none (the fixed base and the fixed cliff slice) or
+    /// several heat blocks (the foot: one piece under each slice, so that
+    /// the heat mesh is conforming without collinear vertices).
+    BlockHeatMap heat_map;
     /// DDA indices of the block's slices (back to front), the cliff's
     /// slices (crack face first), the infill (-1: none) and the base.
     std::vector<int> block_slices, cliff_slices;

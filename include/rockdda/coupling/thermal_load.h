@@ -73,6 +73,12 @@ namespace rockdda::coupling
     {
       return samples;
     }
+    /// Area of heat block @p b (m^2).
+    double
+    area(const unsigned int b) const
+    {
+      return areas[b];
+    }
     /// Heat solver cells and time steps of the solution (cost).
     unsigned int  n_cells = 0;
     unsigned long n_steps = 0;
@@ -82,17 +88,35 @@ namespace rockdda::coupling
     unsigned int    samples = 0;
     /// table[k][b]: block b at phase k / samples of the period.
     std::vector<std::vector<double>> table;
+    std::vector<double>              areas;
+  };
+
+  /**
+   * Where each DDA block takes its temperature from: index[b] >= 0 one heat
+   * block; -1 the air; -2 none (fixed blocks); -3 the area-weighted mean of
+   * the heat blocks pieces[b] (a DDA block meshed in several conforming
+   * pieces for the heat solver).
+   */
+  struct BlockHeatMap
+  {
+    std::vector<int>              index;
+    std::vector<std::vector<int>> pieces;
+    /// Mean temperature of DDA block @p b at @p time (deg C).
+    double
+    temperature(const unsigned int              b,
+                const PeriodicBlockTemperature &heat,
+                const SeasonalForcing          &forcing,
+                const double                    time) const;
   };
 
   /**
    * The eigenstrains of a DDA scene at @p time: alpha (T - T_ref) of each
    * block's material (plane strain or stress, dda::thermal_eigenstrain),
-   * with T the block's heat-block mean (heat_index >= 0), the air
-   * temperature (heat_index -1) or none (heat_index -2: fixed blocks).
+   * with T from @p map (none for fixed blocks).
    */
   std::vector<Eigen::Vector3d>
   thermal_eigenstrains(const dda::BlockSystem         &scene,
-                       const std::vector<int>         &heat_index,
+                       const BlockHeatMap             &map,
                        const PeriodicBlockTemperature &temperature,
                        const SeasonalForcing          &forcing,
                        const double                    alpha,
