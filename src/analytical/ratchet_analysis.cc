@@ -11,11 +11,10 @@
 #include <rockdda/analytical/ratchet.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/parameters.h>
+#include <rockdda/io/plot.h>
 
 #include <array>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
 #include <limits>
 #include <memory>
 #include <string>
@@ -639,39 +638,24 @@ namespace rockdda::analytical
       void
       draw_plots(io::RunContext &context, const RatchetResult &r) const
       {
-        const std::string script
-          = std::string(ROCKDDA_SOURCE_DIR) + "/scripts/plot_ratchet.py";
-        const std::string python = "/usr/bin/python3";
-        for (const char *png :
-             {"sweeps.png", "figure_5_13.png", "field_cycle.png"})
-          context.output.own(png);
-        if (std::ifstream(python) && std::ifstream(script))
+        std::string arguments;
+        const auto  arg = [&](const std::string &name, const double value) {
+          arguments += " " + name + "=" + io::format_number(value, 17);
+        };
+        for (unsigned int c = 0; c < 2; ++c)
           {
-            std::string command
-              = python + " '" + script + "' '" + context.output.path() + "'";
-            const auto arg = [&](const std::string &name, const double value) {
-              command += " " + name + "=" + io::format_number(value, 17);
-            };
-            for (unsigned int c = 0; c < 2; ++c)
-              {
-                arg("figure_5_13_beta_" + std::to_string(c + 1),
-                    figure_beta[c]);
-                arg("figure_5_13_alpha_" + std::to_string(c + 1),
-                    figure_alpha[c]);
-              }
-            arg("field_skin_depth", field_skin_depth);
-            arg("plastic_displacement", r.plastic_displacement);
-            command += " > /dev/null 2>&1";
-            if (std::system(command.c_str()) == 0)
-              context.log.line(
-                "plots: sweeps.png, figure_5_13.png, field_cycle.png");
-            else
-              context.log.line("note: plotting failed (" + command
-                               + "); is python3-matplotlib installed?");
+            arg("figure_5_13_beta_" + std::to_string(c + 1), figure_beta[c]);
+            arg("figure_5_13_alpha_" + std::to_string(c + 1), figure_alpha[c]);
           }
-        else
-          context.log.line("note: no plots (" + python + " or " + script
-                           + " missing)");
+        arg("field_skin_depth", field_skin_depth);
+        arg("plastic_displacement", r.plastic_displacement);
+        io::run_plot_script(context.output,
+                            context.log,
+                            "plot_ratchet.py",
+                            {"sweeps.png",
+                             "figure_5_13.png",
+                             "field_cycle.png"},
+                            arguments);
       }
     };
   } // namespace

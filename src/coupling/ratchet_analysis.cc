@@ -15,12 +15,11 @@
 #include <rockdda/io/error.h>
 #include <rockdda/io/interrupt.h>
 #include <rockdda/io/parameters.h>
+#include <rockdda/io/plot.h>
 #include <rockdda/io/progress.h>
 
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
 
 namespace rockdda::coupling
 {
@@ -630,7 +629,10 @@ namespace rockdda::coupling
                  + io::format_number(1e3 * rate / years, 5) + " mm/yr, heat "
                  + io::format_number(heat_seconds, 3) + " s, DDA "
                  + io::format_number(dda_seconds, 3) + " s");
-        draw_plots(context);
+        io::run_plot_script(context.output,
+                            context.log,
+                            "plot_ratchet_cycles.py",
+                            {"ratchet.png"});
       }
 
     private:
@@ -665,29 +667,6 @@ namespace rockdda::coupling
                                materials.bedding_shear_stiffness})
           f += io::format_number(v, 17) + ";";
         return f;
-      }
-
-      void
-      draw_plots(io::RunContext &context) const
-      {
-        const std::string script
-          = std::string(ROCKDDA_SOURCE_DIR) + "/scripts/plot_ratchet_cycles.py";
-        const std::string python = "/usr/bin/python3";
-        context.output.own("ratchet.png");
-        if (std::ifstream(python) && std::ifstream(script))
-          {
-            const std::string command = python + " '" + script + "' '"
-                                        + context.output.path()
-                                        + "' > /dev/null 2>&1";
-            if (std::system(command.c_str()) == 0)
-              context.log.line("plot: ratchet.png");
-            else
-              context.log.line("note: plotting failed (" + command
-                               + "); is python3-matplotlib installed?");
-          }
-        else
-          context.log.line("note: no plot (" + python + " or " + script
-                           + " missing)");
       }
 
       RatchetGeometry  geometry;

@@ -72,6 +72,19 @@ namespace rockdda::coupling
       return b.id;
     }
 
+    /// Fix block @p b at @p points (three or more, not collinear: clamped).
+    void
+    fix(dda::BlockSystem &s, const int b, const std::vector<Point> &points)
+    {
+      for (const auto &p : points)
+        {
+          dda::FixedPoint f;
+          f.block = b;
+          f.point = p;
+          s.fixed_points.push_back(f);
+        }
+    }
+
     thermal::Block
     heat_block(const std::string              &name,
                const std::vector<Point>       &vertices,
@@ -80,7 +93,7 @@ namespace rockdda::coupling
       thermal::Block b;
       b.name = name;
       for (const auto &v : vertices)
-        b.vertices.push_back({v[0], v[1]});
+        b.vertices.push_back(thermal::Point2{{v[0], v[1]}});
       b.edge_tags = tags;
       return b;
     }
@@ -259,13 +272,7 @@ namespace rockdda::coupling
         scene.cliff_slices.push_back(i);
         if (last)
           {
-            for (const auto &p : v)
-              {
-                dda::FixedPoint f;
-                f.block = i;
-                f.point = p;
-                s.fixed_points.push_back(f);
-              }
+            fix(s, i, v);
             scene.heat_map.index.push_back(-2);
           }
         else
@@ -342,13 +349,7 @@ namespace rockdda::coupling
       const int                i
         = add_block(s, v, {bedding, bedding, bedding, bonded, bedding});
       scene.base = i;
-      for (const auto &p : {v[0], v[1], v[2]})
-        {
-          dda::FixedPoint f;
-          f.block = i;
-          f.point = p;
-          s.fixed_points.push_back(f);
-        }
+      fix(s, i, {v[0], v[1], v[2]});
       scene.heat_map.index.push_back(-2);
     }
     scene.heat_map.pieces.resize(s.blocks.size());

@@ -6,6 +6,7 @@
  */
 #include <rockdda/io/error.h>
 #include <rockdda/io/parameters.h>
+#include <rockdda/io/plot.h>
 #include <rockdda/structure/analyses.h>
 #include <rockdda/structure/block_output.h>
 #include <rockdda/structure/statistics.h>
@@ -14,8 +15,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
 #include <sstream>
 
 namespace rockdda::structure
@@ -239,25 +238,10 @@ namespace rockdda::structure
         sum.add("cut_time", cut_time, "s");
 
         if (plots)
-          {
-            const std::string script
-              = std::string(ROCKDDA_SOURCE_DIR) + "/scripts/plot_structure.py";
-            const std::string python = "/usr/bin/python3";
-            if (std::ifstream(python) && std::ifstream(script))
-              {
-                const std::string command = python + " '" + script + "' '"
-                                            + context.output.path()
-                                            + "' > /dev/null 2>&1";
-                if (std::system(command.c_str()) == 0)
-                  log.line("plots: blocks.png, histograms.png");
-                else
-                  log.line("note: plotting failed (" + command
-                           + "); is python3-matplotlib installed?");
-              }
-            else
-              log.line("note: no plots (" + python + " or " + script
-                       + " missing)");
-          }
+          io::run_plot_script(context.output,
+                              log,
+                              "plot_structure.py",
+                              {"blocks.png", "histograms.png"});
       }
 
     private:
