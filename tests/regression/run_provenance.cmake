@@ -12,6 +12,18 @@ endif()
 string(REGEX MATCH "git commit: ([^\n]+)" _ "${out}")
 set(commit ${CMAKE_MATCH_1})
 message("--version: ${out}")
+# The commit is the one the binary was built from, not the one of the last
+# CMake configure: HEAD of the source tree (when it is a git checkout and the
+# test runs on the build it belongs to, as ctest does).
+if(GIT AND EXISTS ${SOURCE_DIR}/.git)
+  execute_process(COMMAND ${GIT} rev-parse --short=12 HEAD
+    WORKING_DIRECTORY ${SOURCE_DIR} OUTPUT_VARIABLE head
+    OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
+  if(rc EQUAL 0 AND NOT commit MATCHES "^${head}(-dirty)?$")
+    message(FATAL_ERROR "rockdda --version says commit ${commit}, the source "
+      "tree is at ${head}: the binary records a stale commit")
+  endif()
+endif()
 
 file(REMOVE_RECURSE ${OUT})
 file(MAKE_DIRECTORY ${OUT}/first ${OUT}/again)
