@@ -436,6 +436,10 @@ namespace rockdda::dda
                {"strain_energy", "J/m"},
                {"contact_energy", "J/m"},
                {"gravity_potential_energy", "J/m"},
+               {"fixed_spring_energy", "J/m"},
+               {"friction_dissipation", "J/m"},
+               {"load_work", "J/m"},
+               {"energy_balance", "J/m"},
                {"max_vertex_step_displacement", "m"}})
           table.add_column(n, u);
         const auto &mps = dda->system().measurement_points;
@@ -454,6 +458,7 @@ namespace rockdda::dda
         auto          add_row       = [&](const StepReport &r) {
           const unsigned long cuts = dda->n_cuts - cuts_reported;
           cuts_reported            = dda->n_cuts;
+          const EnergyLedger  e    = dda->energy();
           std::vector<double> row  = {dda->time(),
                                       r.dt,
                                       double(r.iterations),
@@ -461,10 +466,14 @@ namespace rockdda::dda
                                       double(r.n_open),
                                       double(r.n_sliding),
                                       double(r.n_locked),
-                                      dda->kinetic_energy(),
-                                      dda->strain_energy(),
-                                      dda->contact_energy(),
-                                      dda->potential_energy(),
+                                      e.kinetic,
+                                      e.strain,
+                                      e.contact,
+                                      e.potential,
+                                      e.fixed,
+                                      e.friction,
+                                      e.load_work,
+                                      e.balance(),
                                       r.max_displacement};
           for (const auto &m : dda->system().measurement_points)
             {
@@ -491,9 +500,17 @@ namespace rockdda::dda
 
         StepReport last;
         double next_output = output_interval, next_row = statistics_interval;
-        double next_checkpoint                   = checkpoint_interval;
-        unsigned int            max_iterations   = 0;
-        unsigned long           iterations_total = 0;
+        double next_checkpoint         = checkpoint_interval;
+        unsigned int  max_iterations   = 0;
+        unsigned long iterations_total = 0;
+        // Energy ledger over every accepted step (not only the rows): the
+        // balance at the start, the largest gain over it (created energy,
+        // > 0 only through the ledger's known inexactness) and the largest
+        // energy in play.
+        const EnergyLedger      ledger0        = dda->energy();
+        double                  balance0       = ledger0.balance();
+        double                  created_max    = 0.;
+        double                  energy_in_play = ledger0.scale();
         const io::RunCheckpoint checkpoint_file(context.output,
                                                 "DDA",
                                                 fingerprint,
@@ -519,6 +536,8 @@ namespace rockdda::dda
           w.put<std::uint32_t>(max_iterations);
           w.put<std::uint64_t>(iterations_total);
           w.put<std::uint64_t>(cuts_reported);
+          for (const double v : {balance0, created_max, energy_in_play})
+            w.put(v);
           checkpoint_file.write(w, table);
           saved_at = dda->time();
         };
@@ -542,6 +561,8 @@ namespace rockdda::dda
           max_iterations   = r.get<std::uint32_t>();
           iterations_total = r.get<std::uint64_t>();
           cuts_reported    = r.get<std::uint64_t>();
+          for (double *v : {&balance0, &created_max, &energy_in_play})
+            *v = r.get<double>();
           if (!r.at_end())
             throw InputError(checkpoint_file.file() + ": trailing data");
           context.log.line("resumed from " + checkpoint_file.file()
@@ -594,6 +615,11 @@ namespace rockdda::dda
                       + io::format_number(dda->time_step(), 4) + " s)");
                   max_iterations = std::max(max_iterations, last.iterations);
                   iterations_total += last.iterations;
+                  {
+                    const EnergyLedger e = dda->energy();
+                    created_max = std::max(created_max, e.balance() - balance0);
+                    energy_in_play = std::max(energy_in_play, e.scale());
+                  }
                   if (statistics_interval <= 0.
                       || dda->time() >= next_row - 1e-12)
                     {
@@ -669,6 +695,13 @@ namespace rockdda::dda
               "-");
         s.add("kinetic_energy", dda->kinetic_energy(), "J/m");
         s.add("strain_energy", dda->strain_energy(), "J/m");
+        s.add("energy_balance_change",
+              dda->energy().balance() - balance0,
+              "J/m");
+        s.add("energy_created_max", created_max, "J/m");
+        s.add("energy_created_relative",
+              energy_in_play > 0. ? created_max / energy_in_play : 0.,
+              "-");
         s.add("contacts_final",
               static_cast<double>(dda->contacts().size()),
               "-");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rockdda::geometry
 {
@@ -120,6 +121,30 @@ namespace rockdda::geometry
         angle = std::min(angle, t);
       }
     return angle;
+  }
+
+
+
+  double
+  Polygon::min_width() const
+  {
+    const std::size_t n     = vertices.size();
+    double            width = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        const Point &a = vertices[i];
+        const Point  t = vertices[(i + 1) % n] - a;
+        const double l = t.norm();
+        if (!(l > 0.))
+          continue;
+        double far = 0.;
+        for (const Point &v : vertices)
+          far = std::max(
+            far,
+            std::abs(t.x() * (v.y() - a.y()) - t.y() * (v.x() - a.x())) / l);
+        width = std::min(width, far);
+      }
+    return n < 3 ? 0. : width;
   }
 
 

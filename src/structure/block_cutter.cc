@@ -266,14 +266,30 @@ namespace rockdda::structure
       is_sliver(const Polygon &p) const
       {
         return (options.sliver_area > 0. && p.area() < options.sliver_area)
+               || (options.sliver_width > 0.
+                   && p.min_width() < options.sliver_width)
                || (options.sliver_angle > 0.
                    && p.min_interior_angle() < options.sliver_angle);
       }
 
+      /// Add the tests that @p p fails to the counters of @p result.
+      void
+      count_sliver(const Polygon &p, BlockSet &result) const
+      {
+        result.n_slivers_by_area
+          += options.sliver_area > 0. && p.area() < options.sliver_area;
+        result.n_slivers_by_width
+          += options.sliver_width > 0. && p.min_width() < options.sliver_width;
+        result.n_slivers_by_angle
+          += options.sliver_angle > 0.
+             && p.min_interior_angle() < options.sliver_angle;
+      }
+
       /// Merge each sliver into its neighbour with the longest shared
-      /// boundary. Returns the number merged.
+      /// boundary. Returns the number merged; counts the tests each merged
+      /// sliver failed in @p result.
       unsigned int
-      merge_slivers()
+      merge_slivers(BlockSet &result)
       {
         std::map<const void *, Halfedge> doomed;
         unsigned int                     merged = 0;
@@ -311,6 +327,7 @@ namespace rockdda::structure
                 }
             while (++c != e);
             ++merged;
+            count_sliver(outer_polygon(f), result);
           }
         for (auto &[key, h] : doomed)
           arr.remove_edge(h);
@@ -486,9 +503,10 @@ namespace rockdda::structure
     result.n_dangling_edges = cutter.remove_dangling();
     cutter.classify_all();
     if (options.merge_slivers
-        && (options.sliver_area > 0. || options.sliver_angle > 0.))
+        && (options.sliver_area > 0. || options.sliver_width > 0.
+            || options.sliver_angle > 0.))
       {
-        result.n_slivers_merged = cutter.merge_slivers();
+        result.n_slivers_merged = cutter.merge_slivers(result);
         result.n_dangling_edges += cutter.remove_dangling();
       }
     result.n_holes_split = cutter.split_holes();
@@ -574,6 +592,7 @@ namespace rockdda::structure
         // Sliver with no block neighbour: drop.
         if (cutter.is_sliver(blk.polygon))
           {
+            cutter.count_sliver(blk.polygon, result);
             bool has_neighbour = false;
             do
               has_neighbour |= (c->twin()->face()->data() == block

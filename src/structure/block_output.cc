@@ -2,6 +2,7 @@
 #include <rockdda/structure/block_output.h>
 #include <rockdda/structure/statistics.h>
 
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <set>
@@ -191,7 +192,8 @@ namespace rockdda::structure
 
 
   std::string
-  dda_block_file_text(const BlockSet &blocks)
+  dda_block_file_text(const BlockSet                 &blocks,
+                      const std::vector<std::size_t> &fixed)
   {
     std::ostringstream out;
     out << std::setprecision(17);
@@ -219,7 +221,44 @@ namespace rockdda::structure
           out << " " << dda_joint_id(t);
         out << "\n";
       }
+    for (const std::size_t b : fixed)
+      out << "fixed-block " << b << "\n";
     return out.str();
+  }
+
+
+
+  std::vector<std::size_t>
+  boundary_blocks(const BlockSet &blocks,
+                  const bool      bottom,
+                  const bool      sides,
+                  const Polygon  &region)
+  {
+    const double             c45 = std::sqrt(0.5);
+    std::vector<std::size_t> list;
+    for (std::size_t b = 0; b < blocks.blocks.size(); ++b)
+      {
+        const Block &blk  = blocks.blocks[b];
+        const auto  &v    = blk.polygon.vertices;
+        const double sign = blk.polygon.signed_area() > 0. ? 1. : -1.;
+        bool         hit
+          = !region.vertices.empty() && region.contains(blk.polygon.centroid());
+        for (std::size_t k = 0; k < v.size() && !hit; ++k)
+          {
+            if (blk.edge_tags[k].kind != EdgeKind::boundary)
+              continue;
+            const Point  d = v[(k + 1) % v.size()] - v[k];
+            const double l = d.norm();
+            if (!(l > 0.))
+              continue;
+            // Outward normal of a counter-clockwise boundary: (dy, -dx).
+            const double nx = sign * d.y() / l, ny = -sign * d.x() / l;
+            hit = (bottom && ny < -c45) || (sides && std::abs(nx) > c45);
+          }
+        if (hit)
+          list.push_back(b);
+      }
+    return list;
   }
 
 

@@ -97,6 +97,37 @@ namespace rockdda::structure
                     Bool(),
                     "-",
                     "Write the generated traces to traces.csv.");
+        io::declare(prm,
+                    "Fixed blocks",
+                    "none",
+                    Selection("none|bottom|sides|bottom-and-sides"),
+                    "-",
+                    "Blocks written as fixed ('fixed-block') in blocks.dda: "
+                    "those with an edge on the domain boundary facing down "
+                    "(bottom: outward normal within 45 deg of -y), sideways "
+                    "(sides: within 45 deg of +-x), or both; plus those in "
+                    "'Fixed region'.");
+        io::declare(prm,
+                    "Fixed region",
+                    "",
+                    Anything(),
+                    "m",
+                    "Optional polygon 'x, y; x, y; x, y' (m): blocks whose "
+                    "centroid lies inside it are fixed too. Empty: none.");
+        io::declare(prm,
+                    "Write DDA parameter file",
+                    "true",
+                    Bool(),
+                    "-",
+                    "Write dda.prm beside blocks.dda: a 'dda' run of the cut "
+                    "blocks (dynamic, 1 s, automatic penalty) that runs as "
+                    "it stands: 'rockdda OUTPUT/dda.prm'.");
+        io::declare(prm,
+                    "DDA end time",
+                    "1",
+                    io::DoubleInterval::positive(),
+                    "s",
+                    "End time written to dda.prm. Must be > 0.");
         prm.leave_subsection();
       }
 
@@ -106,10 +137,20 @@ namespace rockdda::structure
       {
         model = parse_structure(prm, prm_file);
         prm.enter_subsection("Cut");
-        bins         = prm.get_integer("Histogram bins");
-        scan_lines   = prm.get_integer("Scan lines");
-        plots        = prm.get_bool("Plots");
-        write_traces = prm.get_bool("Write traces");
+        bins                    = prm.get_integer("Histogram bins");
+        scan_lines              = prm.get_integer("Scan lines");
+        plots                   = prm.get_bool("Plots");
+        write_traces            = prm.get_bool("Write traces");
+        const std::string fixed = prm.get("Fixed blocks");
+        fix_bottom = fixed == "bottom" || fixed == "bottom-and-sides";
+        fix_sides  = fixed == "sides" || fixed == "bottom-and-sides";
+        const std::string region = prm.get("Fixed region");
+        fixed_region             = {};
+        if (region.find_first_not_of(" \t") != std::string::npos)
+          fixed_region
+            = parse_polygon(region, prm_file + ": key 'Cut/Fixed region'");
+        write_dda_prm = prm.get_bool("Write DDA parameter file");
+        dda_end_time  = prm.get_double("DDA end time");
         prm.leave_subsection();
       }
 
@@ -141,8 +182,11 @@ namespace rockdda::structure
                  + std::to_string(blocks.n_slivers_merged) + " slivers merged, "
                  + std::to_string(blocks.n_slivers_dropped) + " dropped, "
                  + std::to_string(blocks.n_slivers_remaining)
-                 + " remaining; area balance error "
-                 + io::format_number(area_error, 3));
+                 + " remaining (tests failed: area "
+                 + std::to_string(blocks.n_slivers_by_area) + ", width "
+                 + std::to_string(blocks.n_slivers_by_width) + ", angle "
+                 + std::to_string(blocks.n_slivers_by_angle)
+                 + "); area balance error " + io::format_number(area_error, 3));
         if (blocks.blocks.empty())
           log.line("WARNING: no blocks (is everything excavated?)");
 
@@ -150,9 +194,40 @@ namespace rockdda::structure
         const StructureStatistics s = compute_statistics(
           blocks, net.traces, model.domain, model.excavations, dip, scan_lines);
 
+        // Thin blocks that no sliver test caught: flagged, not changed.
+        {
+          const double median = s.median_width;
+          unsigned int thin   = 0;
+          std::string  names;
+          for (std::size_t i = 0; i < s.widths.size(); ++i)
+            {
+              const double w = blocks.blocks[i].polygon.min_width();
+              if (w < 0.2 * median)
+                {
+                  if (++thin <= 5)
+                    names += " " + std::to_string(i) + " ("
+                             + io::format_number(w, 3) + " m)";
+                }
+            }
+          if (thin > 0)
+            log.line("WARNING: " + std::to_string(thin)
+                     + " blocks are narrower than 0.2 x the median block "
+                       "width "
+                     + io::format_number(median, 3) + " m:" + names
+                     + (thin > 5 ? " ..." : "")
+                     + "; set 'Structure/Cutting/Sliver width' to merge "
+                       "them into a neighbour");
+        }
+
         // Files.
+        const std::vector<std::size_t> fixed
+          = boundary_blocks(blocks, fix_bottom, fix_sides, fixed_region);
+        if (fix_bottom || fix_sides || !fixed_region.vertices.empty())
+          log.line("fixed " + std::to_string(fixed.size()) + " blocks");
         context.output.write("blocks.txt", block_file_text(blocks));
-        context.output.write("blocks.dda", dda_block_file_text(blocks));
+        context.output.write("blocks.dda", dda_block_file_text(blocks, fixed));
+        if (write_dda_prm)
+          context.output.write("dda.prm", dda_parameter_file(fixed.size()));
         context.output.write("blocks.vtu", blocks_vtu(blocks, dip));
         context.output.write("edges.vtu", edges_vtu(blocks));
         io::Table per_block;
@@ -234,6 +309,10 @@ namespace rockdda::structure
         sum.add("slivers_merged", blocks.n_slivers_merged, "-");
         sum.add("slivers_dropped", blocks.n_slivers_dropped, "-");
         sum.add("slivers_remaining", blocks.n_slivers_remaining, "-");
+        sum.add("slivers_by_area", blocks.n_slivers_by_area, "-");
+        sum.add("slivers_by_width", blocks.n_slivers_by_width, "-");
+        sum.add("slivers_by_angle", blocks.n_slivers_by_angle, "-");
+        sum.add("fixed_blocks", double(fixed.size()), "-");
         sum.add("degenerate_dropped", blocks.n_degenerate_dropped, "-");
         sum.add("cut_time", cut_time, "s");
 
@@ -245,9 +324,36 @@ namespace rockdda::structure
       }
 
     private:
+      /// A 'dda' parameter file for blocks.dda in the same folder.
+      std::string
+      dda_parameter_file(const std::size_t n_fixed) const
+      {
+        std::ostringstream s;
+        s << "# Written by 'rockdda cut': a dynamic DDA run of the cut "
+             "blocks in\n# blocks.dda (same folder). Run: rockdda dda.prm\n"
+          << "# Materials and joints are in blocks.dda; " << n_fixed
+          << " blocks are fixed there\n# (Cut/Fixed blocks, Cut/Fixed "
+             "region). Every key: rockdda --print-parameters.\n"
+          << "set Analysis type    = dda\n"
+          << "set Output directory = output-dda\n"
+          << "subsection DDA\n"
+          << "  set Block file      = blocks.dda\n"
+          << "  set End time        = " << dda_end_time << "\n"
+          << "  set Time step       = 0.001\n"
+          << "  set Dynamic control = 1\n"
+          << "  set Contact penalty = auto\n"
+          << "  set Output interval = " << dda_end_time / 10. << "\n"
+          << "end\n";
+        return s.str();
+      }
+
       StructureModel model;
       unsigned int   bins = 20, scan_lines = 10;
       bool           plots = true, write_traces = true;
+      bool           fix_bottom = false, fix_sides = false;
+      Polygon        fixed_region;
+      bool           write_dda_prm = true;
+      double         dda_end_time  = 1.;
     };
   } // namespace
 

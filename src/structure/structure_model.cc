@@ -273,6 +273,15 @@ namespace rockdda::structure
                 "Blocks smaller than this are slivers (0: no area test). "
                 "Must be >= 0.");
     io::declare(prm,
+                "Sliver width",
+                "0",
+                Double(0.),
+                "m",
+                "Blocks narrower than this are slivers (0: no width test): "
+                "the smallest width over the block's edge directions (for a "
+                "convex block its minimum caliper width). A 5 cm strip cut "
+                "off at a domain edge is the typical case. Must be >= 0.");
+    io::declare(prm,
                 "Sliver angle",
                 "2",
                 io::DoubleInterval::right_open(0., 60.),
@@ -409,6 +418,7 @@ namespace rockdda::structure
 
     prm.enter_subsection("Cutting");
     m.cut.sliver_area          = prm.get_double("Sliver area");
+    m.cut.sliver_width         = prm.get_double("Sliver width");
     const double angle         = prm.get_double("Sliver angle");
     m.cut.merge_slivers        = prm.get_bool("Merge slivers");
     m.cut.remove_all_collinear = prm.get_bool("Remove T-junction vertices");
@@ -418,6 +428,11 @@ namespace rockdda::structure
                 "Structure/Cutting/Sliver area",
                 m.cut.sliver_area,
                 ">= 0 m^2");
+    io::require(m.cut.sliver_width >= 0.,
+                prm_file,
+                "Structure/Cutting/Sliver width",
+                m.cut.sliver_width,
+                ">= 0 m");
     io::require(angle >= 0. && angle < 60.,
                 prm_file,
                 "Structure/Cutting/Sliver angle",

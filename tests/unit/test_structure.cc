@@ -305,6 +305,88 @@ TEST(BlockCutter, SliverMerged)
   EXPECT_EQ(kept.n_slivers_remaining, 1u);
 }
 
+// The width test: a vertical joint 5 cm from the right edge of a 10 m x 1 m
+// domain cuts a 0.05 m x 1 m strip (area 0.05 m^2, all angles 90 deg: no
+// area or angle test at usual settings catches it). Its width is exactly
+// 0.05 m; a 0.1 m width threshold merges it into its neighbour, which then
+// spans the whole domain; the cut counts it under the width test only.
+TEST(BlockCutter, NarrowStripMergedByWidth)
+{
+  const std::vector<TaggedSegment> s = {joint(9.95, -1, 9.95, 2)};
+  CutOptions                       o;
+  o.sliver_area         = 1e-3;
+  o.sliver_angle        = 2. * M_PI / 180.;
+  const BlockSet before = cut_blocks(rectangle(0, 0, 10, 1), {}, s, o);
+  ASSERT_EQ(before.blocks.size(), 2u);
+  double narrowest = 1e300;
+  for (const auto &b : before.blocks)
+    narrowest = std::min(narrowest, b.polygon.min_width());
+  EXPECT_NEAR(narrowest, 0.05, 1e-12);
+  o.sliver_width       = 0.1;
+  const BlockSet after = cut_blocks(rectangle(0, 0, 10, 1), {}, s, o);
+  ASSERT_EQ(after.blocks.size(), 1u);
+  EXPECT_EQ(after.n_slivers_merged, 1u);
+  EXPECT_EQ(after.n_slivers_by_width, 1u);
+  EXPECT_EQ(after.n_slivers_by_area + after.n_slivers_by_angle, 0u);
+  EXPECT_NEAR(after.blocks[0].polygon.min_width(), 1., 1e-12);
+  EXPECT_NEAR(after.total_block_area(), 10., 1e-12);
+}
+
+// Minimum width: a rectangle's smaller side, a triangle's smallest height,
+// invariant under rotation.
+TEST(Polygon, MinWidth)
+{
+  geometry::Polygon r;
+  r.vertices = {{0., 0.}, {3., 0.}, {3., 0.2}, {0., 0.2}};
+  EXPECT_NEAR(r.min_width(), 0.2, 1e-15);
+  geometry::Polygon t;
+  t.vertices = {{0., 0.}, {4., 0.}, {0., 3.}};
+  // heights: 3 (on 4), 4 (on 3), 12/5 (on the hypotenuse 5)
+  EXPECT_NEAR(t.min_width(), 2.4, 1e-14);
+  const double c = std::cos(0.7), sn = std::sin(0.7);
+  for (auto &v : t.vertices)
+    v = geometry::Point(c * v.x() - sn * v.y(), sn * v.x() + c * v.y());
+  EXPECT_NEAR(t.min_width(), 2.4, 1e-14);
+}
+
+// Fixed boundary blocks: on a 3 x 2 grid of 1 m squares, 'bottom' fixes
+// the 3 blocks of the bottom row, 'sides' the 4 blocks touching x = 0 or
+// x = 3, both together 5 (the bottom middle and the four corners' columns),
+// and a region polygon around the top-middle centroid adds that block.
+TEST(BlockCutter, BoundaryBlocksForDda)
+{
+  const std::vector<TaggedSegment> s
+    = {joint(1, -1, 1, 3), joint(2, -1, 2, 3), joint(-1, 1, 4, 1)};
+  const BlockSet b = cut_blocks(rectangle(0, 0, 3, 2), {}, s, CutOptions());
+  ASSERT_EQ(b.blocks.size(), 6u);
+  auto centroids = [&](const std::vector<std::size_t> &list) {
+    std::vector<std::pair<double, double>> c;
+    for (const std::size_t i : list)
+      c.emplace_back(b.blocks[i].polygon.centroid().x(),
+                     b.blocks[i].polygon.centroid().y());
+    std::sort(c.begin(), c.end());
+    return c;
+  };
+  using C = std::vector<std::pair<double, double>>;
+  EXPECT_EQ(centroids(boundary_blocks(b, true, false)),
+            (C{{0.5, 0.5}, {1.5, 0.5}, {2.5, 0.5}}));
+  EXPECT_EQ(centroids(boundary_blocks(b, false, true)),
+            (C{{0.5, 0.5}, {0.5, 1.5}, {2.5, 0.5}, {2.5, 1.5}}));
+  EXPECT_EQ(boundary_blocks(b, true, true).size(), 5u);
+  geometry::Polygon region;
+  region.vertices = {{1.2, 1.2}, {1.8, 1.2}, {1.8, 1.8}, {1.2, 1.8}};
+  EXPECT_EQ(boundary_blocks(b, true, true, region).size(), 6u);
+  EXPECT_TRUE(boundary_blocks(b, false, false).empty());
+  // The DDA block file lists them as fixed blocks.
+  const std::string text
+    = dda_block_file_text(b, boundary_blocks(b, true, false));
+  std::size_t n = 0;
+  for (std::size_t p = text.find("fixed-block "); p != std::string::npos;
+       p             = text.find("fixed-block ", p + 1))
+    ++n;
+  EXPECT_EQ(n, 3u);
+}
+
 // Shi & Goodman sets: L, b and s are uniform in [mean (1 - DR),
 // mean (1 + DR)]; over ~10^4 samples the means are within 5 % (the
 // sampling error is ~0.3 %), no value leaves the DR band and the standard

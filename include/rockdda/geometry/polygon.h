@@ -71,6 +71,15 @@ namespace rockdda::geometry
     double
     min_interior_angle() const;
 
+    /**
+     * Smallest width (m): the minimum over the edges of the largest distance
+     * of a vertex from the edge's line. For a convex polygon this is the
+     * minimum caliper width (the narrowest slot it passes through); for a
+     * non-convex one it is an upper bound of it.
+     */
+    double
+    min_width() const;
+
     /// Bounding box as (xmin, ymin, xmax, ymax) (m).
     Eigen::Vector4d
     bounding_box() const;

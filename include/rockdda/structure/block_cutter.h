@@ -14,11 +14,13 @@ namespace rockdda::structure
 {
   /**
    * Options of block cutting. A block is a sliver if its area is below
-   * sliver_area or its smallest interior angle is below sliver_angle.
+   * sliver_area, its smallest width (Polygon::min_width) is below
+   * sliver_width or its smallest interior angle is below sliver_angle.
    */
   struct CutOptions
   {
     double sliver_area   = 0.;   ///< m^2; 0 disables the area test
+    double sliver_width  = 0.;   ///< m; 0 disables the width test
     double sliver_angle  = 0.;   ///< rad; 0 disables the angle test
     bool   merge_slivers = true; ///< merge (true) or only report (false)
     /**

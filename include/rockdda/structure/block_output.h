@@ -20,10 +20,24 @@ namespace rockdda::structure
    * The blocks in the scene format of the dda analysis
    * (doc/block-file-format-dda.md): one material (thesis Table 3-2: 2300
    * kg/m^3, 15.3 GPa, 0.21) and one joint (30 deg) for every block; the
-   * per-edge tags are only in the rockdda block file.
+   * per-edge tags are only in the rockdda block file. The blocks listed in
+   * @p fixed get a 'fixed-block' line.
    */
   std::string
-  dda_block_file_text(const BlockSet &blocks);
+  dda_block_file_text(const BlockSet                 &blocks,
+                      const std::vector<std::size_t> &fixed = {});
+
+  /**
+   * Blocks with an edge on the outer domain boundary (EdgeKind::boundary)
+   * whose outward normal points down (@p bottom: n_y < -cos 45 deg) or
+   * sideways (@p sides: |n_x| > cos 45 deg), plus the blocks whose
+   * centroid lies inside @p region (if it has vertices). Sorted, once each.
+   */
+  std::vector<std::size_t>
+  boundary_blocks(const BlockSet &blocks,
+                  const bool      bottom,
+                  const bool      sides,
+                  const Polygon  &region = {});
 
   /**
    * Read a block file; throws InputError naming @p file_name and the line

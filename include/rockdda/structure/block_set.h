@@ -91,6 +91,10 @@ namespace rockdda::structure
     unsigned int n_slivers_merged    = 0;
     unsigned int n_slivers_dropped   = 0;
     unsigned int n_slivers_remaining = 0; ///< still below a threshold
+    /// Slivers found by the area, width and angle tests (merged, dropped
+    /// or remaining; one sliver may fail several tests).
+    unsigned int n_slivers_by_area = 0, n_slivers_by_width = 0,
+                 n_slivers_by_angle = 0;
     /// Faces that collapse when rounded to double (area below rounding).
     unsigned int n_degenerate_dropped = 0;
 
