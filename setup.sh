@@ -17,7 +17,8 @@ build=${BUILD_DIR:-$here/build}
 jobs=${JOBS:-$(nproc)}
 
 packages=(g++ make cmake libdeal.ii-dev libeigen3-dev libcgal-dev
-  libgtest-dev libbenchmark-dev python3 python3-matplotlib)
+  libgtest-dev libbenchmark-dev libfftw3-dev pkg-config python3
+  python3-matplotlib)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -2,6 +2,7 @@
 #include <rockdda/coupling/analyses.h>
 #include <rockdda/dda/analyses.h>
 #include <rockdda/io/analysis.h>
+#include <rockdda/seismic/analyses.h>
 #include <rockdda/structure/analyses.h>
 #include <rockdda/thermal/analyses.h>
 
@@ -20,6 +21,8 @@ namespace rockdda::io
     for (auto &a : structure::make_analyses())
       list.push_back(std::move(a));
     for (auto &a : coupling::make_analyses())
+      list.push_back(std::move(a));
+    for (auto &a : seismic::make_analyses())
       list.push_back(std::move(a));
     return list;
   }

@@ -1,4 +1,5 @@
 #include <rockdda/io/error.h>
+#include <rockdda/io/output.h>
 #include <rockdda/io/parameters.h>
 #include <rockdda/seismic/ground_motion.h>
 
@@ -44,16 +45,42 @@ namespace rockdda::seismic
     io::declare(prm,
                 "Units",
                 "g",
-                Selection("g|m/s^2"),
+                Selection("g|m/s^2|cm/s^2"),
                 "-",
-                "Units of the acceleration values in the record file.");
+                "Units of the acceleration values in the record file (g = "
+                "9.80665 m/s^2). A PEER AT2 file's stated units must agree. "
+                "A record whose PGA exceeds 5 g in these units is rejected "
+                "as implausible (e.g. cm/s^2 read as g).");
+    io::declare(prm,
+                "Record format",
+                "auto",
+                Selection("auto|one column|columns|PEER AT2"),
+                "-",
+                "'one column': one acceleration value per line (SLAMMER; "
+                "'Time step' gives dt); 'columns': time (s) in the first "
+                "column and the acceleration in 'Acceleration column', "
+                "separated by commas, semicolons or blanks, one header line "
+                "allowed; 'PEER AT2': the PEER NGA format (4 header lines: "
+                "title, event, units, 'NPTS= N, DT= dt SEC'); 'auto': AT2 "
+                "for a .AT2 name or a first line naming PEER, else by the "
+                "number of values on the first data line.");
+    io::declare(prm,
+                "Acceleration column",
+                "2",
+                dealii::Patterns::Integer(2, 1000),
+                "-",
+                "Column (counted from 1) of the acceleration in a 'columns' "
+                "record file, 2 to 1000; column 1 is the time.");
     io::declare(prm,
                 "Scaling",
                 "none",
-                Selection("none|target PGA|factor"),
+                Selection("none|target PGA|factor|BJF97"),
                 "-",
-                "'target PGA': scale linearly so max |a| equals 'Target PGA'; "
-                "'factor': multiply by 'Scale factor'.");
+                "Applied after the Processing subsection. 'target PGA': scale "
+                "linearly so max |a| equals 'Target PGA'; 'factor': multiply "
+                "by 'Scale factor'; 'BJF97': scale so max |a| equals the PGA "
+                "of Boore, Joyner & Fumal (1997) for the scenario of the "
+                "Attenuation subsection.");
     io::declare(prm,
                 "Target PGA",
                 "0.2",
@@ -92,6 +119,106 @@ namespace rockdda::seismic
                 io::DoubleInterval::positive(),
                 "s",
                 "Length of the harmonic input. Must be > 0.");
+
+    prm.enter_subsection("Processing");
+    io::declare(prm,
+                "Resampling time step",
+                "0",
+                Double(0.),
+                "s",
+                "Resample the record to this step first (>= 0; 0 keeps the "
+                "record's step).");
+    io::declare(prm,
+                "Resampling method",
+                "Fourier",
+                Selection("Fourier|linear"),
+                "-",
+                "'Fourier': band-limited (FFTW), exact for a record with no "
+                "energy above the lower Nyquist frequency, an ideal "
+                "anti-alias filter when the step grows; needs the two steps "
+                "in a ratio of integers up to 1000. 'linear': linear "
+                "interpolation (aliases when the step grows).");
+    io::declare(prm,
+                "Baseline correction",
+                "none",
+                Selection("none|mean|linear|quadratic"),
+                "-",
+                "Remove a polynomial of degree 0 ('mean'), 1 or 2 from the "
+                "acceleration: the one whose integral best fits the "
+                "velocity in least squares while making the final velocity "
+                "zero. Applied after resampling, before filtering.");
+    io::declare(prm,
+                "High-pass corner",
+                "0",
+                Double(0.),
+                "Hz",
+                "Corner frequency fc of the acausal (zero-phase) Butterworth "
+                "high-pass, gain 1/sqrt(1 + (fc/f)^(2n)) (-3 dB at fc); 0 = "
+                "no high-pass; >= 0.");
+    io::declare(prm,
+                "Low-pass corner",
+                "0",
+                Double(0.),
+                "Hz",
+                "Corner frequency fc of the acausal Butterworth low-pass, "
+                "gain 1/sqrt(1 + (f/fc)^(2n)); 0 = no low-pass; >= 0. Must "
+                "lie below the Nyquist frequency 1/(2 dt).");
+    io::declare(prm,
+                "Filter order",
+                "4",
+                dealii::Patterns::Integer(1, 12),
+                "-",
+                "Order n of the Butterworth gains (1 to 12). Zero padding of "
+                "0.75 n/fc (fc the high-pass corner if any) is added at "
+                "each end before filtering (Boore & Bommer 2005).");
+    io::declare(prm,
+                "Keep padding",
+                "true",
+                Bool(),
+                "-",
+                "Keep the zero pads (with the filter transients in them) in "
+                "the filtered record, as Boore & Bommer (2005) recommend so "
+                "that its velocity and displacement are consistent; false "
+                "cuts the record back to its original span.");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Attenuation");
+    io::declare(prm,
+                "Magnitude",
+                "6",
+                Double(0., 10.),
+                "-",
+                "Moment magnitude M of the BJF97 scenario, in [0, 10]; "
+                "BJF97 was fitted to M 4-8 (a warning outside).");
+    io::declare(prm,
+                "Joyner-Boore distance",
+                "10000",
+                Double(0., 1e6),
+                "m",
+                "Distance Rjb to the surface projection of the rupture, in "
+                "[0, 1e6]; BJF97 was fitted to Rjb up to 80000 m (a warning "
+                "beyond).");
+    io::declare(prm,
+                "Vs30",
+                "360",
+                io::DoubleInterval::positive(),
+                "m/s",
+                "Average shear-wave velocity of the top 30 m at the site. "
+                "Must be > 0.");
+    io::declare(prm,
+                "Mechanism",
+                "unspecified",
+                Selection("strike-slip|reverse|unspecified"),
+                "-",
+                "Fault mechanism; sets b1 of BJF97 (-0.313, -0.117, -0.242).");
+    io::declare(prm,
+                "Number of sigma",
+                "0",
+                Double(-5., 5.),
+                "-",
+                "PGA at ln Y + n sigma_lnY (sigma_lnY = 0.495); 0 is the "
+                "median; in [-5, 5].");
+    prm.leave_subsection();
     prm.leave_subsection();
   }
 
@@ -105,6 +232,7 @@ namespace rockdda::seismic
     const std::string source = prm.get("Source");
     const double      dt     = prm.get_double("Time step");
     io::require(dt > 0., prm_file, "Ground motion/Time step", dt, "dt > 0 s");
+    warnings.clear();
     std::ostringstream d;
     if (source == "harmonic")
       {
@@ -140,19 +268,93 @@ namespace rockdda::seismic
                              "a record file (or set Source = harmonic)");
         const std::string file
           = io::resolve_path(name, prm_file, "Ground motion/Record file");
-        const double to_g = prm.get("Units") == "g" ? 1. : 1. / 9.80665;
-        record            = read_record(file, dt, to_g);
+        const std::string units  = prm.get("Units");
+        const std::string format = prm.get("Record format");
+        RecordFileOptions options;
+        options.unit        = units == "g" ? AccelerationUnit::g
+                              : units == "m/s^2"
+                                ? AccelerationUnit::metre_per_second2
+                                : AccelerationUnit::centimetre_per_second2;
+        options.format      = format == "one column" ? RecordFormat::one_column
+                              : format == "columns"  ? RecordFormat::columns
+                              : format == "PEER AT2" ? RecordFormat::peer_at2
+                                                     : RecordFormat::automatic;
+        options.dt          = dt;
+        options.column      = prm.get_integer("Acceleration column");
+        record              = read_record(file, options);
+        const std::string w = check_units_plausible(record,
+                                                    options.unit,
+                                                    file,
+                                                    "Ground motion/Units");
+        if (!w.empty())
+          warnings.push_back(w);
         d << record.name << " (" << record.acceleration.size()
           << " samples, dt = " << record.dt << " s, PGA " << record.peak()
           << " g)";
       }
+    raw_record = record;
 
+    // Processing.
+    prm.enter_subsection("Processing");
+    const std::string baseline = prm.get("Baseline correction");
+    processing.resample_dt     = prm.get_double("Resampling time step");
+    processing.method          = prm.get("Resampling method") == "Fourier"
+                                   ? ResampleMethod::fourier
+                                   : ResampleMethod::linear;
+    processing.baseline_degree = baseline == "none"     ? -1
+                                 : baseline == "mean"   ? 0
+                                 : baseline == "linear" ? 1
+                                                        : 2;
+    processing.high_pass       = prm.get_double("High-pass corner");
+    processing.low_pass        = prm.get_double("Low-pass corner");
+    processing.order           = prm.get_integer("Filter order");
+    processing.keep_padding    = prm.get_bool("Keep padding");
+    prm.leave_subsection();
+    const double step
+      = processing.resample_dt > 0. ? processing.resample_dt : record.dt;
+    const double nyquist = 0.5 / step;
+    io::require(processing.low_pass < nyquist,
+                prm_file,
+                "Ground motion/Processing/Low-pass corner",
+                processing.low_pass,
+                "0 <= fc < " + io::format_number(nyquist, 6)
+                  + " Hz (the Nyquist frequency of the record)");
+    io::require(processing.high_pass < nyquist,
+                prm_file,
+                "Ground motion/Processing/High-pass corner",
+                processing.high_pass,
+                "0 <= fc < " + io::format_number(nyquist, 6)
+                  + " Hz (the Nyquist frequency of the record)");
+    io::require(processing.low_pass == 0.
+                  || processing.high_pass < processing.low_pass,
+                prm_file,
+                "Ground motion/Processing/High-pass corner",
+                processing.high_pass,
+                "below the low-pass corner "
+                  + io::format_number(processing.low_pass, 6) + " Hz");
+    const bool processed
+      = processing.resample_dt > 0. || processing.baseline_degree >= 0
+        || processing.high_pass > 0. || processing.low_pass > 0.;
+    if (processed)
+      {
+        io::with_parameter_file(prm_file, [&]() {
+          record = process(record, processing, &processing_report);
+        });
+        d << ", " << processing_report.description;
+        // A processed harmonic is no longer the closed form's input.
+        harmonic_omega = 0.;
+      }
+
+    // Scaling.
     const std::string scaling = prm.get("Scaling");
+    scale_factor              = 1.;
+    attenuation_pga           = 0.;
     if (scaling == "target PGA")
       {
         const double pga = prm.get_double("Target PGA");
         io::require(
           pga > 0., prm_file, "Ground motion/Target PGA", pga, "PGA > 0 g");
+        scale_factor = pga / record.peak();
         scale_to_pga(record, pga);
         d << ", scaled to PGA " << pga << " g";
         harmonic_amplitude = record.peak();
@@ -161,14 +363,52 @@ namespace rockdda::seismic
       {
         const double f = prm.get_double("Scale factor");
         scale(record, f);
+        scale_factor = f;
         harmonic_amplitude *= f;
         d << ", scaled by " << f;
+      }
+    else if (scaling == "BJF97")
+      {
+        prm.enter_subsection("Attenuation");
+        scenario.magnitude     = prm.get_double("Magnitude");
+        scenario.distance_km   = 1e-3 * prm.get_double("Joyner-Boore distance");
+        scenario.vs30          = prm.get_double("Vs30");
+        const std::string mech = prm.get("Mechanism");
+        scenario.mechanism = mech == "strike-slip" ? FaultMechanism::strike_slip
+                             : mech == "reverse"   ? FaultMechanism::reverse
+                                                 : FaultMechanism::unspecified;
+        scenario.n_sigma   = prm.get_double("Number of sigma");
+        prm.leave_subsection();
+        io::require(scenario.vs30 > 0.,
+                    prm_file,
+                    "Ground motion/Attenuation/Vs30",
+                    scenario.vs30,
+                    "Vs30 > 0 m/s");
+        for (const auto &w : bjf97_warnings(scenario))
+          warnings.push_back(w
+                             + " (keys 'Ground motion/Attenuation/Magnitude', "
+                               "'Joyner-Boore distance')");
+        attenuation_pga = bjf97_pga(scenario);
+        if (!(record.peak() > 0.))
+          throw InputError(prm_file + ": the record " + record.name
+                           + " has a zero peak and cannot be scaled to the "
+                             "BJF97 PGA (key 'Ground motion/Scaling')");
+        scale_factor = attenuation_pga / record.peak();
+        scale_to_pga(record, attenuation_pga);
+        harmonic_amplitude = record.peak();
+        d << ", scaled to the BJF97 PGA "
+          << io::format_number(attenuation_pga, 7) << " g (M "
+          << scenario.magnitude << ", Rjb " << scenario.distance_km
+          << " km, Vs30 " << scenario.vs30 << " m/s, " << mech << ", "
+          << scenario.n_sigma << " sigma)";
       }
     const std::string p = prm.get("Polarity");
     polarity            = p == "normal"     ? Polarity::normal
                           : p == "inverted" ? Polarity::inverted
                                             : Polarity::both;
     d << ", polarity " << p;
+    for (const auto &w : warnings)
+      d << "; warning: " << w;
     description = d.str();
     prm.leave_subsection();
   }

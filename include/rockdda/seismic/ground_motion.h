@@ -6,9 +6,12 @@
 #ifndef ROCKDDA_SEISMIC_GROUND_MOTION_H
 #define ROCKDDA_SEISMIC_GROUND_MOTION_H
 
+#include <rockdda/seismic/attenuation.h>
+#include <rockdda/seismic/processing.h>
 #include <rockdda/seismic/record.h>
 
 #include <string>
+#include <vector>
 
 namespace dealii
 {
@@ -19,9 +22,12 @@ namespace rockdda::seismic
 {
   /**
    * A processed input motion, read from the "Ground motion" section: a record
-   * file (one column in g with a given dt, or time/acceleration columns) or a
-   * harmonic A sin(2 pi f t), scaled to a target PGA or by a factor, with the
-   * chosen polarity.
+   * file (SLAMMER one column with a given dt, time/acceleration columns, or
+   * PEER AT2; in g, m/s^2 or cm/s^2) or a harmonic A sin(2 pi f t);
+   * resampled, baseline-corrected and filtered as its "Processing"
+   * subsection says; then scaled to a target PGA, by a factor or to the
+   * BJF97 PGA of the "Attenuation" subsection's scenario; with the chosen
+   * polarity.
    */
   struct GroundMotionInput
   {
@@ -43,8 +49,22 @@ namespace rockdda::seismic
     parse_parameters(dealii::ParameterHandler &prm,
                      const std::string        &prm_file);
 
-    /// The processed record in normal polarity (g).
+    /// The processed and scaled record in normal polarity (g).
     Record record;
+    /// The record as read (converted to g), before processing and scaling.
+    Record raw_record;
+    /// The processing applied (resampling, baseline, filters).
+    ProcessingOptions processing;
+    /// What processing did (padding kept before the record, description).
+    ProcessingReport processing_report;
+    /// Scaling = BJF97: the scenario and its PGA (g); pga 0 otherwise.
+    Bjf97Scenario scenario;
+    double        attenuation_pga = 0.;
+    /// Factor the processed record was multiplied by (1 if not scaled).
+    double scale_factor = 1.;
+    /// Warnings about the input (units, BJF97 range), also appended to the
+    /// description.
+    std::vector<std::string> warnings;
     /// Requested polarity.
     Polarity polarity = Polarity::normal;
     /// Harmonic source: amplitude (g) and angular frequency (rad/s); 0 for

@@ -1,6 +1,7 @@
 /**
  * @file
- * Acceleration records: reading, scaling and polarity.
+ * Acceleration records: reading (SLAMMER one column, time/acceleration
+ * columns, PEER NGA AT2; g, m/s^2 or cm/s^2), scaling and polarity.
  */
 #ifndef ROCKDDA_SEISMIC_RECORD_H
 #define ROCKDDA_SEISMIC_RECORD_H
@@ -49,6 +50,73 @@ namespace rockdda::seismic
   read_record(const std::string &file_name,
               const double       dt,
               const double       to_g = 1.);
+
+  /// The unit of the acceleration values in a record file.
+  enum class AccelerationUnit
+  {
+    g,
+    metre_per_second2,
+    centimetre_per_second2
+  };
+
+  /// Factor that converts a value in @p unit to g (g = 9.80665 m/s^2).
+  double
+  factor_to_g(const AccelerationUnit unit);
+
+  /// The unit as written in parameter files: "g", "m/s^2" or "cm/s^2".
+  std::string
+  unit_name(const AccelerationUnit unit);
+
+  /// The layout of a record file.
+  enum class RecordFormat
+  {
+    /// PEER AT2 if the name ends in .AT2 or the first line names PEER;
+    /// otherwise one column or columns by the first data line.
+    automatic,
+    /// One acceleration value per line (SLAMMER); dt given separately.
+    one_column,
+    /// Time (s) in the first column and acceleration in another; commas,
+    /// semicolons or blanks between values; one header line allowed.
+    columns,
+    /// PEER NGA strong-motion record: four header lines (the third states
+    /// the units, the fourth NPTS and DT), then the samples.
+    peer_at2
+  };
+
+  /// How to read a record file.
+  struct RecordFileOptions
+  {
+    RecordFormat     format = RecordFormat::automatic;
+    AccelerationUnit unit   = AccelerationUnit::g;
+    /// Sampling interval (s) of a one-column file.
+    double dt = 0.;
+    /// 1-based column of the acceleration in a columns file (>= 2).
+    unsigned int column = 2;
+  };
+
+  /**
+   * Read a record file in any of the formats of RecordFormat and convert it
+   * to g. Throws InputError naming the file and the line for a malformed or
+   * non-finite value (NaN, inf), a wrong AT2 header, an AT2 unit that
+   * contradicts @p options.unit, a sample count that differs from NPTS, a
+   * non-uniform time column, fewer than 2 samples, or dt <= 0.
+   */
+  Record
+  read_record(const std::string &file_name, const RecordFileOptions &options);
+
+  /**
+   * Check that the peak of @p record (in g, read from @p file_name in
+   * @p unit) is plausible: above 5 g no earthquake has been recorded (the
+   * largest are about 4 g), so that is an InputError naming the file, the
+   * key @p unit_key and the PGA in the other units. Returns a warning (empty
+   * if none) for a peak below 1e-3 g, which is plausible only for a weak
+   * motion or a record in g read as cm/s^2.
+   */
+  std::string
+  check_units_plausible(const Record          &record,
+                        const AccelerationUnit unit,
+                        const std::string     &file_name,
+                        const std::string     &unit_key);
 
   /// Multiply every sample by @p factor.
   void
