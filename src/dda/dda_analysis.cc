@@ -402,6 +402,12 @@ namespace rockdda::dda
         return resume;
       }
 
+      std::vector<std::string>
+      warnings() const override
+      {
+        return dda ? dda->warnings() : std::vector<std::string>();
+      }
+
       void
       run(io::RunContext &context) override
       {

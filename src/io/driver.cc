@@ -226,8 +226,19 @@ namespace rockdda::io
 
     if (validate_only)
       {
-        std::cout << prm_file << ": valid ('" << analysis->name()
-                  << "' analysis)" << std::endl;
+        const auto warnings = analysis->warnings();
+        if (root)
+          {
+            for (const std::string &w : warnings)
+              std::cout << prm_file << ": warning: " << w << std::endl;
+            std::cout << prm_file << ": valid ('" << analysis->name()
+                      << "' analysis"
+                      << (warnings.empty()
+                            ? std::string()
+                            : ", " + std::to_string(warnings.size())
+                                + " warnings")
+                      << ")" << std::endl;
+          }
         return 0;
       }
 

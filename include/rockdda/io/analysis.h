@@ -88,6 +88,18 @@ namespace rockdda::io
     {
       return false;
     }
+
+    /**
+     * Warnings about the parsed input that do not make it invalid (a
+     * penalty too low for the load, a modulus outside the range of rock,
+     * ...), each naming the value that would be plausible. Printed by
+     * --validate and written to log.txt by a run.
+     */
+    virtual std::vector<std::string>
+    warnings() const
+    {
+      return {};
+    }
   };
 
   /// Every analysis type the driver knows.
