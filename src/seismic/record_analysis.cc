@@ -73,14 +73,15 @@ namespace rockdda::seismic
                     "(0.05: the usual 5 %).");
         io::declare(prm,
                     "Spectrum subdivisions",
-                    "1",
-                    Integer(1, 1000),
+                    "0",
+                    Integer(0, 1000),
                     "-",
                     "Sub-steps per sample interval of the oscillator "
-                    "recursion (1 to 1000). The recursion is exact for the "
-                    "piecewise-linear record; sub-steps only locate the "
-                    "peak between samples (benchmarks/seismic-chain has the "
-                    "error against cost).");
+                    "recursion (0 to 1000); 0: automatic, at least 20 "
+                    "points per oscillator period. The recursion is exact "
+                    "for the piecewise-linear record; sub-steps only locate "
+                    "the peak between samples (benchmarks/seismic-chain has "
+                    "the error against cost).");
         io::declare(prm,
                     "Plot",
                     "true",
@@ -241,7 +242,9 @@ namespace rockdda::seismic
           + " m (unprocessed: " + io::format_number(im0.final_velocity, 4)
           + " m/s, " + io::format_number(im0.final_displacement, 4) + " m)");
         log.line("spectra: " + std::to_string(periods.size())
-                 + " periods x 2 records, " + std::to_string(subdivisions)
+                 + " periods x 2 records, "
+                 + (subdivisions == 0 ? std::string("automatic")
+                                      : std::to_string(subdivisions))
                  + " sub-steps, in " + io::format_number(seconds, 3) + " s");
         if (plot)
           io::run_plot_script(context.output,
@@ -254,7 +257,7 @@ namespace rockdda::seismic
       GroundMotionInput   motion;
       std::vector<double> periods;
       double              damping      = 0.05;
-      unsigned int        subdivisions = 1;
+      unsigned int        subdivisions = 0;
       bool                plot         = true;
     };
   } // namespace

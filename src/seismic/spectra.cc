@@ -1,6 +1,7 @@
 #include <rockdda/seismic/fft.h>
 #include <rockdda/seismic/spectra.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -99,7 +100,12 @@ namespace rockdda::seismic
     s.period  = periods;
     for (const double T : periods)
       {
-        const auto r  = oscillator_response(record, T, damping, subdivisions);
+        // Automatic: at least 20 output points per oscillator period.
+        const unsigned int m
+          = subdivisions > 0 ? subdivisions
+                             : static_cast<unsigned int>(
+                               std::max(1., std::ceil(20. * record.dt / T)));
+        const auto r  = oscillator_response(record, T, damping, m);
         double     sd = 0.;
         for (const double u : r.displacement)
           sd = std::max(sd, std::abs(u));

@@ -69,7 +69,8 @@ namespace rockdda::seismic
   };
 
   /// The response spectrum of @p record at @p periods (see
-  /// oscillator_response for the method and the arguments).
+  /// oscillator_response for the method and the arguments); @p subdivisions
+  /// 0 picks, per period T, the fewest sub-steps with dt / m <= T / 20.
   ResponseSpectrum
   response_spectrum(const Record              &record,
                     const std::vector<double> &periods,
