@@ -35,7 +35,7 @@ namespace rockdda::seismic
     /// acceleration of the mass is this times the modal acceleration.
     constexpr double mean_shape = 2. / M_PI;
     /// Modal mass factor while the mass slides, 1 - L^2/(M M_total)
-    /// (Rathje & Bray 2000, Eq. 5).
+    /// (Rathje & Bray 2000).
     constexpr double sliding_mass = 1. - 8. / (M_PI * M_PI);
     /// Effective strain from the modal displacement u: 0.65 gamma_max with
     /// gamma_max = (pi/2) u / H at the base; SLAMMER takes pi/2 as 1.57.
@@ -51,7 +51,7 @@ namespace rockdda::seismic
     }
 
     /// Masing damping (-) of the hyperbolic stress-strain curve
-    /// G/Gmax = 1/(1 + x) at x = gamma/gamma_r (Darendeli 2001, Eq. 9.8):
+    /// G/Gmax = 1/(1 + x) at x = gamma/gamma_r (Darendeli 2001):
     /// (1/pi) [4 (x - ln(1 + x)) (1 + x) / x^2 - 2]; a series for small x.
     double
     masing_damping(const double x)

@@ -122,7 +122,7 @@ namespace rockdda::seismic
       /// The rigid-block analysis of k(t) (Makdisi & Seed 1978).
       decoupled,
       /// Sliding limits the base force of the deforming mass (Rathje &
-      /// Bray 2000, Eqs. 4-6).
+      /// Bray 2000).
       coupled
     };
 
