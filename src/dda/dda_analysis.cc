@@ -424,7 +424,31 @@ namespace rockdda::dda
 
         if (settling_steps > 0 && !resume)
           {
-            dda->settle(settling_steps);
+            // Static steps before t = 0, with progress, stopped by SIGINT /
+            // SIGTERM like the time loop.
+            unsigned int done = 0;
+            {
+              io::ProgressBar progress("dda settling",
+                                       0.,
+                                       double(settling_steps),
+                                       settling_steps);
+              dda->settle(settling_steps, [&](const unsigned int k) {
+                done = k;
+                progress.update(k, double(k));
+                return io::interrupt_signal() == 0;
+              });
+            }
+            if (done < settling_steps)
+              {
+                context.stopped_early = true;
+                context.stopped_note
+                  = "DDA stopped while settling, after " + std::to_string(done)
+                    + " of " + std::to_string(settling_steps)
+                    + " static steps (before t = 0: there is no time series "
+                      "to keep; run again to settle)";
+                context.log.line(context.stopped_note);
+                return;
+              }
             context.log.line("settled with " + std::to_string(settling_steps)
                              + " static steps");
           }

@@ -140,7 +140,8 @@ namespace rockdda::dda
 
 
   void
-  DdaSystem::settle(const unsigned int steps)
+  DdaSystem::settle(const unsigned int                             steps,
+                    const std::function<bool(const unsigned int)> &after_step)
   {
     const double dynamic = ctrl.dynamic;
     const auto   mode    = scene.seismic.mode;
@@ -152,6 +153,8 @@ namespace rockdda::dda
           {
             advance(std::numeric_limits<double>::infinity());
             t = 0.;
+            if (after_step && !after_step(k + 1))
+              break;
           }
       }
     catch (...)

@@ -1100,8 +1100,17 @@ namespace rockdda::thermal
                  io::planned_steps(solver.time(), end, parameters.time_step));
       };
       // Stopped early by SIGINT / SIGTERM, polled (on every MPI rank alike)
-      // between spin-up cycles and between output times.
-      int interrupted = 0;
+      // about 100 times per spin-up cycle and between output times. A
+      // cycle is advanced in chunks of whole time steps counted from its
+      // start (the theta-scheme takes the same steps as in one call);
+      // ARKODE, whose steps adapt, advances a whole cycle per call.
+      int                interrupted = 0;
+      const unsigned int steps_per_chunk
+        = parameters.stepper == TimeStepper::arkode
+            ? 1u
+            : static_cast<unsigned int>(std::max(
+              1., std::floor(spin_up_period / parameters.time_step / 100.)));
+      const double chunk = parameters.time_step * steps_per_chunk;
       {
         io::ProgressBar progress("heat spin-up",
                                  solver.time(),
@@ -1110,8 +1119,22 @@ namespace rockdda::thermal
         while (spin_up_done < spin_up_cycles
                && (interrupted = io::interrupt_signal_all_ranks()) == 0)
           {
-            solver.advance_to(parameters.start_time
-                              + (spin_up_done + 1) * spin_up_period);
+            const double cycle_start
+              = parameters.start_time + spin_up_done * spin_up_period;
+            const double cycle_end = cycle_start + spin_up_period;
+            for (unsigned int j = 1;
+                 steps_per_chunk > 1
+                 && cycle_start + j * chunk < cycle_end - 0.5 * chunk
+                 && (interrupted = io::interrupt_signal_all_ranks()) == 0;
+                 ++j)
+              {
+                if (cycle_start + j * chunk > solver.time())
+                  solver.advance_to(cycle_start + j * chunk);
+                progress.update(solver.statistics().n_steps, solver.time());
+              }
+            if (interrupted != 0)
+              break;
+            solver.advance_to(cycle_end);
             ++spin_up_done;
             progress.update(solver.statistics().n_steps, solver.time());
             if (spin_up_done < spin_up_cycles)

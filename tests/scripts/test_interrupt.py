@@ -11,6 +11,9 @@ CASE:
                Resume = true then continues it to a later End time (exit 0,
                'completed,1,-').
   dda_sigterm  the same with SIGTERM: exit 143.
+  dda_settling a dda run in its settling steps (before t = 0) gets SIGINT:
+               exit 130, log.txt naming the steps done, summary.csv with
+               'completed,0,-'; there is no time series yet.
   heat_sigint  a heat run in its spin-up gets SIGINT: exit 130,
                statistics.csv, log.txt, summary.csv (completed = 0),
                checkpoint.bin.
@@ -40,7 +43,7 @@ def check(ok, what):
 
 
 def dda_prm(folder, end_time, output_interval, resume=False,
-            checkpoint_interval=0):
+            checkpoint_interval=0, settling_steps=0):
     blocks = os.path.join(source, "tests", "regression", "dda_stack.blocks")
     return f"""set Analysis type    = dda
 set Output directory = {folder}
@@ -53,6 +56,7 @@ subsection DDA
   set Output interval = {output_interval}
   set Resume          = {"true" if resume else "false"}
   set Checkpoint interval = {checkpoint_interval}
+  set Settling steps  = {settling_steps}
 end
 """
 
@@ -106,7 +110,9 @@ def summary(folder):
     return rows
 
 
-def interrupt(prm, folder, ready, sig, expected_rc, min_rows=1):
+def interrupt(prm, folder, ready, sig, expected_rc, min_rows=1,
+              files=("statistics.csv", "log.txt", "summary.csv",
+                     "checkpoint.bin", "parameters.prm")):
     """Start the driver on prm, wait until ready() is true, send sig;
     check the exit status and the files an interrupted run keeps."""
     proc = subprocess.Popen([driver, "--quiet", prm], cwd=scratch,
@@ -129,8 +135,7 @@ def interrupt(prm, folder, ready, sig, expected_rc, min_rows=1):
     name = signal.Signals(sig).name
     check(f"interrupted by {name}" in err, f"stderr says 'interrupted by {name}'")
     check(os.path.abspath(folder) in err, "stderr names the output folder")
-    for f in ["statistics.csv", "log.txt", "summary.csv", "checkpoint.bin",
-              "parameters.prm"]:
+    for f in files:
         check(os.path.isfile(os.path.join(folder, f)), f + " written")
     if os.path.isfile(os.path.join(folder, "summary.csv")):
         check(summary(folder).get("completed") == "0",
@@ -139,7 +144,7 @@ def interrupt(prm, folder, ready, sig, expected_rc, min_rows=1):
         with open(os.path.join(folder, "log.txt")) as f:
             log = f.read()
         check(f"interrupted by {name}" in log, "log.txt says interrupted")
-    if os.path.isfile(os.path.join(folder, "statistics.csv")):
+    if "statistics.csv" in files:
         with open(os.path.join(folder, "statistics.csv")) as f:
             rows = f.read().splitlines()
         check(len(rows) >= 1 + min_rows,
@@ -174,6 +179,18 @@ if case in ("dda_sigint", "dda_sigterm"):
         check(s.get("completed") == "1", "resumed run: completed = 1")
         check(abs(float(s.get("final_time", "nan")) - (reached + 0.1)) < 1e-9,
               "resumed run reaches the new End time")
+elif case == "dda_settling":
+    prm = write(case + ".prm", dda_prm(folder, 1, 0.1, settling_steps=100000))
+    def settling():
+        if not os.path.exists(os.path.join(folder, "parameters.prm")):
+            return False
+        time.sleep(1.0)
+        return True
+    interrupt(prm, folder, settling, signal.SIGINT, 130,
+              files=("log.txt", "summary.csv", "parameters.prm"))
+    with open(os.path.join(folder, "log.txt")) as f:
+        check("stopped while settling, after" in f.read(),
+              "log.txt says how many settling steps were done")
 elif case == "heat_sigint":
     prm = write(case + ".prm", heat_prm(folder))
     # parameters.prm is written just before the analysis starts.

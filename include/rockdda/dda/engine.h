@@ -14,6 +14,7 @@
 #include <rockdda/dda/linear_solver.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -178,9 +179,13 @@ namespace rockdda::dda
      * displacements. A scene that starts with uncompressed contact springs
      * otherwise drops onto them at t = 0 and, for small time steps (little
      * numerical damping of the contact vibration), keeps bouncing.
+     * @p after_step (if given) is called after each static step with the
+     * number of steps done; returning false ends the settling there (an
+     * interrupted run).
      */
     void
-    settle(const unsigned int steps);
+    settle(const unsigned int                             steps,
+           const std::function<bool(const unsigned int)> &after_step = {});
 
     /**
      * Set the eigenstrain of every block (in the order of the scene's
