@@ -4,6 +4,7 @@
 #include <rockdda/seismic/ground_motion.h>
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 namespace rockdda::seismic
@@ -271,17 +272,29 @@ namespace rockdda::seismic
         const std::string units  = prm.get("Units");
         const std::string format = prm.get("Record format");
         RecordFileOptions options;
-        options.unit        = units == "g" ? AccelerationUnit::g
-                              : units == "m/s^2"
-                                ? AccelerationUnit::metre_per_second2
-                                : AccelerationUnit::centimetre_per_second2;
-        options.format      = format == "one column" ? RecordFormat::one_column
-                              : format == "columns"  ? RecordFormat::columns
-                              : format == "PEER AT2" ? RecordFormat::peer_at2
-                                                     : RecordFormat::automatic;
-        options.dt          = dt;
-        options.column      = prm.get_integer("Acceleration column");
-        record              = read_record(file, options);
+        options.unit   = units == "g" ? AccelerationUnit::g
+                         : units == "m/s^2"
+                           ? AccelerationUnit::metre_per_second2
+                           : AccelerationUnit::centimetre_per_second2;
+        options.format = format == "one column" ? RecordFormat::one_column
+                         : format == "columns"  ? RecordFormat::columns
+                         : format == "PEER AT2" ? RecordFormat::peer_at2
+                                                : RecordFormat::automatic;
+        options.dt     = dt;
+        options.column = prm.get_integer("Acceleration column");
+        record         = read_record(file, options);
+        // A SLAMMER library file: its step is listed in records.csv.
+        unsigned int listed_line = 0;
+        const double listed      = listed_time_step(file, listed_line);
+        if (listed > 0. && std::abs(listed - record.dt) > 1e-9 * listed)
+          throw InputError(
+            prm_file + ": key 'Ground motion/Time step' = "
+            + io::format_number(record.dt, 8) + " s, but " + record.name
+            + " is listed with dt = " + io::format_number(listed, 8) + " s in "
+            + (std::filesystem::path(file).parent_path() / "records.csv")
+                .string()
+            + ":" + std::to_string(listed_line)
+            + "; set Time step = " + io::format_number(listed, 8));
         const std::string w = check_units_plausible(record,
                                                     options.unit,
                                                     file,

@@ -238,11 +238,11 @@ namespace rockdda::seismic
             auto        eq = l4.find('=', pos);
             std::string rest
               = eq == std::string::npos ? std::string() : l4.substr(eq + 1);
-            const auto t = tokens_of(rest);
-            double     v = -1.;
-            if (t.empty() || !parse_number(t[0], v))
-              return -1.;
-            return v;
+            // The number right after '=' ("DT= .0050 SEC", "DT=.005SEC").
+            const char  *begin = rest.c_str();
+            char        *end   = nullptr;
+            const double v     = std::strtod(begin, &end);
+            return end == begin ? -1. : v;
           };
           npts = value_after(npos);
           dt   = value_after(dpos);
@@ -371,6 +371,61 @@ namespace rockdda::seismic
     for (double &a : record.acceleration)
       a *= to_g;
     return record;
+  }
+
+
+
+  double
+  listed_time_step(const std::string &file_name, unsigned int &line)
+  {
+    const auto    path  = std::filesystem::path(file_name);
+    const auto    index = path.parent_path() / "records.csv";
+    std::ifstream in(index);
+    line = 0;
+    if (!in)
+      return 0.;
+    std::string              text;
+    std::vector<std::string> header;
+    std::size_t              file_col = 0, dt_col = 0;
+    unsigned int             n = 0;
+    while (std::getline(in, text))
+      {
+        ++n;
+        if (!text.empty() && text.back() == '\r')
+          text.pop_back();
+        std::vector<std::string> fields;
+        try
+          {
+            fields = io::split_csv_record(text);
+          }
+        catch (const std::exception &)
+          {
+            continue;
+          }
+        if (n == 1)
+          {
+            header       = fields;
+            const auto f = std::find(header.begin(), header.end(), "file");
+            const auto d = std::find(header.begin(), header.end(), "dt_s");
+            if (f == header.end() || d == header.end())
+              return 0.;
+            file_col = f - header.begin();
+            dt_col   = d - header.begin();
+            continue;
+          }
+        if (fields.size() <= std::max(file_col, dt_col)
+            || fields[file_col] != path.filename().string())
+          continue;
+        double dt = 0.;
+        if (!parse_number(fields[dt_col], dt) || !(dt > 0.)
+            || !std::isfinite(dt))
+          throw InputError(where(index.string(), n) + "dt_s '" + fields[dt_col]
+                           + "' of " + fields[file_col]
+                           + " is not a number > 0 s");
+        line = n;
+        return dt;
+      }
+    return 0.;
   }
 
 

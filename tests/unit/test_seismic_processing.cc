@@ -496,3 +496,21 @@ TEST(SeismicRecords, ImplausiblePgaForItsUnitsIsRejected)
               .find("below 1e-3 g"),
             std::string::npos);
 }
+
+TEST(SeismicRecords, SlammerStepFromRecordsCsv)
+{
+  // The SLAMMER library lists each one-column file's dt in records.csv.
+  const std::string dir
+    = std::string(ROCKDDA_SHARED_DATA) + "/ground-motions/slammer/";
+  unsigned int line = 0;
+  EXPECT_DOUBLE_EQ(listed_time_step(dir + "Chi-Chi_Taiwan_1999_TCU068-090.txt",
+                                    line),
+                   0.005);
+  EXPECT_EQ(line, 3u);
+  EXPECT_DOUBLE_EQ(listed_time_step(dir + "Imperial_Valley_1940_ELC-180.txt",
+                                    line),
+                   0.01);
+  EXPECT_EQ(listed_time_step(dir + "not_listed.txt", line), 0.);
+  const auto tmp = scratch("unlisted");
+  EXPECT_EQ(listed_time_step((tmp / "a.txt").string(), line), 0.);
+}

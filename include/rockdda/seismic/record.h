@@ -105,6 +105,16 @@ namespace rockdda::seismic
   read_record(const std::string &file_name, const RecordFileOptions &options);
 
   /**
+   * The sampling interval (s) that the SLAMMER library's index records.csv
+   * beside @p file_name (a header with the columns 'file' and 'dt_s') lists
+   * for that file, and the index's line in @p line; 0 if there is no index
+   * or it does not list the file. Throws InputError naming the index and
+   * line for a dt_s that is not a number > 0.
+   */
+  double
+  listed_time_step(const std::string &file_name, unsigned int &line);
+
+  /**
    * Check that the peak of @p record (in g, read from @p file_name in
    * @p unit) is plausible: above 5 g no earthquake has been recorded (the
    * largest are about 4 g), so that is an InputError naming the file, the
