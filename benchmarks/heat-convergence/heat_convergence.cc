@@ -5,13 +5,13 @@
  * ARKODE tolerance, with wall times. Writes space.csv and time.csv into the
  * folder given as argument. See README.md.
  */
+#include <rockdda/io/output.h>
 #include <rockdda/thermal/heat_solver.h>
 #include <rockdda/thermal/verification.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <functional>
 #include <string>
 
@@ -51,8 +51,8 @@ main(int argc, char **argv)
       return std::sin(a * x + 0.3) * std::cos(b * y)
              * (1. + (a * a + b * b) * (1. + t));
     };
-    std::ofstream out(folder + "/space.csv");
-    out << "degree,h_m,cells,dofs,l2_error,wall_time_s\n";
+    rockdda::io::CsvWriter out;
+    out.record({"degree", "h_m", "cells", "dofs", "l2_error", "wall_time_s"});
     for (unsigned int p = 1; p <= 3; ++p)
       for (unsigned int level = 0; level < 6; ++level)
         {
@@ -64,8 +64,8 @@ main(int argc, char **argv)
           const double e    = solver.l2_error(exact);
           const double wall = seconds_since(t0);
           const auto   st   = solver.statistics();
-          out << p << ',' << h << ',' << st.n_cells << ',' << st.n_dofs << ','
-              << e << ',' << wall << '\n';
+          out.number(p).number(h).number(st.n_cells).number(st.n_dofs);
+          out.number(e).number(wall).end_record();
           std::printf("space p=%u h=%.5f dofs=%u error=%.3e wall=%.3f s\n",
                       p,
                       h,
@@ -73,6 +73,7 @@ main(int argc, char **argv)
                       e,
                       wall);
         }
+    rockdda::io::OutputDirectory(folder).write("space.csv", out.text());
   }
 
   // Time: T = (1 + x^2 + xy + y^2/2)(1 + sin 2t) is in Q2 at every time,
@@ -92,8 +93,9 @@ main(int argc, char **argv)
     F source = [=](double x, double y, double t) {
       return P(x, y) * 2. * std::cos(2. * t) - 3. * (1. + std::sin(2. * t));
     };
-    std::ofstream out(folder + "/time.csv");
-    out << "stepper,dt_s,tolerance,steps,l2_error,wall_time_s\n";
+    rockdda::io::CsvWriter out;
+    out.record(
+      {"stepper", "dt_s", "tolerance", "steps", "l2_error", "wall_time_s"});
     for (const auto stepper :
          {TimeStepper::crank_nicolson, TimeStepper::backward_euler})
       for (unsigned int level = 0; level < 8; ++level)
@@ -107,8 +109,9 @@ main(int argc, char **argv)
           const double wall = seconds_since(t0);
           const char  *name
             = stepper == TimeStepper::crank_nicolson ? "CN" : "BE";
-          out << name << ',' << dt << ",0," << solver.statistics().n_steps
-              << ',' << e << ',' << wall << '\n';
+          out.field(name).number(dt).number(0.);
+          out.number(solver.statistics().n_steps).number(e).number(wall);
+          out.end_record();
           std::printf(
             "time %s dt=%.5f error=%.3e wall=%.4f s\n", name, dt, e, wall);
         }
@@ -125,14 +128,15 @@ main(int argc, char **argv)
         const double e     = solver.l2_error(exact);
         const double wall  = seconds_since(t0);
         const auto   steps = solver.statistics().n_steps;
-        out << "ARKODE," << 1. / steps << ',' << tol << ',' << steps << ',' << e
-            << ',' << wall << '\n';
+        out.field("ARKODE").number(1. / steps).number(tol).number(steps);
+        out.number(e).number(wall).end_record();
         std::printf("time ARKODE tol=%.0e steps=%lu error=%.3e wall=%.4f s\n",
                     tol,
                     steps,
                     e,
                     wall);
       }
+    rockdda::io::OutputDirectory(folder).write("time.csv", out.text());
   }
   return 0;
 }

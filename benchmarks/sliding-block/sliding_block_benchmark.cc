@@ -91,8 +91,9 @@ main(int argc, char **argv)
     = {analytical::NewmarkOptions::EventLocation::within_step,
        analytical::NewmarkOptions::EventLocation::at_samples};
 
-  std::ostringstream csv;
-  csv << "case,method,dt_s,relative_error,wall_time_s,steps\n";
+  io::CsvWriter csv;
+  csv.record(
+    {"case", "method", "dt_s", "relative_error", "wall_time_s", "steps"});
 
   // Harmonic: a = 0.5 g sin(2 pi t), ky = 0.2 g, 10 s (10 cycles).
   {
@@ -117,8 +118,8 @@ main(int argc, char **argv)
             r = analytical::newmark_sliding(rec, o);
           });
           const double err = std::abs(r.final_displacement - exact) / exact;
-          csv << "harmonic," << method_name(method) << "," << dt << "," << err
-              << "," << t << "," << r.n_steps << "\n";
+          csv.field("harmonic").field(method_name(method)).number(dt);
+          csv.number(err).number(t).number(r.n_steps).end_record();
           std::cout << "harmonic " << method_name(method) << " dt " << dt
                     << " error " << err << " time " << t << " s\n";
         }
@@ -150,13 +151,13 @@ main(int argc, char **argv)
             r = analytical::newmark_sliding(input, oo);
           });
           const double err = std::abs(r.final_displacement - ref) / ref;
-          csv << "kobe," << method_name(method) << "," << dt << "," << err
-              << "," << t << "," << r.n_steps << "\n";
+          csv.field("kobe").field(method_name(method)).number(dt);
+          csv.number(err).number(t).number(r.n_steps).end_record();
           std::cout << "kobe " << method_name(method) << " dt " << dt
                     << " error " << err << " time " << t << " s\n";
         }
   }
-  io::OutputDirectory(out_dir).write("results.csv", csv.str());
+  io::OutputDirectory(out_dir).write("results.csv", csv.text());
 
   // Throughput of the whole 90-case SLAMMER suite (both polarities).
   {
@@ -200,10 +201,10 @@ main(int argc, char **argv)
         cases.push_back(std::move(c));
       }
     analytical::NewmarkOptions o;
-    o.event_location  = analytical::NewmarkOptions::EventLocation::at_samples;
-    o.output_interval = 1e9;
-    double             sink = 0.;
-    const double       t    = median_time(7, [&]() {
+    o.event_location   = analytical::NewmarkOptions::EventLocation::at_samples;
+    o.output_interval  = 1e9;
+    double        sink = 0.;
+    const double  t    = median_time(7, [&]() {
       for (const auto &c : cases)
         for (const double sign : {1., -1.})
           {
@@ -213,11 +214,12 @@ main(int argc, char **argv)
             sink += analytical::newmark_sliding(r, o).final_displacement;
           }
     });
-    std::ostringstream suite;
-    suite << "cases,runs,median_wall_time_s,cases_per_s,runs_per_s\n"
-          << cases.size() << "," << 2 * cases.size() << "," << t << ","
-          << cases.size() / t << "," << 2 * cases.size() / t << "\n";
-    io::OutputDirectory(out_dir).write("suite.csv", suite.str());
+    io::CsvWriter suite;
+    suite.record(
+      {"cases", "runs", "median_wall_time_s", "cases_per_s", "runs_per_s"});
+    suite.number(cases.size()).number(2. * cases.size()).number(t);
+    suite.number(cases.size() / t).number(2. * cases.size() / t).end_record();
+    io::OutputDirectory(out_dir).write("suite.csv", suite.text());
     std::cout << "SLAMMER suite: " << cases.size()
               << " cases (x2 polarities) in " << t
               << " s (median of 7) = " << cases.size() / t

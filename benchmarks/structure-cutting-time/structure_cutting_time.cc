@@ -3,12 +3,12 @@
 // and 120 deg) in a square domain sized for N segments, N = 1k ... 100k.
 // Usage: structure_cutting_time OUTPUT_DIR [max_segments]
 // Writes OUTPUT_DIR/results.csv (segments, blocks, vertices, seconds).
+#include <rockdda/io/output.h>
 #include <rockdda/structure/block_cutter.h>
 #include <rockdda/structure/generators.h>
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iostream>
 #include <string>
 
@@ -23,8 +23,9 @@ main(int argc, char **argv)
       return 2;
     }
   const double  max_n = argc > 2 ? std::stod(argv[2]) : 1e5;
-  std::ofstream out(std::string(argv[1]) + "/results.csv");
-  out << "segments,blocks,vertices,domain_side_m,generate_s,cut_s\n";
+  io::CsvWriter out;
+  out.record(
+    {"segments", "blocks", "vertices", "domain_side_m", "generate_s", "cut_s"});
   for (const double target : {1e3, 3e3, 1e4, 3e4, 1e5, 3e5})
     {
       if (target > max_n)
@@ -54,9 +55,12 @@ main(int argc, char **argv)
       const auto     t2     = std::chrono::steady_clock::now();
       const double   gen    = std::chrono::duration<double>(t1 - t0).count();
       const double   cut    = std::chrono::duration<double>(t2 - t1).count();
-      out << segments.size() << "," << blocks.blocks.size() << ","
-          << blocks.vertices.size() << "," << W << "," << gen << "," << cut
-          << std::endl;
+      out.number(segments.size()).number(blocks.blocks.size());
+      out.number(blocks.vertices.size()).number(W).number(gen).number(cut);
+      out.end_record();
+      // Rewritten after every size (atomically), so that an interrupted
+      // study keeps the sizes done.
+      io::OutputDirectory(argv[1]).write("results.csv", out.text());
       std::cout << segments.size() << " segments: " << blocks.blocks.size()
                 << " blocks, cut in " << cut << " s" << std::endl;
     }
