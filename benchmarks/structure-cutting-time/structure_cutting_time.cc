@@ -23,7 +23,7 @@ main(int argc, char **argv)
       return 2;
     }
   const double  max_n = argc > 2 ? std::stod(argv[2]) : 1e5;
-  io::CsvWriter out;
+  rockdda::io::CsvWriter out;
   out.record(
     {"segments", "blocks", "vertices", "domain_side_m", "generate_s", "cut_s"});
   for (const double target : {1e3, 3e3, 1e4, 3e4, 1e5, 3e5})
@@ -60,7 +60,7 @@ main(int argc, char **argv)
       out.end_record();
       // Rewritten after every size (atomically), so that an interrupted
       // study keeps the sizes done.
-      io::OutputDirectory(argv[1]).write("results.csv", out.text());
+      rockdda::io::OutputDirectory(argv[1]).write("results.csv", out.text());
       std::cout << segments.size() << " segments: " << blocks.blocks.size()
                 << " blocks, cut in " << cut << " s" << std::endl;
     }
