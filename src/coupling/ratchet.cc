@@ -5,7 +5,10 @@
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <deque>
 
 namespace rockdda::coupling
 {
@@ -95,21 +98,49 @@ namespace rockdda::coupling
 
 
   void
-  RatchetRun::equilibrate(const double   time,
-                          unsigned long &steps,
-                          unsigned long &cuts)
+  RatchetRun::equilibrate(const double time, CycleRecord &record)
   {
     engine->set_eigenstrains(thermal_eigenstrains(
       engine->system(), scene.heat_map, temperature, forcing, alpha, time));
     double last = 0.;
+    // The window of the stationarity test: slip and aperture per step.
+    constexpr unsigned int            window = 100;
+    std::deque<std::array<double, 2>> recent;
+    unsigned int                      since_cut = 0;
+    double                            moved     = 0.;
     for (unsigned int k = 0; k < ctrl.max_steps_per_sample; ++k)
       {
         const dda::StepReport r = engine->step();
-        ++steps;
-        cuts += r.cuts;
+        ++record.steps;
+        record.cuts += r.cuts;
         last = r.max_displacement;
         if (r.max_displacement <= tolerance && r.cuts == 0)
           return;
+        since_cut = r.cuts == 0 ? since_cut + 1 : 0;
+        moved     = since_cut > 0 ? std::max(moved, r.max_displacement) : 0.;
+        recent.push_back({displacement(), aperture()});
+        if (recent.size() > window)
+          recent.pop_front();
+        if (since_cut >= window)
+          {
+            double spread = 0.;
+            for (const std::size_t i : {std::size_t(0), std::size_t(1)})
+              {
+                const auto [lo, hi]
+                  = std::minmax_element(recent.begin(),
+                                        recent.end(),
+                                        [i](const auto &a, const auto &b) {
+                                          return a[i] < b[i];
+                                        });
+                spread = std::max(spread, (*hi)[i] - (*lo)[i]);
+              }
+            if (spread <= tolerance)
+              {
+                ++record.stationary_samples;
+                record.chatter = std::max(record.chatter, moved);
+                return;
+              }
+          }
       }
     throw dda::DdaFailure(
       "cycle " + std::to_string(n_cycles + 1)
@@ -137,7 +168,7 @@ namespace rockdda::coupling
       {
         const double phase = static_cast<double>(k) / ctrl.steps_per_cycle;
         const double time  = (n_cycles + phase) * forcing.period;
-        equilibrate(time, r.steps, r.cuts);
+        equilibrate(time, r);
         if (samples != nullptr)
           {
             SampleRecord s;

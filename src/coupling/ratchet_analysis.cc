@@ -477,7 +477,9 @@ namespace rockdda::coupling
                {"sliding", "-"},
                {"locked", "-"},
                {"steps", "-"},
-               {"cuts", "-"}})
+               {"cuts", "-"},
+               {"stationary_samples", "-"},
+               {"chatter", "m"}})
           table.add_column(name, unit);
         io::Table loop;
         for (const auto &[name, unit] :
@@ -532,7 +534,9 @@ namespace rockdda::coupling
                            static_cast<double>(r.n_sliding),
                            static_cast<double>(r.n_locked),
                            static_cast<double>(r.steps),
-                           static_cast<double>(r.cuts)});
+                           static_cast<double>(r.cuts),
+                           static_cast<double>(r.stationary_samples),
+                           r.chatter});
             if (record_loop)
               for (const auto &s : samples)
                 loop.add_row({static_cast<double>(r.cycle),
@@ -588,6 +592,26 @@ namespace rockdda::coupling
         context.summary.add("dda_steps",
                             static_cast<double>(run_.dda().n_steps),
                             "-");
+        {
+          // Samples whose equilibrium was a stationary switching of one
+          // contact (RatchetRun::equilibrate), over all cycles.
+          double stationary = 0., chatter = 0.;
+          for (std::size_t i = 0; i < table.n_rows(); ++i)
+            {
+              stationary += table.row(i)[11];
+              chatter = std::max(chatter, table.row(i)[12]);
+            }
+          context.summary.add("stationary_samples", stationary, "-");
+          context.summary.add("chatter_max", chatter, "m");
+          if (stationary > 0.)
+            log.line("note: " + io::format_number(stationary, 6)
+                     + " samples reached equilibrium with one contact "
+                       "switching between sliding and locked (largest "
+                       "vertex motion per step "
+                     + io::format_number(chatter, 3)
+                     + " m) while the slip and the aperture stayed within "
+                       "the equilibrium tolerance over 100 steps");
+        }
 
         // The analytical estimate (Pasten 2012, thesis Eqs. 5.1-5.6) for
         // the same block, wedge = the crack width at the infill's middle,

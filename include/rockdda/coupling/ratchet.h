@@ -53,6 +53,11 @@ namespace rockdda::coupling
     unsigned int n_open = 0, n_sliding = 0, n_locked = 0;
     /// Static DDA steps and step cuts of the cycle.
     unsigned long steps = 0, cuts = 0;
+    /// Samples accepted as stationary although a contact kept switching
+    /// between sliding and locked (see RatchetRun), and the largest vertex
+    /// motion per step of that switching (m).
+    unsigned int stationary_samples = 0;
+    double       chatter            = 0.;
   };
 
   /// One temperature sample within a cycle (the loop of thesis Fig. 5-6).
@@ -111,9 +116,16 @@ namespace rockdda::coupling
     restore(const std::string &bytes, const std::string &source);
 
   private:
-    /// Bring the scene to equilibrium at @p time; returns steps and cuts.
+    /**
+     * Bring the scene to equilibrium at @p time, adding to the steps, cuts
+     * and chatter of @p record. Equilibrium: a step that moves no vertex
+     * by more than the tolerance, or (a contact at the friction limit that
+     * switches between sliding and locked every few steps, moving one
+     * vertex back and forth) 100 steps without a cut over which the base
+     * slip and the crack aperture stay within the tolerance.
+     */
     void
-    equilibrate(const double time, unsigned long &steps, unsigned long &cuts);
+    equilibrate(const double time, CycleRecord &record);
     double
     raw_aperture() const;
     /// Current position of vertex (block, index).
