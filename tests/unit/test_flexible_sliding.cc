@@ -11,6 +11,7 @@
  */
 #include <rockdda/analytical/newmark.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/output.h>
 #include <rockdda/seismic/flexible_sliding.h>
 #include <rockdda/seismic/record.h>
 
@@ -39,21 +40,6 @@ namespace
   const std::string slammer_dir
     = std::string(ROCKDDA_SHARED_DATA) + "/ground-motions/slammer/";
 
-  /// Split one CSV line into fields; double quotes protect commas.
-  std::vector<std::string>
-  split_csv(const std::string &line)
-  {
-    std::vector<std::string> fields(1);
-    bool                     quoted = false;
-    for (const char c : line)
-      if (c == '"')
-        quoted = !quoted;
-      else if (c == ',' && !quoted)
-        fields.emplace_back();
-      else if (c != '\r')
-        fields.back() += c;
-    return fields;
-  }
 
   /// Rows of a CSV file as header-name -> value maps.
   std::vector<std::map<std::string, std::string>>
@@ -64,11 +50,11 @@ namespace
     std::vector<std::map<std::string, std::string>> rows;
     std::string                                     line;
     std::getline(in, line);
-    const auto header = split_csv(line);
+    const auto header = io::split_csv_record(line);
     while (std::getline(in, line))
       if (!line.empty())
         {
-          const auto                         fields = split_csv(line);
+          const auto fields = io::split_csv_record(line);
           std::map<std::string, std::string> row;
           for (std::size_t i = 0; i < header.size() && i < fields.size(); ++i)
             row[header[i]] = fields[i];

@@ -5,6 +5,7 @@
  */
 #include <rockdda/analytical/newmark.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/output.h>
 #include <rockdda/seismic/record.h>
 
 #include <gtest/gtest.h>
@@ -33,21 +34,6 @@ namespace
   const std::string slammer_dir
     = std::string(ROCKDDA_SHARED_DATA) + "/ground-motions/slammer/";
 
-  /// Split one CSV line into fields; double quotes protect commas.
-  std::vector<std::string>
-  split_csv(const std::string &line)
-  {
-    std::vector<std::string> fields(1);
-    bool                     quoted = false;
-    for (const char c : line)
-      if (c == '"')
-        quoted = !quoted;
-      else if (c == ',' && !quoted)
-        fields.emplace_back();
-      else if (c != '\r')
-        fields.back() += c;
-    return fields;
-  }
 
   /// Rows of a CSV file (header skipped).
   std::vector<std::vector<std::string>>
@@ -60,7 +46,7 @@ namespace
     std::getline(in, line);
     while (std::getline(in, line))
       if (!line.empty())
-        rows.push_back(split_csv(line));
+        rows.push_back(io::split_csv_record(line));
     return rows;
   }
 
