@@ -1,4 +1,5 @@
 #include <rockdda/seismic/analyses.h>
+#include <rockdda/seismic/synthetic_analysis.h>
 
 namespace rockdda::seismic
 {
@@ -7,6 +8,7 @@ namespace rockdda::seismic
   {
     std::vector<std::unique_ptr<io::Analysis>> list;
     list.push_back(internal::make_record_analysis());
+    list.push_back(make_synthetic_analysis());
     return list;
   }
 } // namespace rockdda::seismic
