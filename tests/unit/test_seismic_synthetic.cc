@@ -8,6 +8,7 @@
 #include <rockdda/io/error.h>
 #include <rockdda/seismic/attenuation.h>
 #include <rockdda/seismic/fft.h>
+#include <rockdda/seismic/record.h>
 #include <rockdda/seismic/site_amplification.h>
 #include <rockdda/seismic/spectra.h>
 #include <rockdda/seismic/stochastic.h>
@@ -384,4 +385,134 @@ TEST(Stochastic, TargetSpectrumPieces)
   EXPECT_NEAR(crustal_amplification(CrustalAmplification::generic_rock, 100.),
               4.0,
               1e-12);
+}
+
+
+
+// benchmarks/seismic-chain/synthetic: with ROCKDDA_SYNTHETIC_OUT set to a
+// folder, write the data of the benchmark's plots and tables (skipped
+// otherwise): the PGA of 50 seeds per M and Rjb for Q0 = 600 and 180, El
+// Centro before and after the Masada site amplification, the Masada
+// function as a table, and the error against cost of the seeds and the
+// time step.
+TEST(SyntheticBenchmark, Study)
+{
+  const char *out_env = std::getenv("ROCKDDA_SYNTHETIC_OUT");
+  if (out_env == nullptr)
+    GTEST_SKIP() << "set ROCKDDA_SYNTHETIC_OUT to write the benchmark data";
+  const fs::path out(out_env);
+  fs::create_directories(out);
+  using clock              = std::chrono::steady_clock;
+  const auto seconds_since = [](const clock::time_point t0) {
+    return std::chrono::duration<double>(clock::now() - t0).count();
+  };
+
+  {
+    std::ofstream f(out / "pga_grid.csv");
+    f << "q0,magnitude,distance_km,seed,pga_g,bjf97_g\n";
+    const auto t0 = clock::now();
+    for (const double q0 : {600., 180.})
+      for (const double m : {6., 6.5, 7., 7.5})
+        for (const double r : {10e3, 30e3, 50e3})
+          {
+            StochasticParameters p;
+            p.q0        = q0;
+            p.magnitude = m;
+            p.distance  = r;
+            for (unsigned int s = 1; s <= 50; ++s)
+              f << q0 << ',' << m << ',' << r / 1e3 << ',' << s << ','
+                << simulate(p, s).peak() << ',' << bjf97_of(p) << '\n';
+          }
+    std::printf("grid: 1200 realisations in %.2f s\n", seconds_since(t0));
+  }
+
+  {
+    const auto    site = SiteAmplification::masada();
+    std::ofstream f(out / "masada_table.csv");
+    f << "frequency_Hz,amplification\n";
+    std::vector<double> fs;
+    for (int k = 0; k <= 120; ++k)
+      fs.push_back(0.05 * std::pow(600., k / 120.));
+    for (const auto &m : SiteAmplification::masada_modes())
+      fs.push_back(m.frequency);
+    std::sort(fs.begin(), fs.end());
+    for (const double x : fs)
+      f << x << ',' << site(x) << '\n';
+  }
+
+  {
+    const Record in = read_record(
+      std::string(ROCKDDA_SHARED_DATA)
+        + "/ground-motions/slammer/Imperial_Valley_1940_ELC-180.txt",
+      0.01);
+    const auto   t0 = clock::now();
+    const Record amp
+      = apply_site_amplification(in, SiteAmplification::masada());
+    std::printf("El Centro (%zu samples) amplified in %.4f s: PGA %.4f -> "
+                "%.4f g (x%.3f)\n",
+                in.acceleration.size(),
+                seconds_since(t0),
+                in.peak(),
+                amp.peak(),
+                amp.peak() / in.peak());
+    std::ofstream f(out / "el_centro.csv");
+    f << "time_s,before_g,after_g\n";
+    for (std::size_t i = 0; i < in.acceleration.size(); ++i)
+      f << i * in.dt << ',' << in.acceleration[i] << ',' << amp.acceleration[i]
+        << '\n';
+    const auto    a = fourier_amplitude_spectrum(in);
+    const auto    b = fourier_amplitude_spectrum(amp);
+    std::ofstream g(out / "el_centro_fourier.csv");
+    g << "frequency_Hz,before_g_s,after_g_s\n";
+    for (std::size_t k = 1; k < a.frequency.size(); ++k)
+      g << a.frequency[k] << ',' << a.amplitude[k] << ',' << b.amplitude[k]
+        << '\n';
+  }
+
+  {
+    std::ofstream f(out / "cost.csv");
+    f << "knob,value,median_pga_g,error,seconds\n";
+    StochasticParameters p;
+    p.magnitude = 7.;
+    p.distance  = 20e3;
+    // Seeds: the scatter of the median of n seeds over 20 disjoint groups
+    // (seeds 1..20n), as a standard deviation of ln(median).
+    for (const unsigned int n : {5u, 10u, 20u, 50u, 100u})
+      {
+        std::vector<double> lm;
+        const auto          t0 = clock::now();
+        for (unsigned int g = 0; g < 20; ++g)
+          {
+            std::vector<double> pga;
+            for (unsigned int s = 1; s <= n; ++s)
+              pga.push_back(simulate(p, g * n + s).peak());
+            lm.push_back(std::log(median(pga)));
+          }
+        const double seconds = seconds_since(t0) / 20. / n;
+        double       mean = 0., var = 0.;
+        for (const double x : lm)
+          mean += x / lm.size();
+        for (const double x : lm)
+          var += (x - mean) * (x - mean) / (lm.size() - 1);
+        f << "seeds," << n << ',' << std::exp(mean) << ',' << std::sqrt(var)
+          << ',' << seconds << '\n';
+      }
+    // Time step: median of 200 seeds against dt = 0.00125 s (the noise
+    // differs with dt, so the difference holds a sampling scatter of about
+    // 0.9 %, the scatter of a 200-seed median, besides the effect of dt;
+    // the time is per realisation).
+    std::vector<std::pair<double, double>> rows;
+    for (const double dt : {0.00125, 0.0025, 0.005, 0.01, 0.02})
+      {
+        p.dt            = dt;
+        const auto   t0 = clock::now();
+        const double m  = median_pga(p, 200);
+        rows.emplace_back(m, seconds_since(t0) / 200.);
+      }
+    const double ref   = rows[0].first;
+    const double dts[] = {0.00125, 0.0025, 0.005, 0.01, 0.02};
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      f << "time step," << dts[i] << ',' << rows[i].first << ','
+        << rows[i].first / ref - 1. << ',' << rows[i].second << '\n';
+  }
 }
