@@ -54,4 +54,7 @@ PY
 if [[ -f "$here/flexible/run.sh" ]]; then
   bash "$here/flexible/run.sh" "$build" || status=1
 fi
+if [[ -f "$here/synthetic/run.sh" ]]; then
+  bash "$here/synthetic/run.sh" "$build" || status=1
+fi
 exit $status

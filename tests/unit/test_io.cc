@@ -16,49 +16,20 @@
 
 #include <gtest/gtest.h>
 
+#include "test_files.h"
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
 
+using namespace rockdda::test_files;
+
 namespace
 {
   namespace fs = std::filesystem;
 
-  /// A fresh temporary folder for one test.
-  fs::path
-  scratch(const std::string &name)
-  {
-    const fs::path p
-      = fs::temp_directory_path()
-        / ("rockdda-test-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
-  }
 
-  void
-  write_file(const fs::path &p, const std::string &text)
-  {
-    std::ofstream(p) << text;
-  }
-
-  /// The message of the InputError that f() throws ("" if none).
-  template <typename F>
-  std::string
-  error_of(F &&f)
-  {
-    try
-      {
-        f();
-      }
-    catch (const rockdda::InputError &e)
-      {
-        return e.what();
-      }
-    return "";
-  }
 
   void
   declare_toy(dealii::ParameterHandler &prm)

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "test_files.h"
 #include <cmath>
 #include <limits>
 #include <string>
@@ -15,6 +16,8 @@
 
 using namespace rockdda::analytical;
 using rockdda::InputError;
+
+using namespace rockdda::test_files;
 
 namespace
 {
@@ -35,21 +38,6 @@ namespace
     return v;
   }
 
-  /// The message of the InputError @p f throws ("" if none).
-  template <typename F>
-  std::string
-  error_of(F &&f)
-  {
-    try
-      {
-        f();
-      }
-    catch (const InputError &e)
-      {
-        return e.what();
-      }
-    return "";
-  }
 } // namespace
 
 

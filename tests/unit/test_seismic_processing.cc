@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "test_files.h"
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -23,44 +24,15 @@
 using namespace rockdda;
 using namespace rockdda::seismic;
 
+using namespace rockdda::test_files;
+
 namespace
 {
   namespace fs = std::filesystem;
 
   constexpr double g_si = 9.80665;
 
-  /// A fresh temporary folder for one test.
-  fs::path
-  scratch(const std::string &name)
-  {
-    const fs::path p
-      = fs::temp_directory_path()
-        / ("rockdda-seismic-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
-  }
 
-  void
-  write_file(const fs::path &p, const std::string &text)
-  {
-    std::ofstream(p) << text;
-  }
-
-  /// The InputError message of @p f ("" if none).
-  std::string
-  error_of(const std::function<void()> &f)
-  {
-    try
-      {
-        f();
-      }
-    catch (const InputError &e)
-      {
-        return e.what();
-      }
-    return "";
-  }
 
   /// a(t) = amplitude sin(2 pi f t) (g), n samples at dt.
   Record

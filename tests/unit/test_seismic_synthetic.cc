@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include "test_files.h"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -28,36 +29,13 @@
 using namespace rockdda;
 using namespace rockdda::seismic;
 
+using namespace rockdda::test_files;
+
 namespace
 {
   namespace fs = std::filesystem;
 
-  /// A fresh temporary folder for one test.
-  fs::path
-  scratch(const std::string &name)
-  {
-    const fs::path p
-      = fs::temp_directory_path()
-        / ("rockdda-synthetic-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
-  }
 
-  /// The InputError message of @p f ("" if none).
-  std::string
-  error_of(const std::function<void()> &f)
-  {
-    try
-      {
-        f();
-      }
-    catch (const InputError &e)
-      {
-        return e.what();
-      }
-    return "";
-  }
 
   /// A unit sinusoid of frequency @p f sampled at @p dt over @p duration.
   Record

@@ -1,0 +1,55 @@
+/**
+ * @file
+ * Helpers shared by the unit tests that write input files or expect input
+ * errors: a fresh scratch folder, a file writer, and the message of the
+ * InputError a call throws.
+ */
+#ifndef ROCKDDA_TESTS_TEST_FILES_H
+#define ROCKDDA_TESTS_TEST_FILES_H
+
+#include <rockdda/io/error.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+namespace rockdda::test_files
+{
+  /// A fresh, empty temporary folder for one test (unique per process).
+  inline std::filesystem::path
+  scratch(const std::string &name)
+  {
+    const std::filesystem::path p
+      = std::filesystem::temp_directory_path()
+        / ("rockdda-test-" + name + "-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(p);
+    std::filesystem::create_directories(p);
+    return p;
+  }
+
+  /// Write @p text to the file @p p.
+  inline void
+  write_file(const std::filesystem::path &p, const std::string &text)
+  {
+    std::ofstream(p) << text;
+  }
+
+  /// The message of the InputError that @p f() throws ("" if none).
+  template <typename F>
+  std::string
+  error_of(F &&f)
+  {
+    try
+      {
+        f();
+      }
+    catch (const InputError &e)
+      {
+        return e.what();
+      }
+    return "";
+  }
+} // namespace rockdda::test_files
+
+#endif
