@@ -8,7 +8,6 @@ years (statistics.csv), with the infill's descent. Right: the displacement
 within the first and the last recorded cycle against the air temperature
 (cycle_loop.csv; the loop of thesis Fig. 5-6).
 """
-import csv
 import os
 import sys
 
@@ -16,20 +15,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from rockdda_csv import column, read  # noqa: E402
 
-
-def read(path):
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    header, data = rows[0], [[float(v) for v in r] for r in rows[1:] if r]
-    return header, data
-
-
-def column(header, data, prefix):
-    for i, name in enumerate(header):
-        if name == prefix or name.startswith(prefix + "_"):
-            return [r[i] for r in data]
-    raise SystemExit(f"no column {prefix!r} in {header}")
 
 
 def main():

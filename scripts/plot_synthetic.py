@@ -10,7 +10,6 @@ right: the quadratic mean of the realisations' Fourier amplitude spectra
 against the target, in 1/6-octave bands (fourier.csv), and the site
 amplification on a second axis.
 """
-import csv
 import math
 import os
 import sys
@@ -19,21 +18,10 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from rockdda_csv import column, read  # noqa: E402
 
 SIGMA_LN_BJF97 = 0.495
 
-
-def read(path):
-    with open(path, newline="") as f:
-        rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
-    return rows[0], [[float(v) for v in r] for r in rows[1:]]
-
-
-def column(header, data, prefix):
-    for i, name in enumerate(header):
-        if name == prefix or name.startswith(prefix + "_"):
-            return [r[i] for r in data]
-    raise SystemExit(f"no column {prefix!r} in {header}")
 
 
 def main():
