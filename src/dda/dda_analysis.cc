@@ -31,6 +31,48 @@ namespace rockdda::dda
     using dealii::Patterns::Integer;
     using dealii::Patterns::Selection;
 
+    /**
+     * Log lines on the ground motion the fixed points follow: for each
+     * record its peak velocity and the velocity and displacement at its
+     * end (the integration drift: after the record the ground moves on at
+     * the final velocity), with a warning when the final velocity exceeds
+     * 1 % of the peak; and the zero padding kept before the record.
+     */
+    std::vector<std::string>
+    integration_drift(const SeismicInput &input, const double padding)
+    {
+      std::vector<std::string> lines;
+      if (padding > 0.)
+        lines.push_back(
+          "seismic input: the processed record starts with "
+          + io::format_number(padding, 6)
+          + " s of filter padding (t = 0 is the start of the padding)");
+      const auto add = [&](const seismic::Record &r, const char *what) {
+        if (r.acceleration.empty())
+          return;
+        const GroundMotionIntegral m(r, input.g);
+        const double               v   = m.final_velocity();
+        const double               pgv = m.peak_velocity();
+        lines.push_back(std::string("ground motion integration (") + what
+                        + "): peak velocity " + io::format_number(pgv, 6)
+                        + " m/s; at the end of the record (t = "
+                        + io::format_number(r.duration(), 6) + " s) velocity "
+                        + io::format_number(v, 6) + " m/s, displacement "
+                        + io::format_number(m.final_displacement(), 6) + " m");
+        if (input.mode == SeismicInput::Mode::displacement
+            && std::abs(v) > 0.01 * pgv)
+          lines.push_back(
+            std::string("warning: the ") + what + " ground velocity drifts to "
+            + io::format_number(v, 4)
+            + " m/s at the end of the record (more than 1 % of its peak): "
+              "the foundation keeps moving; baseline-correct or high-pass "
+              "the record ('Ground motion/Processing')");
+      };
+      add(input.record, "horizontal");
+      add(input.vertical_record, "vertical");
+      return lines;
+    }
+
     /// The "dda" analysis.
     class DdaAnalysis : public io::Analysis
     {
@@ -242,12 +284,18 @@ namespace rockdda::dda
                     "none",
                     Selection("none|inertial|displacement"),
                     "-",
-                    "Horizontal ground acceleration from the 'Ground "
-                    "motion' section: 'inertial' loads every block with "
+                    "Ground acceleration from the 'Ground motion' section "
+                    "(horizontal, towards +x, and the optional vertical "
+                    "record, upward; processed and scaled there): "
+                    "'inertial' (loading mode) loads every block with "
                     "-a(t) (fixed points stay put); 'displacement' moves "
-                    "the fixed points with the ground displacement, the "
-                    "double integral of a(t) from rest (Kamai & Hatzor "
-                    "2008).");
+                    "the fixed points (the foundation) with the ground "
+                    "displacement, the double integral of a(t) from rest "
+                    "(Kamai & Hatzor 2008); low-pass the record first "
+                    "(e.g. at 2.5 Hz as Bakun-Mazor 2011, Sec. 4.7.2) and "
+                    "baseline-correct it "
+                    "so that the foundation ends at rest (the drift is in "
+                    "log.txt).");
         io::declare(prm,
                     "Output interval",
                     "0.1",
@@ -370,12 +418,15 @@ namespace rockdda::dda
                 == seismic::GroundMotionInput::Polarity::inverted)
               for (auto &a : motion.record.acceleration)
                 a = -a;
-            scene.seismic.mode   = mode == "inertial"
-                                     ? SeismicInput::Mode::inertial
-                                     : SeismicInput::Mode::displacement;
-            scene.seismic.record = motion.record;
-            scene.seismic.g      = gravity > 0. ? gravity : 9.80665;
-            motion_text          = motion.description;
+            scene.seismic.mode            = mode == "inertial"
+                                              ? SeismicInput::Mode::inertial
+                                              : SeismicInput::Mode::displacement;
+            scene.seismic.record          = motion.record;
+            scene.seismic.vertical_record = motion.vertical_record;
+            scene.seismic.g               = gravity > 0. ? gravity : 9.80665;
+            motion_text                   = motion.description;
+            drift_text                    = integration_drift(scene.seismic,
+                                           motion.processing_report.padding);
           }
         try
           {
@@ -415,6 +466,8 @@ namespace rockdda::dda
           context.log.line("warning: " + w);
         if (!motion_text.empty())
           context.log.line("seismic input: " + motion_text);
+        for (const auto &line : drift_text)
+          context.log.line(line);
         context.log.line(
           "DDA: " + std::to_string(dda->system().blocks.size())
           + " blocks, penalty "
@@ -774,7 +827,9 @@ namespace rockdda::dda
     private:
       std::unique_ptr<DdaSystem> dda;
       seismic::GroundMotionInput motion;
-      std::string                motion_text;
+      /// Log lines on the integration drift of the seismic records.
+      std::vector<std::string> drift_text;
+      std::string              motion_text;
       double end_time = 1., output_interval = 0.1, statistics_interval = 0.;
       double checkpoint_interval  = 0.;
       bool   resume               = false;

@@ -91,6 +91,18 @@ namespace rockdda::dda
     if (!(dn > 0.) || !std::isfinite(dn))
       throw InputError("the seismic direction has no length");
     scene.seismic.direction /= dn;
+    if (!scene.seismic.vertical_record.acceleration.empty())
+      {
+        const double vn = scene.seismic.vertical.norm();
+        if (!(vn > 0.) || !std::isfinite(vn))
+          throw InputError("the vertical seismic direction has no length");
+        scene.seismic.vertical /= vn;
+        if (!(scene.seismic.vertical_record.dt > 0.))
+          throw InputError(
+            "vertical seismic record '" + scene.seismic.vertical_record.name
+            + "': time step " + num(scene.seismic.vertical_record.dt)
+            + " s; valid: dt > 0");
+      }
     if (!(ctrl.time_step > 0.) || !std::isfinite(ctrl.time_step))
       throw InputError("time step " + num(ctrl.time_step)
                        + " s; valid: dt > 0");
@@ -133,8 +145,14 @@ namespace rockdda::dda
       }
     if (scene.seismic.mode != SeismicInput::Mode::none)
       ground = GroundMotionIntegral(scene.seismic.record, scene.seismic.g);
+    if (scene.seismic.mode != SeismicInput::Mode::none
+        && !scene.seismic.vertical_record.acceleration.empty())
+      ground_vertical
+        = GroundMotionIntegral(scene.seismic.vertical_record, scene.seismic.g);
     clamped_block = clamped_blocks(scene);
     add_plausibility_warnings();
+    // The vertical ground velocity bounds the block speeds too.
+    speed_bound += ground_vertical.peak_velocity();
   }
 
 
@@ -235,10 +253,13 @@ namespace rockdda::dda
     detection.reach.resize(polys.size());
     detection.vertex_reach.resize(polys.size());
     // A clamped block moves only with the ground (displacement mode).
+    const bool moving_ground
+      = scene.seismic.mode == SeismicInput::Mode::displacement;
     const double ground_step
-      = scene.seismic.mode == SeismicInput::Mode::displacement
+      = !moving_ground ? 0.
+        : scene.seismic.vertical_record.acceleration.empty()
           ? std::abs(ground.displacement(t + dt) - ground.displacement(t))
-          : 0.;
+          : (ground_displacement(t + dt) - ground_displacement(t)).norm();
     for (std::size_t b = 0; b < polys.size(); ++b)
       {
         detection.vertex_reach[b] = ctrl.search_factor * allowed_step[b];
@@ -330,8 +351,17 @@ namespace rockdda::dda
                               ? ground.acceleration(t + 0.5 * h)
                               : 0.;
     par.body_acceleration -= a_ground * scene.seismic.direction;
+    // Vertical component (0 without a vertical record).
+    const double a_vertical = mode == SeismicInput::Mode::inertial
+                                ? ground_vertical.acceleration(t + 0.5 * h)
+                                : 0.;
+    if (a_vertical != 0.)
+      par.body_acceleration -= a_vertical * scene.seismic.vertical;
     const double ug = mode == SeismicInput::Mode::displacement
                         ? ground.displacement(t + h)
+                        : 0.;
+    const double uv = mode == SeismicInput::Mode::displacement
+                        ? ground_vertical.displacement(t + h)
                         : 0.;
     par.fixed_targets.resize(scene.fixed_points.size());
     for (std::size_t f = 0; f < scene.fixed_points.size(); ++f)
@@ -340,6 +370,8 @@ namespace rockdda::dda
         par.fixed_targets[f]
           = fp.anchor
             + (fp.moves_with_ground ? ug : 0.) * scene.seismic.direction;
+        if (fp.moves_with_ground && uv != 0.)
+          par.fixed_targets[f] += uv * scene.seismic.vertical;
       }
     par.run_halves = halves();
     par.clamped    = &clamped_block;
@@ -650,6 +682,10 @@ namespace rockdda::dda
       for (std::size_t b = 0; b < scene.blocks.size(); ++b)
         load_work += -a_ground * assembler.masses()[b](0, 0)
                      * scene.seismic.direction.dot(x.segment<2>(6 * b));
+    if (a_vertical != 0.)
+      for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+        load_work += -a_vertical * assembler.masses()[b](0, 0)
+                     * scene.seismic.vertical.dot(x.segment<2>(6 * b));
 
     // (Assignment into the kept buffers reuses their memory.)
     backup.blocks             = scene.blocks;
@@ -946,17 +982,44 @@ namespace rockdda::dda
     const double ug = scene.seismic.mode == SeismicInput::Mode::displacement
                         ? ground.displacement(t)
                         : 0.;
+    const double uv = scene.seismic.mode == SeismicInput::Mode::displacement
+                        ? ground_vertical.displacement(t)
+                        : 0.;
     for (const auto &f : scene.fixed_points)
       if (!clamped_block[f.block])
         {
-          const geometry::Point target
+          geometry::Point target
             = f.anchor
               + (f.moves_with_ground ? ug : 0.) * scene.seismic.direction;
+          if (f.moves_with_ground && uv != 0.)
+            target += uv * scene.seismic.vertical;
           e.fixed
             += 0.5 * ctrl.fixed_penalty * (f.point - target).squaredNorm();
         }
     e.load_work = load_work;
     return e;
+  }
+
+
+
+  geometry::Point
+  DdaSystem::ground_displacement(const double time) const
+  {
+    if (scene.seismic.mode != SeismicInput::Mode::displacement)
+      return geometry::Point::Zero();
+    return ground.displacement(time) * scene.seismic.direction
+           + ground_vertical.displacement(time) * scene.seismic.vertical;
+  }
+
+
+
+  geometry::Point
+  DdaSystem::ground_acceleration(const double time) const
+  {
+    if (scene.seismic.mode == SeismicInput::Mode::none)
+      return geometry::Point::Zero();
+    return ground.acceleration(time) * scene.seismic.direction
+           + ground_vertical.acceleration(time) * scene.seismic.vertical;
   }
 
 

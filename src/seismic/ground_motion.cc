@@ -3,6 +3,7 @@
 #include <rockdda/io/parameters.h>
 #include <rockdda/seismic/ground_motion.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -72,6 +73,26 @@ namespace rockdda::seismic
                 "-",
                 "Column (counted from 1) of the acceleration in a 'columns' "
                 "record file, 2 to 1000; column 1 is the time.");
+    io::declare(prm,
+                "Vertical record file",
+                "",
+                dealii::Patterns::Anything(),
+                "-",
+                "Optional vertical acceleration record (positive upward), "
+                "read with the same Units, Record format, Time step and "
+                "Acceleration column as the record; it gets the same "
+                "Processing and the same scaling factor (times 'Vertical "
+                "scale'), and the Polarity does not invert it. Empty = no "
+                "vertical motion. Used by the dda analysis (Seismic input "
+                "inertial or displacement); other analyses ignore it.");
+    io::declare(prm,
+                "Vertical scale",
+                "1",
+                Double(-10., 10.),
+                "-",
+                "Multiplier of the vertical record after the common "
+                "scaling, in [-10, 10]; -1 for a record that is positive "
+                "downward.");
     io::declare(prm,
                 "Scaling",
                 "none",
@@ -234,6 +255,42 @@ namespace rockdda::seismic
     const double      dt     = prm.get_double("Time step");
     io::require(dt > 0., prm_file, "Ground motion/Time step", dt, "dt > 0 s");
     warnings.clear();
+    // Read a record file with the Units, Record format, Time step and
+    // Acceleration column keys; @p key names the file's key in messages.
+    const auto read_file = [&](const std::string &name,
+                               const std::string &key) {
+      const std::string file   = io::resolve_path(name, prm_file, key);
+      const std::string units  = prm.get("Units");
+      const std::string format = prm.get("Record format");
+      RecordFileOptions options;
+      options.unit   = units == "g" ? AccelerationUnit::g
+                       : units == "m/s^2"
+                         ? AccelerationUnit::metre_per_second2
+                         : AccelerationUnit::centimetre_per_second2;
+      options.format = format == "one column" ? RecordFormat::one_column
+                       : format == "columns"  ? RecordFormat::columns
+                       : format == "PEER AT2" ? RecordFormat::peer_at2
+                                              : RecordFormat::automatic;
+      options.dt     = dt;
+      options.column = prm.get_integer("Acceleration column");
+      Record r       = read_record(file, options);
+      // A SLAMMER library file: its step is listed in records.csv.
+      unsigned int listed_line = 0;
+      const double listed      = listed_time_step(file, listed_line);
+      if (listed > 0. && std::abs(listed - r.dt) > 1e-9 * listed)
+        throw InputError(
+          prm_file + ": key 'Ground motion/Time step' = "
+          + io::format_number(r.dt, 8) + " s, but " + r.name
+          + " is listed with dt = " + io::format_number(listed, 8) + " s in "
+          + (std::filesystem::path(file).parent_path() / "records.csv").string()
+          + ":" + std::to_string(listed_line)
+          + "; set Time step = " + io::format_number(listed, 8));
+      const std::string w
+        = check_units_plausible(r, options.unit, file, "Ground motion/Units");
+      if (!w.empty())
+        warnings.push_back(w);
+      return r;
+    };
     std::ostringstream d;
     if (source == "harmonic")
       {
@@ -267,43 +324,22 @@ namespace rockdda::seismic
           throw InputError(prm_file
                            + ": key 'Ground motion/Record file' is empty; give "
                              "a record file (or set Source = harmonic)");
-        const std::string file
-          = io::resolve_path(name, prm_file, "Ground motion/Record file");
-        const std::string units  = prm.get("Units");
-        const std::string format = prm.get("Record format");
-        RecordFileOptions options;
-        options.unit   = units == "g" ? AccelerationUnit::g
-                         : units == "m/s^2"
-                           ? AccelerationUnit::metre_per_second2
-                           : AccelerationUnit::centimetre_per_second2;
-        options.format = format == "one column" ? RecordFormat::one_column
-                         : format == "columns"  ? RecordFormat::columns
-                         : format == "PEER AT2" ? RecordFormat::peer_at2
-                                                : RecordFormat::automatic;
-        options.dt     = dt;
-        options.column = prm.get_integer("Acceleration column");
-        record         = read_record(file, options);
-        // A SLAMMER library file: its step is listed in records.csv.
-        unsigned int listed_line = 0;
-        const double listed      = listed_time_step(file, listed_line);
-        if (listed > 0. && std::abs(listed - record.dt) > 1e-9 * listed)
-          throw InputError(
-            prm_file + ": key 'Ground motion/Time step' = "
-            + io::format_number(record.dt, 8) + " s, but " + record.name
-            + " is listed with dt = " + io::format_number(listed, 8) + " s in "
-            + (std::filesystem::path(file).parent_path() / "records.csv")
-                .string()
-            + ":" + std::to_string(listed_line)
-            + "; set Time step = " + io::format_number(listed, 8));
-        const std::string w = check_units_plausible(record,
-                                                    options.unit,
-                                                    file,
-                                                    "Ground motion/Units");
-        if (!w.empty())
-          warnings.push_back(w);
+        record = read_file(name, "Ground motion/Record file");
         d << record.name << " (" << record.acceleration.size()
           << " samples, dt = " << record.dt << " s, PGA " << record.peak()
           << " g)";
+      }
+    const std::string vertical_name = prm.get("Vertical record file");
+    vertical_scale                  = prm.get_double("Vertical scale");
+    vertical_record                 = Record();
+    if (!vertical_name.empty())
+      {
+        vertical_record
+          = read_file(vertical_name, "Ground motion/Vertical record file");
+        d << "; vertical " << vertical_record.name << " ("
+          << vertical_record.acceleration.size()
+          << " samples, dt = " << vertical_record.dt << " s, PGA "
+          << vertical_record.peak() << " g)";
       }
     raw_record = record;
 
@@ -354,6 +390,23 @@ namespace rockdda::seismic
           record = process(record, processing, &processing_report);
         });
         d << ", " << processing_report.description;
+        if (!vertical_record.acceleration.empty())
+          {
+            const double vertical_step = processing.resample_dt > 0.
+                                           ? processing.resample_dt
+                                           : vertical_record.dt;
+            io::require(
+              processing.low_pass < 0.5 / vertical_step
+                && processing.high_pass < 0.5 / vertical_step,
+              prm_file,
+              "Ground motion/Processing/Low-pass corner",
+              std::max(processing.low_pass, processing.high_pass),
+              "corners below " + io::format_number(0.5 / vertical_step, 6)
+                + " Hz (the Nyquist frequency of the vertical record)");
+            io::with_parameter_file(prm_file, [&]() {
+              vertical_record = process(vertical_record, processing);
+            });
+          }
         // A processed harmonic is no longer the closed form's input.
         harmonic_omega = 0.;
       }
@@ -414,6 +467,12 @@ namespace rockdda::seismic
           << scenario.magnitude << ", Rjb " << scenario.distance_km
           << " km, Vs30 " << scenario.vs30 << " m/s, " << mech << ", "
           << scenario.n_sigma << " sigma)";
+      }
+    if (!vertical_record.acceleration.empty())
+      {
+        scale(vertical_record, scale_factor * vertical_scale);
+        d << "; vertical x " << scale_factor * vertical_scale << ", PGA "
+          << io::format_number(vertical_record.peak(), 6) << " g";
       }
     const std::string p = prm.get("Polarity");
     polarity            = p == "normal"     ? Polarity::normal

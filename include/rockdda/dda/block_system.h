@@ -127,12 +127,15 @@ namespace rockdda::dda
   };
 
   /**
-   * Horizontal seismic input. The record is the horizontal ground
-   * acceleration (g, positive towards +x). Inertial mode: every block is
-   * loaded by -a(t) g (the system is analysed in the frame of the ground
-   * and the fixed points stay put). Displacement mode: the fixed points
-   * follow the ground displacement u(t), the exact double integral of the
-   * piecewise-linear record from rest (Kamai & Hatzor 2008).
+   * Seismic input. The record is the horizontal ground acceleration (g,
+   * positive towards +x); the optional vertical record the vertical one
+   * (g, positive upward). Inertial mode: every block is loaded by -a(t) g
+   * along each direction (the system is analysed in the frame of the
+   * ground and the fixed points stay put), so an upward ground
+   * acceleration a_v raises the effective gravity to g (1 + a_v).
+   * Displacement mode: the fixed points follow the ground displacement,
+   * the exact double integral of each piecewise-linear record from rest
+   * (Kamai & Hatzor 2008).
    */
   struct SeismicInput
   {
@@ -144,9 +147,15 @@ namespace rockdda::dda
     };
     Mode            mode = Mode::none;
     seismic::Record record;
+    /// Vertical ground acceleration (g, positive along @p vertical), on its
+    /// own time step from t = 0; empty: no vertical motion.
+    seismic::Record vertical_record;
     /// Unit direction of the ground motion in the scene's plane (default
     /// +x); a rotated scene rotates it with the blocks.
     geometry::Point direction = geometry::Point(1., 0.);
+    /// Unit upward direction of the vertical record (default +y); a
+    /// rotated scene rotates it with the blocks.
+    geometry::Point vertical = geometry::Point(0., 1.);
     /// Gravitational acceleration used to convert g to m/s^2.
     double g = 9.80665;
   };
@@ -205,6 +214,18 @@ namespace rockdda::dda
     /// Largest |ground velocity| (m/s) of the record.
     double
     peak_velocity() const;
+    /// Ground velocity (m/s) and displacement (m) at the end of the record
+    /// (the integration drift of an uncorrected record).
+    double
+    final_velocity() const
+    {
+      return v.empty() ? 0. : v.back();
+    }
+    double
+    final_displacement() const
+    {
+      return u.empty() ? 0. : u.back();
+    }
 
   private:
     double              dt = 0.;

@@ -274,6 +274,17 @@ namespace rockdda::dda
     EnergyLedger
     energy() const;
 
+    /// Ground displacement (m) at time @p t in displacement mode: the
+    /// horizontal and the vertical record's double integrals along their
+    /// directions (zero in the other modes).
+    geometry::Point
+    ground_displacement(const double t) const;
+
+    /// Ground acceleration (m/s^2) at time @p t of either mode (zero
+    /// without seismic input).
+    geometry::Point
+    ground_acceleration(const double t) const;
+
     /// Displacement (m) of a block's centroid since t = 0.
     geometry::Point
     centroid_displacement(const int block) const;
@@ -385,6 +396,8 @@ namespace rockdda::dda
     /// Options of the contact detection, kept between steps (their
     /// per-block arrays are refilled, not reallocated).
     DetectionOptions detection_options;
+    /// The vertical record's integral (empty: no vertical motion).
+    GroundMotionIntegral ground_vertical;
   };
 } // namespace rockdda::dda
 

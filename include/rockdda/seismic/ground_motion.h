@@ -27,7 +27,10 @@ namespace rockdda::seismic
    * resampled, baseline-corrected and filtered as its "Processing"
    * subsection says; then scaled to a target PGA, by a factor or to the
    * BJF97 PGA of the "Attenuation" subsection's scenario; with the chosen
-   * polarity.
+   * polarity. An optional vertical record (same units, format and time
+   * step keys) gets the same processing and scaling factor, times
+   * "Vertical scale"; it is positive upward and not inverted by the
+   * polarity (used by the dda analysis).
    */
   struct GroundMotionInput
   {
@@ -67,6 +70,12 @@ namespace rockdda::seismic
     std::vector<std::string> warnings;
     /// Requested polarity.
     Polarity polarity = Polarity::normal;
+    /// Vertical ground acceleration (g, positive upward), processed and
+    /// scaled like the record (times vertical_scale); empty if no
+    /// "Vertical record file" is given.
+    Record vertical_record;
+    /// Multiplier of the vertical record after the common scaling (-).
+    double vertical_scale = 1.;
     /// Harmonic source: amplitude (g) and angular frequency (rad/s); 0 for
     /// a record file.
     double harmonic_amplitude = 0., harmonic_omega = 0.;
