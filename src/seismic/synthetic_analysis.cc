@@ -126,8 +126,8 @@ namespace rockdda::seismic
                   Double(3., 8.5),
                   "-",
                   "Moment magnitude M, 3 to 8.5; M0 = 10^(1.5 M + 9.05) N m. "
-                  "BJF97, the comparison, is fitted for 4 <= M <= 8 "
-                  "(outside: a warning).");
+                  "BJF97, the comparison, was fitted to magnitudes "
+                  "between 4 and 8 (outside: a warning).");
       io::declare(prm,
                   "Joyner-Boore distance",
                   num(d.distance),
