@@ -106,8 +106,14 @@ namespace rockdda::coupling
     // The window of the stationarity test: slip and aperture per step.
     constexpr unsigned int            window = 100;
     std::deque<std::array<double, 2>> recent;
-    unsigned int                      since_cut = 0;
-    double                            moved     = 0.;
+    // Stalled samples: a smaller pseudo time step every stall_steps steps.
+    constexpr unsigned int stall_steps  = 300;
+    const auto             restore_step = [this]() {
+      if (engine->controls().time_step != ctrl.pseudo_time_step)
+        engine->set_time_step(ctrl.pseudo_time_step);
+    };
+    unsigned int since_cut = 0;
+    double       moved     = 0.;
     for (unsigned int k = 0; k < ctrl.max_steps_per_sample; ++k)
       {
         const dda::StepReport r = engine->step();
@@ -115,7 +121,13 @@ namespace rockdda::coupling
         record.cuts += r.cuts;
         last = r.max_displacement;
         if (r.max_displacement <= tolerance && r.cuts == 0)
-          return;
+          return restore_step();
+        if (k > 0 && k % stall_steps == 0 && k <= 3 * stall_steps)
+          {
+            if (k == stall_steps)
+              ++record.regularised_samples;
+            engine->set_time_step(engine->controls().time_step / 10.);
+          }
         since_cut = r.cuts == 0 ? since_cut + 1 : 0;
         moved     = since_cut > 0 ? std::max(moved, r.max_displacement) : 0.;
         recent.push_back({displacement(), aperture()});
@@ -138,7 +150,7 @@ namespace rockdda::coupling
               {
                 ++record.stationary_samples;
                 record.chatter = std::max(record.chatter, moved);
-                return;
+                return restore_step();
               }
           }
       }

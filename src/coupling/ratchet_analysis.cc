@@ -479,7 +479,8 @@ namespace rockdda::coupling
                {"steps", "-"},
                {"cuts", "-"},
                {"stationary_samples", "-"},
-               {"chatter", "m"}})
+               {"chatter", "m"},
+               {"regularised_samples", "-"}})
           table.add_column(name, unit);
         io::Table loop;
         for (const auto &[name, unit] :
@@ -536,7 +537,8 @@ namespace rockdda::coupling
                            static_cast<double>(r.steps),
                            static_cast<double>(r.cuts),
                            static_cast<double>(r.stationary_samples),
-                           r.chatter});
+                           r.chatter,
+                           static_cast<double>(r.regularised_samples)});
             if (record_loop)
               for (const auto &s : samples)
                 loop.add_row({static_cast<double>(r.cycle),
@@ -595,13 +597,22 @@ namespace rockdda::coupling
         {
           // Samples whose equilibrium was a stationary switching of one
           // contact (RatchetRun::equilibrate), over all cycles.
-          double stationary = 0., chatter = 0.;
+          double stationary = 0., chatter = 0., regularised = 0.;
           for (std::size_t i = 0; i < table.n_rows(); ++i)
             {
               stationary += table.row(i)[11];
               chatter = std::max(chatter, table.row(i)[12]);
+              regularised += table.row(i)[13];
             }
           context.summary.add("stationary_samples", stationary, "-");
+          context.summary.add("regularised_samples", regularised, "-");
+          if (regularised > 0.)
+            log.line("WARNING: " + io::format_number(regularised, 6)
+                     + " samples reached equilibrium only with a smaller "
+                       "pseudo time step (the contact states cycled between "
+                       "steps): the slip of such runs depends on the "
+                       "pseudo time step; compare runs with a different "
+                       "'Pseudo time step' before trusting it");
           context.summary.add("chatter_max", chatter, "m");
           if (stationary > 0.)
             log.line("note: " + io::format_number(stationary, 6)

@@ -212,6 +212,18 @@ namespace rockdda::dda
 
 
 
+  void
+  DdaSystem::set_time_step(const double time_step)
+  {
+    if (!(time_step > 0.) || !std::isfinite(time_step))
+      throw InputError("time step " + num(time_step) + " s; valid: dt > 0");
+    dt_min *= time_step / ctrl.time_step;
+    ctrl.time_step = time_step;
+    dt             = std::min(dt, time_step);
+  }
+
+
+
   StepReport
   DdaSystem::run_until(const double end_time)
   {

@@ -58,6 +58,9 @@ namespace rockdda::coupling
     /// motion per step of that switching (m).
     unsigned int stationary_samples = 0;
     double       chatter            = 0.;
+    /// Samples that needed a smaller pseudo time step to reach equilibrium
+    /// (see RatchetRun::equilibrate).
+    unsigned int regularised_samples = 0;
   };
 
   /// One temperature sample within a cycle (the loop of thesis Fig. 5-6).
@@ -122,7 +125,11 @@ namespace rockdda::coupling
      * by more than the tolerance, or (a contact at the friction limit that
      * switches between sliding and locked every few steps, moving one
      * vertex back and forth) 100 steps without a cut over which the base
-     * slip and the crack aperture stay within the tolerance.
+     * slip and the crack aperture stay within the tolerance. A sample
+     * still not in equilibrium after 300 steps continues with the pseudo
+     * time step divided by 10 (a stiffer inertia term, 2 M / dt^2, damps
+     * the cycles of contact states between steps), then by 100 after 600
+     * and by 1000 after 900 steps; the step is restored afterwards.
      */
     void
     equilibrate(const double time, CycleRecord &record);

@@ -257,6 +257,16 @@ namespace rockdda::dda
       return ctrl;
     }
 
+    /**
+     * Change the requested time step (s, > 0) from the next step on; the
+     * current step is capped by it and grows back by Controls::growth per
+     * step after a reduction; the minimum time step keeps its ratio to it.
+     * For quasi-static drivers that regularise a stalled equilibrium
+     * iteration with a smaller pseudo time step (a larger inertia term).
+     */
+    void
+    set_time_step(const double time_step);
+
     /// Kinetic energy sum 1/2 v^T M v (J/m).
     double
     kinetic_energy() const;
