@@ -56,6 +56,17 @@ namespace rockdda::thermal::internal
              MeshInfo                 &info,
              const bool                coarse_only = false);
 
+  /**
+   * Cell counts and sizes of @p tria (over all ranks) into @p stats, and
+   * the smallest node spacing @p h_min (cell diameter / sqrt(2) / degree).
+   */
+  void
+  update_mesh_statistics(const dealii::Triangulation<2> &tria,
+                         const unsigned int              n_dofs,
+                         const unsigned int              degree,
+                         HeatStatistics                 &stats,
+                         double                         &h_min);
+
   /// Distance from @p p to the nearest of @p segments, m.
   double
   distance_to_segments(const dealii::Point<2>                   &p,
@@ -280,7 +291,7 @@ namespace rockdda::thermal::internal
   /**
    * One theta step of either solver. @p s is the solver's state (members
    * prm, stats, time, steps_taken, solution, new_solution, tmp, rhs_old,
-   * rhs_new, rhs_old_valid, rate_old, source_rate_old, robin_weights,
+   * rhs_new, rhs_old_valid, rate_old, source_rate_old, fixed (robin_weights),
    * boundary_heat, source_heat, increment_old, last_step_flipped and
    * assemble_rhs()). The loads at both ends of the step are assembled,
    * @p solve() computes new_solution from solution, rhs_old and rhs_new,
@@ -295,13 +306,13 @@ namespace rockdda::thermal::internal
     if (!s.rhs_old_valid)
       {
         s.assemble_rhs(s.time, s.rhs_old, s.rate_old, s.source_rate_old);
-        s.rate_old -= s.robin_weights * s.solution;
+        s.rate_old -= s.fixed.robin_weights * s.solution;
         s.rhs_old_valid = true;
       }
     double rate_new = 0., source_rate_new = 0.;
     s.assemble_rhs(s.time + dt, s.rhs_new, rate_new, source_rate_new);
     solve();
-    rate_new -= s.robin_weights * s.new_solution;
+    rate_new -= s.fixed.robin_weights * s.new_solution;
     s.boundary_heat += dt * (theta * rate_new + (1. - theta) * s.rate_old);
     s.source_heat
       += dt * (theta * source_rate_new + (1. - theta) * s.source_rate_old);

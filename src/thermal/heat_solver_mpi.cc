@@ -38,8 +38,11 @@
 #include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include "heat_assembly.h"
 #include "heat_flux.h"
 #include "heat_internal.h"
+#include "heat_output.h"
+#include "heat_probes.h"
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -71,13 +74,6 @@ namespace rockdda::thermal::internal
       std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
     };
 
-    /// A probe: the rank that owns the point, its dofs and weights there.
-    struct DistributedProbe
-    {
-      unsigned int                         owner = 0;
-      std::vector<types::global_dof_index> dofs;
-      std::vector<double>                  weights;
-    };
   } // namespace
 
 
@@ -106,7 +102,7 @@ namespace rockdda::thermal::internal
 
     void
     advance_to(const double end_time);
-    DistributedProbe
+    Probe
     locate(const Point<2> &p) const;
     void
     update_ghosts() const;
@@ -125,26 +121,16 @@ namespace rockdda::thermal::internal
     std::vector<std::unique_ptr<DistributedOperator>> operators;
 
     VectorType solution, new_solution, rhs_old, rhs_new, tmp, g_ext,
-      increment_old, robin_weights, capacity;
+      increment_old;
     mutable VectorType ghosted;
     mutable bool       ghosted_valid = false;
 
-    // Locally owned Dirichlet dofs, their support points and conditions.
-    std::vector<types::global_dof_index> dirichlet_dofs;
-    std::vector<Point<2>>                dirichlet_points;
-    std::vector<unsigned int>            dirichlet_bc;
-    bool                                 any_dirichlet = false;
+    DirichletDofs              dirichlet;
+    bool                       any_dirichlet = false;
+    FixedIntegrals<VectorType> fixed;
 
-    std::vector<unsigned int> uniform_bc;
-    std::vector<VectorType>   uniform_vectors;
-    std::vector<double>       uniform_rates;
-    bool                      nonuniform = false;
-
-    std::vector<VectorType>            block_phi, block_xphi, block_yphi;
-    std::vector<std::array<double, 6>> block_geometry;
-
-    std::vector<DistributedProbe> probes;
-    std::vector<Point<2>>         probe_points;
+    std::vector<Probe>    probes;
+    std::vector<Point<2>> probe_points;
 
     double        time              = 0.;
     double        boundary_heat     = 0.;
@@ -166,13 +152,6 @@ namespace rockdda::thermal::internal
 
     void
     setup_system();
-    /// Cell mass and stiffness (with the Robin term) of @p cell.
-    void
-    cell_matrices(const DoFHandler<2>::active_cell_iterator &cell,
-                  FEValues<2>                               &fe_values,
-                  FEFaceValues<2>                           &fe_face,
-                  FullMatrix<double>                        &cell_mass,
-                  FullMatrix<double>                        &cell_stiff) const;
     void
     assemble_fixed();
     void
@@ -269,102 +248,15 @@ namespace rockdda::thermal::internal
                           &rhs_new,
                           &tmp,
                           &g_ext,
-                          &increment_old,
-                          &robin_weights,
-                          &capacity})
+                          &increment_old})
       v->reinit(owned, comm);
     ghosted.reinit(owned, relevant, comm);
     ghosted_valid = false;
 
-    // Locally owned Dirichlet dofs (not hanging), first tag first.
-    dirichlet_dofs.clear();
-    dirichlet_points.clear();
-    dirichlet_bc.clear();
-    std::map<types::global_dof_index, Point<2>> support;
-    DoFTools::map_dofs_to_support_points(mapping, dof_handler, support);
-    std::set<types::global_dof_index> taken;
-    for (unsigned int k = 0; k < prm.boundary_conditions.size(); ++k)
-      if (prm.boundary_conditions[k].type
-          == BoundaryCondition::Type::temperature)
-        {
-          const IndexSet set
-            = DoFTools::extract_boundary_dofs(dof_handler,
-                                              ComponentMask(),
-                                              {types::boundary_id(k)});
-          for (const auto i : set)
-            if (owned.is_element(i) && !hanging.is_constrained(i)
-                && taken.insert(i).second)
-              {
-                dirichlet_dofs.push_back(i);
-                dirichlet_points.push_back(support.at(i));
-                dirichlet_bc.push_back(k);
-              }
-        }
-    any_dirichlet = Utilities::MPI::logical_or(!dirichlet_dofs.empty(), comm);
-
-    stats.n_cells     = tria.n_global_active_cells();
-    stats.n_dofs      = dof_handler.n_dofs();
-    stats.max_n_cells = std::max(stats.max_n_cells, stats.n_cells);
-    double hmin = std::numeric_limits<double>::max(), hmax = 0.;
-    for (const auto &cell : tria.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          hmin = std::min(hmin, cell->diameter());
-          hmax = std::max(hmax, cell->diameter());
-        }
-    stats.min_cell_size = Utilities::MPI::min(hmin, comm);
-    stats.max_cell_size = Utilities::MPI::max(hmax, comm);
-    h_min               = stats.min_cell_size / std::sqrt(2.) / prm.degree;
-  }
-
-
-
-  void
-  DistributedHeat::Impl::cell_matrices(
-    const DoFHandler<2>::active_cell_iterator &cell,
-    FEValues<2>                               &fe_values,
-    FEFaceValues<2>                           &fe_face,
-    FullMatrix<double>                        &cell_mass,
-    FullMatrix<double>                        &cell_stiff) const
-  {
-    const unsigned int dpc = fe.n_dofs_per_cell();
-    fe_values.reinit(cell);
-    const Material &mat
-      = prm.materials[prm.blocks[cell->material_id()].material];
-    const double rho_c = mat.density * mat.heat_capacity;
-    cell_mass          = 0.;
-    cell_stiff         = 0.;
-    for (const unsigned int q : fe_values.quadrature_point_indices())
-      {
-        const double jxw = fe_values.JxW(q);
-        for (unsigned int i = 0; i < dpc; ++i)
-          for (unsigned int j = 0; j < dpc; ++j)
-            {
-              cell_mass(i, j) += rho_c * fe_values.shape_value(i, q)
-                                 * fe_values.shape_value(j, q) * jxw;
-              cell_stiff(i, j)
-                += mat.conductivity
-                   * (fe_values.shape_grad(i, q) * fe_values.shape_grad(j, q))
-                   * jxw;
-            }
-      }
-    for (const auto f : cell->face_indices())
-      if (cell->face(f)->at_boundary()
-          && cell->face(f)->boundary_id() < prm.boundary_conditions.size())
-        {
-          const auto &bc
-            = prm.boundary_conditions[cell->face(f)->boundary_id()];
-          if (bc.type != BoundaryCondition::Type::convective || !bc.value)
-            continue;
-          fe_face.reinit(cell, f);
-          const double h = bc.heat_transfer_coefficient;
-          for (const unsigned int q : fe_face.quadrature_point_indices())
-            for (unsigned int i = 0; i < dpc; ++i)
-              for (unsigned int j = 0; j < dpc; ++j)
-                cell_stiff(i, j) += h * fe_face.shape_value(i, q)
-                                    * fe_face.shape_value(j, q)
-                                    * fe_face.JxW(q);
-        }
+    dirichlet.find(prm, mapping, dof_handler, hanging);
+    any_dirichlet = Utilities::MPI::logical_or(!dirichlet.dofs.empty(), comm);
+    update_mesh_statistics(
+      tria, dof_handler.n_dofs(), prm.degree, stats, h_min);
   }
 
 
@@ -372,122 +264,8 @@ namespace rockdda::thermal::internal
   void
   DistributedHeat::Impl::assemble_fixed()
   {
-    internal::CellIntegrators            integrators(mapping,
-                                          fe,
-                                          update_values
-                                            | update_quadrature_points
-                                            | update_JxW_values,
-                                          update_values | update_JxW_values);
-    FEValues<2>                         &fe_values = integrators.values;
-    FEFaceValues<2>                     &fe_face   = integrators.face;
-    const unsigned int                   dpc       = fe.n_dofs_per_cell();
-    Vector<double>                       cell_vec(dpc);
-    std::vector<types::global_dof_index> dofs(dpc);
-
-    uniform_bc = internal::uniform_loads(prm, nonuniform);
-    uniform_vectors.clear();
-    uniform_rates.assign(uniform_bc.size(), 0.);
-    std::vector<int> uniform_slot(prm.boundary_conditions.size(), -1);
-    for (unsigned int s = 0; s < uniform_bc.size(); ++s)
-      {
-        uniform_slot[uniform_bc[s]] = s;
-        uniform_vectors.emplace_back(owned, comm);
-      }
-
-    const unsigned int n_blocks = prm.blocks.size();
-    // (reinit, not assignment: Trilinos vector assignment may keep the old
-    // parallel layout after the mesh has changed.)
-    for (auto *vectors : {&block_phi, &block_xphi, &block_yphi})
-      {
-        vectors->resize(n_blocks);
-        for (auto &v : *vectors)
-          v.reinit(owned, comm);
-      }
-    block_geometry.assign(n_blocks,
-                          std::array<double, 6>{{0., 0., 0., 0., 0., 0.}});
-
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          cell->get_dof_indices(dofs);
-          const unsigned int block = cell->material_id();
-          const Material    &mat   = prm.materials[prm.blocks[block].material];
-          const double       rho_c = mat.density * mat.heat_capacity;
-          auto              &geo   = block_geometry[block];
-          Vector<double>     v_cap(dpc), v_phi(dpc), v_x(dpc), v_y(dpc);
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              const double jxw = fe_values.JxW(q);
-              const auto  &x   = fe_values.quadrature_point(q);
-              add_geometry(geo, x, jxw);
-              for (unsigned int i = 0; i < dpc; ++i)
-                {
-                  const double phi = fe_values.shape_value(i, q) * jxw;
-                  v_cap(i) += rho_c * phi;
-                  v_phi(i) += phi;
-                  v_x(i) += x[0] * phi;
-                  v_y(i) += x[1] * phi;
-                }
-            }
-          hanging.distribute_local_to_global(v_cap, dofs, capacity);
-          hanging.distribute_local_to_global(v_phi, dofs, block_phi[block]);
-          hanging.distribute_local_to_global(v_x, dofs, block_xphi[block]);
-          hanging.distribute_local_to_global(v_y, dofs, block_yphi[block]);
-
-          for (const auto f : cell->face_indices())
-            if (cell->face(f)->at_boundary()
-                && cell->face(f)->boundary_id()
-                     < prm.boundary_conditions.size())
-              {
-                const unsigned int k  = cell->face(f)->boundary_id();
-                const auto        &bc = prm.boundary_conditions[k];
-                if (bc.type == BoundaryCondition::Type::temperature
-                    || !bc.value)
-                  continue;
-                fe_face.reinit(cell, f);
-                const bool convective
-                  = bc.type == BoundaryCondition::Type::convective;
-                const double h = convective ? bc.heat_transfer_coefficient : 0.;
-                const double w = convective ? h : 1.;
-                double       ds = 0.;
-                Vector<double> v_robin(dpc);
-                cell_vec = 0.;
-                for (const unsigned int q : fe_face.quadrature_point_indices())
-                  {
-                    const double jxw = fe_face.JxW(q);
-                    ds += jxw;
-                    for (unsigned int i = 0; i < dpc; ++i)
-                      {
-                        cell_vec(i) += w * fe_face.shape_value(i, q) * jxw;
-                        v_robin(i) += h * fe_face.shape_value(i, q) * jxw;
-                      }
-                  }
-                hanging.distribute_local_to_global(v_robin,
-                                                   dofs,
-                                                   robin_weights);
-                if (uniform_slot[k] >= 0)
-                  {
-                    hanging.distribute_local_to_global(
-                      cell_vec, dofs, uniform_vectors[uniform_slot[k]]);
-                    uniform_rates[uniform_slot[k]] += w * ds;
-                  }
-              }
-        }
-    capacity.compress(VectorOperation::add);
-    robin_weights.compress(VectorOperation::add);
-    for (auto &v : uniform_vectors)
-      v.compress(VectorOperation::add);
-    for (unsigned int b = 0; b < n_blocks; ++b)
-      {
-        block_phi[b].compress(VectorOperation::add);
-        block_xphi[b].compress(VectorOperation::add);
-        block_yphi[b].compress(VectorOperation::add);
-        for (auto &g : block_geometry[b])
-          g = Utilities::MPI::sum(g, comm);
-      }
-    for (auto &r : uniform_rates)
-      r = Utilities::MPI::sum(r, comm);
+    assemble_fixed_integrals(
+      prm, mapping, dof_handler, hanging, owned, comm, fixed);
   }
 
 
@@ -498,42 +276,16 @@ namespace rockdda::thermal::internal
                                       double      &boundary_rate,
                                       double      &source_rate) const
   {
-    f             = 0.;
-    boundary_rate = 0.;
-    source_rate   = 0.;
-    internal::add_uniform_loads(
-      prm, uniform_bc, uniform_vectors, uniform_rates, t, f, boundary_rate);
-    if (!nonuniform)
-      return;
-
-    internal::CellIntegrators            integrators(mapping, fe);
-    FEValues<2>                         &fe_values = integrators.values;
-    FEFaceValues<2>                     &fe_face   = integrators.face;
-    const unsigned int                   dpc       = fe.n_dofs_per_cell();
-    Vector<double>                       cell_vec(dpc);
-    std::vector<types::global_dof_index> dofs(dpc);
-    double                               local_boundary = 0., local_source = 0.;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell_vec       = 0.;
-          const bool any = add_cell_load(prm,
-                                         cell,
-                                         t,
-                                         fe_values,
-                                         fe_face,
-                                         cell_vec,
-                                         local_boundary,
-                                         local_source);
-          if (any)
-            {
-              cell->get_dof_indices(dofs);
-              hanging.distribute_local_to_global(cell_vec, dofs, f);
-            }
-        }
-    f.compress(VectorOperation::add);
-    boundary_rate += Utilities::MPI::sum(local_boundary, comm);
-    source_rate += Utilities::MPI::sum(local_source, comm);
+    assemble_loads(prm,
+                   mapping,
+                   dof_handler,
+                   hanging,
+                   fixed,
+                   comm,
+                   t,
+                   f,
+                   boundary_rate,
+                   source_rate);
   }
 
 
@@ -568,7 +320,8 @@ namespace rockdda::thermal::internal
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          cell_matrices(cell, fe_values, fe_face, cell_mass, cell_stiff);
+          fe_values.reinit(cell);
+          cell_matrices(prm, cell, fe_values, fe_face, cell_mass, cell_stiff);
           cell_a = cell_mass;
           cell_a.add(theta * dt, cell_stiff);
           cell_b = cell_mass;
@@ -617,18 +370,7 @@ namespace rockdda::thermal::internal
       g_ext = 0.;
       if (any_dirichlet)
         {
-          for (std::size_t d = 0; d < dirichlet_dofs.size(); ++d)
-            {
-              const auto  &p  = dirichlet_points[d];
-              const auto  &bc = prm.boundary_conditions[dirichlet_bc[d]];
-              const double g  = bc.value(p[0], p[1], time + dt);
-              if (!std::isfinite(g))
-                throw std::runtime_error("heat: temperature of tag '" + bc.tag
-                                         + "' is not finite at t = "
-                                         + io::format_number(time + dt, 8)
-                                         + " s");
-              g_ext[dirichlet_dofs[d]] = g;
-            }
+          dirichlet.set_values(prm, time + dt, g_ext);
           g_ext.compress(VectorOperation::insert);
           op.a_full.vmult(new_solution, g_ext);
           tmp -= new_solution;
@@ -704,7 +446,7 @@ namespace rockdda::thermal::internal
     if (!Utilities::MPI::logical_or(any, comm))
       return;
 
-    const double heat_before = capacity * solution;
+    const double heat_before = fixed.capacity * solution;
     VectorType   old_increment(owned, relevant, comm);
     old_increment = increment_old;
     parallel::distributed::SolutionTransfer<2, VectorType> transfer(
@@ -724,7 +466,7 @@ namespace rockdda::thermal::internal
     rhs_old_valid = false;
     for (unsigned int k = 0; k < probes.size(); ++k)
       probes[k] = locate(probe_points[k]);
-    stats.mesh_transfer_heat += capacity * solution - heat_before;
+    stats.mesh_transfer_heat += fixed.capacity * solution - heat_before;
     ++stats.n_adaptations;
   }
 
@@ -748,10 +490,10 @@ namespace rockdda::thermal::internal
 
 
 
-  DistributedProbe
+  Probe
   DistributedHeat::Impl::locate(const Point<2> &point) const
   {
-    DistributedProbe                                         probe;
+    Probe                                                    probe;
     std::pair<DoFHandler<2>::active_cell_iterator, Point<2>> found;
     bool                                                     mine = false;
     try
@@ -780,14 +522,7 @@ namespace rockdda::thermal::internal
                        + ") m is outside the rock");
     if (probe.owner == rank)
       {
-        const Quadrature<2> q(
-          GeometryInfo<2>::project_to_unit_cell(found.second));
-        FEValues<2> fe_values(mapping, fe, q, update_values);
-        fe_values.reinit(found.first);
-        probe.dofs.resize(fe.n_dofs_per_cell());
-        found.first->get_dof_indices(probe.dofs);
-        for (unsigned int i = 0; i < probe.dofs.size(); ++i)
-          probe.weights.push_back(fe_values.shape_value(i, 0));
+        fill_probe(mapping, found.first, found.second, probe);
       }
     return probe;
   }
@@ -816,12 +551,9 @@ namespace rockdda::thermal::internal
   double
   DistributedHeat::value(const double x, const double y) const
   {
-    const DistributedProbe p = impl->locate(Point<2>(x, y));
+    const Probe p = impl->locate(Point<2>(x, y));
     impl->update_ghosts();
-    double v = 0.;
-    for (unsigned int i = 0; i < p.dofs.size(); ++i)
-      v += p.weights[i] * impl->ghosted[p.dofs[i]];
-    return Utilities::MPI::sum(v, impl->comm);
+    return Utilities::MPI::sum(probe_sum(p, impl->ghosted), impl->comm);
   }
 
   unsigned int
@@ -835,28 +567,26 @@ namespace rockdda::thermal::internal
   double
   DistributedHeat::probe_value(const unsigned int index) const
   {
-    const DistributedProbe &p = impl->probes.at(index);
+    const Probe &p = impl->probes.at(index);
     impl->update_ghosts();
-    double v = 0.;
-    for (unsigned int i = 0; i < p.dofs.size(); ++i)
-      v += p.weights[i] * impl->ghosted[p.dofs[i]];
-    return Utilities::MPI::sum(v, impl->comm);
+    return Utilities::MPI::sum(probe_sum(p, impl->ghosted), impl->comm);
   }
 
   std::vector<BlockMoments>
   DistributedHeat::block_moments() const
   {
-    return internal::block_moments_of(impl->block_geometry,
-                                      impl->block_phi,
-                                      impl->block_xphi,
-                                      impl->block_yphi,
+    const auto &fixed = impl->fixed;
+    return internal::block_moments_of(fixed.block_geometry,
+                                      fixed.block_phi,
+                                      fixed.block_xphi,
+                                      fixed.block_yphi,
                                       impl->solution);
   }
 
   double
   DistributedHeat::stored_heat() const
   {
-    return impl->capacity * impl->solution;
+    return impl->fixed.capacity * impl->solution;
   }
 
   double
@@ -875,71 +605,24 @@ namespace rockdda::thermal::internal
   DistributedHeat::l2_error(const SpaceTimeFunction &exact) const
   {
     impl->update_ghosts();
-    const QGauss<2>     quadrature(impl->fe.degree + 2);
-    FEValues<2>         fe_values(impl->mapping,
-                          impl->fe,
-                          quadrature,
-                          update_values | update_quadrature_points
-                            | update_JxW_values);
-    std::vector<double> v(quadrature.size());
-    double              sum = 0.;
-    for (const auto &cell : impl->dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values.get_function_values(impl->ghosted, v);
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              const auto  &x = fe_values.quadrature_point(q);
-              const double e = v[q] - exact(x[0], x[1], impl->time);
-              sum += e * e * fe_values.JxW(q);
-            }
-        }
-    return std::sqrt(Utilities::MPI::sum(sum, impl->comm));
+    return l2_error_of(impl->mapping,
+                       impl->dof_handler,
+                       impl->ghosted,
+                       exact,
+                       impl->time,
+                       impl->comm);
   }
 
   std::vector<std::pair<std::string, std::string>>
   DistributedHeat::vtu_files(const std::string &name) const
   {
     impl->update_ghosts();
-    const internal::HeatFluxPostprocessor heat_flux(impl->prm);
-    DataOut<2>                            data_out;
-    data_out.attach_dof_handler(impl->dof_handler);
-    data_out.add_data_vector(impl->ghosted, "temperature");
-    data_out.add_data_vector(impl->ghosted, heat_flux);
-    Vector<float> block(impl->tria.n_active_cells()),
-      subdomain(impl->tria.n_active_cells());
-    for (const auto &cell : impl->tria.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          block[cell->active_cell_index()]     = cell->material_id();
-          subdomain[cell->active_cell_index()] = impl->rank;
-        }
-    data_out.add_data_vector(block, "block");
-    data_out.add_data_vector(subdomain, "rank");
-    data_out.build_patches(impl->fe.degree);
-    DataOutBase::VtkFlags flags;
-    flags.time              = impl->time;
-    flags.compression_level = DataOutBase::VtkFlags::best_speed;
-    flags.physical_units    = {{"heat_flux", "W/m^2"}};
-    data_out.set_flags(flags);
-    std::ostringstream piece;
-    data_out.write_vtu(piece);
-    const std::vector<std::string> pieces
-      = Utilities::MPI::gather(impl->comm, piece.str(), 0);
-    std::vector<std::pair<std::string, std::string>> files;
-    if (impl->rank == 0)
-      {
-        std::vector<std::string> names;
-        for (unsigned int r = 0; r < pieces.size(); ++r)
-          names.push_back(name + "." + Utilities::int_to_string(r, 4) + ".vtu");
-        std::ostringstream record;
-        data_out.write_pvtu_record(record, names);
-        files.emplace_back(name + ".pvtu", record.str());
-        for (unsigned int r = 0; r < pieces.size(); ++r)
-          files.emplace_back(names[r], pieces[r]);
-      }
-    return files;
+    return pvtu_files(impl->prm,
+                      impl->dof_handler,
+                      impl->ghosted,
+                      impl->time,
+                      name,
+                      impl->comm);
   }
 
   HeatStatistics
@@ -955,15 +638,8 @@ namespace rockdda::thermal::internal
   DistributedHeat::method_description() const
   {
     const auto &p = impl->prm;
-    std::string s = p.stepper == TimeStepper::crank_nicolson
-                      ? "Crank-Nicolson (theta = 1/2), dt = "
-                          + io::format_number(p.time_step, 6) + " s, "
-                          + std::to_string(p.rannacher_steps)
-                          + " backward-Euler start-up steps"
-                      : "backward Euler (theta = 1), dt = "
-                          + io::format_number(p.time_step, 6) + " s";
-    s += "; FE_Q(" + std::to_string(p.degree) + "); distributed on "
-         + std::to_string(impl->n_ranks)
+    std::string s = stepper_description(p);
+    s += "; distributed on " + std::to_string(impl->n_ranks)
          + " MPI rank(s) (p4est, Trilinos); linear solver "
          + (p.direct_solver && !p.distributed
               ? "Amesos KLU (direct)"
