@@ -11,6 +11,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include "heat_internal.h"
 #include <cmath>
 
 namespace rockdda::thermal::internal
@@ -31,6 +32,30 @@ namespace rockdda::thermal::internal
     probe.weights.clear();
     for (unsigned int i = 0; i < probe.dofs.size(); ++i)
       probe.weights.push_back(fe_values.shape_value(i, 0));
+  }
+
+
+
+  BlockMoments
+  block_moments_from(const std::array<double, 6> &g,
+                     const double                 t0,
+                     const double                 tx,
+                     const double                 ty)
+  {
+    BlockMoments m;
+    m.area           = g[0];
+    m.centroid_x     = g[1] / g[0];
+    m.centroid_y     = g[2] / g[0];
+    m.mean           = t0 / g[0];
+    m.moment_x       = tx - m.centroid_x * t0;
+    m.moment_y       = ty - m.centroid_y * t0;
+    const double ixx = g[3] - g[1] * g[1] / g[0];
+    const double ixy = g[4] - g[1] * g[2] / g[0];
+    const double iyy = g[5] - g[2] * g[2] / g[0];
+    const double det = ixx * iyy - ixy * ixy;
+    m.gradient_x     = (iyy * m.moment_x - ixy * m.moment_y) / det;
+    m.gradient_y     = (ixx * m.moment_y - ixy * m.moment_x) / det;
+    return m;
   }
 
 

@@ -1,0 +1,222 @@
+/**
+ * @file
+ * Time stepping of the heat solver with the theta scheme (Crank-Nicolson
+ * with Rannacher start-up steps, or backward Euler): the step sequence
+ * and the choice of theta shared by both solvers, and the serial solver's
+ * step operators (factorised with Eigen's sparse Cholesky, or CG + SSOR)
+ * and steps. The step itself, with its heat bookkeeping and oscillation
+ * indicator, is internal::theta_step() (heat_internal.h); ARKODE is in
+ * heat_arkode.cc.
+ */
+#include <deal.II/base/timer.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+
+#include "heat_internal.h"
+#include "heat_solver_serial.h"
+#include <cmath>
+#include <stdexcept>
+
+namespace rockdda::thermal
+{
+  using namespace dealii;
+
+  namespace internal
+  {
+    double
+    step_theta(const HeatParameters &prm,
+               const HeatStatistics &stats,
+               const unsigned long   steps_taken)
+    {
+      const double chosen
+        = prm.stepper == TimeStepper::crank_nicolson ? 0.5 : 1.;
+      const double theta     = std::isnan(stats.fallback_time) ? chosen : 1.;
+      const bool   rannacher = theta < 1. && steps_taken < prm.rannacher_steps;
+      return rannacher ? 1. : theta;
+    }
+
+
+
+    void
+    take_steps(const double                      &time,
+               const double                       end_time,
+               const double                       dt,
+               const std::function<void(double)> &step)
+    {
+      const double remaining = end_time - time;
+      const long   n_whole   = std::lround(remaining / dt);
+      if (n_whole >= 1 && std::abs(remaining - n_whole * dt) <= 1e-6 * dt)
+        for (long i = 0; i < n_whole; ++i)
+          step(dt);
+      else
+        {
+          const long n = static_cast<long>(std::floor(remaining / dt));
+          for (long i = 0; i < n; ++i)
+            step(dt);
+          if (end_time - time > 1e-6 * dt)
+            step(end_time - time);
+        }
+    }
+  } // namespace internal
+
+
+
+  namespace
+  {
+    using internal::StepOperator;
+
+    /// Copy a deal.II sparse matrix (optionally only some columns, renumbered
+    /// by @p column_map, -1 = skip) into Eigen.
+    template <typename EigenMatrix>
+    void
+    to_eigen(const SparseMatrix<double> &m,
+             EigenMatrix                &out,
+             const std::vector<int>     *column_map = nullptr,
+             const unsigned int          n_columns  = 0)
+    {
+      std::vector<Eigen::Triplet<double>> triplets;
+      triplets.reserve(m.n_nonzero_elements());
+      for (unsigned int row = 0; row < m.m(); ++row)
+        for (auto it = m.begin(row); it != m.end(row); ++it)
+          if (it->value() != 0.)
+            {
+              const int col
+                = column_map ? (*column_map)[it->column()] : int(it->column());
+              if (col >= 0)
+                triplets.emplace_back(row, col, it->value());
+            }
+      out.resize(m.m(), column_map ? n_columns : m.n());
+      out.setFromTriplets(triplets.begin(), triplets.end());
+    }
+  } // namespace
+
+
+
+  StepOperator &
+  HeatSolver::Impl::get_operator(const double dt, const double theta)
+  {
+    for (auto &op : operators)
+      if (op->dt == dt && op->theta == theta)
+        return *op;
+    if (operators.size() >= 4)
+      operators.erase(operators.begin());
+    TimerOutput::Scope scope(timer, "factorize");
+    auto               op = std::make_unique<StepOperator>();
+    op->dt                = dt;
+    op->theta             = theta;
+    op->a.reinit(sparsity);
+    op->a.copy_from(mass);
+    op->a.add(theta * dt, stiffness);
+    op->b.reinit(sparsity);
+    op->b.copy_from(mass);
+    op->b.add(-(1. - theta) * dt, stiffness);
+    op->a_mod.reinit(sparsity);
+    op->a_mod.copy_from(op->a);
+    // Remove Dirichlet rows and columns (keeps the matrix symmetric).
+    if (!dirichlet.dofs.empty())
+      for (unsigned int row = 0; row < op->a_mod.m(); ++row)
+        for (auto it = op->a_mod.begin(row); it != op->a_mod.end(row); ++it)
+          if ((is_dirichlet[row] || is_dirichlet[it->column()])
+              && it->column() != row)
+            it->value() = 0.;
+    if (prm.direct_solver)
+      {
+        to_eigen(op->b, op->eigen_b);
+        std::vector<int> column_map(dof_handler.n_dofs(), -1);
+        for (std::size_t d = 0; d < dirichlet.dofs.size(); ++d)
+          column_map[dirichlet.dofs[d]] = d;
+        to_eigen(op->a,
+                 op->eigen_a_dirichlet,
+                 &column_map,
+                 dirichlet.dofs.size());
+        Eigen::SparseMatrix<double> a_mod;
+        to_eigen(op->a_mod, a_mod);
+        op->ldlt.compute(a_mod);
+        if (op->ldlt.info() != Eigen::Success)
+          throw std::runtime_error("heat: the factorisation of the system "
+                                   "matrix failed (not positive definite?)");
+      }
+    else
+      op->ssor.initialize(op->a_mod, 1.2);
+    ++stats.n_factorizations;
+    operators.push_back(std::move(op));
+    return *operators.back();
+  }
+
+
+
+  void
+  HeatSolver::Impl::theta_step(const double dt, const double theta)
+  {
+    StepOperator &op = get_operator(dt, theta);
+    internal::theta_step(*this, dt, theta, [&]() {
+      // b = B T + dt (theta F_new + (1 - theta) F_old) - A g
+      const unsigned int n = solution.size();
+      using Map            = Eigen::Map<Eigen::VectorXd>;
+      using ConstMap       = Eigen::Map<const Eigen::VectorXd>;
+      if (prm.direct_solver)
+        Map(tmp.begin(), n).noalias()
+          = op.eigen_b * ConstMap(solution.begin(), n);
+      else
+        op.b.vmult(tmp, solution);
+      tmp.add(dt * theta, rhs_new, dt * (1. - theta), rhs_old);
+      if (!dirichlet.dofs.empty())
+        {
+          g_ext = 0.;
+          dirichlet.set_values(prm, time + dt, g_ext);
+          if (prm.direct_solver)
+            {
+              Eigen::VectorXd g(dirichlet.dofs.size());
+              for (std::size_t d = 0; d < dirichlet.dofs.size(); ++d)
+                g[d] = g_ext[dirichlet.dofs[d]];
+              Map(tmp.begin(), n) -= op.eigen_a_dirichlet * g;
+            }
+          else
+            {
+              op.a.vmult(new_solution, g_ext);
+              tmp -= new_solution;
+            }
+          for (const auto i : dirichlet.dofs)
+            tmp[i] = op.a.diag_element(i) * g_ext[i];
+        }
+      hanging.set_zero(tmp);
+
+      if (prm.direct_solver)
+        Map(new_solution.begin(), n) = op.ldlt.solve(ConstMap(tmp.begin(), n));
+      else
+        {
+          SolverControl            control(10000,
+                                prm.cg_tolerance
+                                  * std::max(tmp.l2_norm(), 1e-300));
+          SolverCG<Vector<double>> cg(control);
+          new_solution = solution;
+          cg.solve(op.a_mod, new_solution, tmp, op.ssor);
+        }
+      hanging.distribute(new_solution);
+    });
+  }
+
+
+
+  void
+  HeatSolver::Impl::advance_to(const double end_time)
+  {
+    if (!(end_time >= time - 1e-9 * prm.time_step))
+      throw std::invalid_argument("heat: advance_to() into the past");
+    if (prm.stepper == TimeStepper::arkode)
+      {
+        TimerOutput::Scope scope(timer, "time stepping (ARKODE)");
+        arkode_advance(end_time);
+        return;
+      }
+    TimerOutput::Scope scope(timer, "time stepping");
+    const double       dt   = prm.time_step;
+    const auto         step = [&](const double h) {
+      theta_step(h, internal::step_theta(prm, stats, steps_taken));
+      if (prm.adaptive_refinement && steps_taken % prm.adaptive_interval == 0)
+        adapt_mesh();
+    };
+    internal::take_steps(time, end_time, dt, step);
+    time = end_time;
+  }
+} // namespace rockdda::thermal
