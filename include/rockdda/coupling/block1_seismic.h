@@ -1,0 +1,146 @@
+/**
+ * @file
+ * Masada Block 1 without infill under seismic input (thesis 5.5.2): one
+ * rigid-ish block on its bedding plane over a fixed base, as a DDA scene,
+ * and the matching analytical sliding-block (Newmark 1965) solution of a
+ * block on a plane loaded by a horizontal acceleration. Used by the
+ * "calibrate" analysis (penalty and time step against Eq. 5.10) and its
+ * tests. doc/theory/calibration.md describes the geometry.
+ */
+#ifndef ROCKDDA_COUPLING_BLOCK1_SEISMIC_H
+#define ROCKDDA_COUPLING_BLOCK1_SEISMIC_H
+
+#include <rockdda/dda/block_system.h>
+#include <rockdda/dda/engine.h>
+#include <rockdda/seismic/record.h>
+
+namespace rockdda::coupling
+{
+  /// Geometry of Block 1 on its bedding plane (m, deg). x is horizontal,
+  /// pointing downslope (east), y up; the bedding plane passes through the
+  /// block's heel at the origin and descends towards +x.
+  struct Block1Geometry
+  {
+    /// Horizontal length L_B of the block's base (m), > 0 (thesis: 7 m).
+    double length = 7.;
+    /// Height H of the block's vertical front (downslope) face (m), > 0
+    /// (thesis: 15 m); the top is horizontal, so the back face is
+    /// H - L_B tan(dip) high and the area L_B (H - L_B tan(dip) / 2), as in
+    /// the thesis' Eq. 5.3.
+    double height = 15.;
+    /// Dip of the bedding plane (deg), in [0, 45) (thesis: 19 deg).
+    double slope_deg = 19.;
+    /// Horizontal length of the bedding plane beyond the toe (m), > 0: room
+    /// for the block to slide.
+    double toe_length = 10.;
+    /// Horizontal length of the bedding plane behind the heel (m), > 0.
+    double heel_length = 2.;
+    /// Depth of the fixed base below the bedding plane at its lower end
+    /// (m), > 0.
+    double base_depth = 3.;
+  };
+
+  /// Materials of the Block 1 scene (thesis Table 5-2).
+  struct Block1Materials
+  {
+    /// Intact dolomite: 2600 kg/m^3, E = 40 GPa, nu = 0.2, plane strain.
+    dda::BlockMaterial rock{2600., 4e10, 0.2, true, -1};
+    /// Friction angle of the bedding plane (deg), in [0, 90).
+    double friction_deg = 41.;
+  };
+
+  /// The scene and what is measured on it.
+  struct Block1Scene
+  {
+    dda::BlockSystem blocks;
+    /// DDA indices of the fixed base and of the block.
+    int base = 0, block = 1;
+    /// Index of the measurement point at the middle of the block's base.
+    int base_point = 0;
+    /// Unit vector down the bedding plane.
+    geometry::Point downslope;
+  };
+
+  /**
+   * Build the scene: the fixed base (clamped at three corners; it follows
+   * the ground in displacement mode) and the block, a quadrilateral with
+   * vertical back and front faces and a horizontal top standing on the
+   * bedding plane, with a rigid joint (penalty only) of friction
+   * Block1Materials::friction_deg on every face. Without infill the tension
+   * crack never closes on a block that slides downslope, so the cliff
+   * behind it is left out. Throws InputError naming the key
+   * ('Calibration/...') for an impossible geometry.
+   */
+  Block1Scene
+  make_block1_seismic_scene(const Block1Geometry  &geometry,
+                            const Block1Materials &materials);
+
+  /// Slip (m) of the middle of the block's base relative to the base
+  /// block, along the bedding plane, positive downslope.
+  double
+  block1_slip(const dda::DdaSystem &dda, const Block1Scene &scene);
+
+  /// What one DDA run of Block 1 under a record gives.
+  struct Block1Run
+  {
+    /// Slip along the bedding plane at the end (m), + downslope.
+    double slip = 0.;
+    /// Largest |rotation| of the block (rad) over the run.
+    double max_rotation = 0.;
+    /// Wall time of the run (s), settling included.
+    double wall_time = 0.;
+    /// Accepted steps and step cuts.
+    unsigned long steps = 0, cuts = 0;
+  };
+
+  /**
+   * Run Block 1 in DDA under the horizontal ground acceleration @p record
+   * (g, positive towards +x, i.e. downslope) until @p duration (s), in
+   * inertial (loading) or displacement mode, with normal penalty
+   * @p penalty (N/m) and time step @p dt (s), the linear solver on one
+   * thread. The scene first settles under gravity (@p settle_steps static
+   * steps). Throws dda::DdaFailure if the run cannot continue.
+   */
+  Block1Run
+  run_block1_dda(const Block1Geometry         &geometry,
+                 const Block1Materials        &materials,
+                 const seismic::Record        &record,
+                 const dda::SeismicInput::Mode mode,
+                 const double                  penalty,
+                 const double                  dt,
+                 const double                  duration,
+                 const unsigned int            settle_steps = 50);
+
+  /**
+   * The analytical solution for the same input: a rigid block on a plane of
+   * dip Block1Geometry::slope_deg with Coulomb friction
+   * Block1Materials::friction_deg under the horizontal acceleration
+   * @p record, two-way (Newmark 'plane' yield model, Kamai & Hatzor 2008),
+   * integrated at @p time_step (s) up to @p duration (s). Returns the slip
+   * along the plane (m), + downslope, with the sign convention of
+   * run_block1_dda(): a ground acceleration towards +x drives the block
+   * upslope (it lags behind, i.e. it feels -a g).
+   */
+  double
+  block1_analytical_slip(const Block1Geometry  &geometry,
+                         const Block1Materials &materials,
+                         const seismic::Record &record,
+                         const double           duration,
+                         const double           time_step = 1e-4);
+
+  /// Horizontal yield acceleration (g) of the block towards downslope
+  /// (pseudo-static, Goodman & Seed 1966): tan(phi - dip).
+  double
+  block1_yield_acceleration(const Block1Geometry  &geometry,
+                            const Block1Materials &materials);
+
+  /// A sinusoid A sin(2 pi f t) (g) from t = 0 to @p duration (s), sampled
+  /// at @p dt (s).
+  seismic::Record
+  sinusoid_record(const double amplitude,
+                  const double frequency,
+                  const double duration,
+                  const double dt);
+} // namespace rockdda::coupling
+
+#endif

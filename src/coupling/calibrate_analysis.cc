@@ -1,0 +1,514 @@
+/**
+ * @file
+ * Analysis type "calibrate": calibration of DDA's numerical control
+ * (thesis 5.5.2, Fig. 5-16). For every penalty k, time step dt and
+ * sinusoid frequency f, Block 1 without infill runs in DDA under
+ * A sin(2 pi f t) and is compared with the analytical sliding block by the
+ * relative error of the final displacement, Eq. 5.10. The runs are
+ * independent and run concurrently, one linear-solver thread each.
+ */
+#include <rockdda/coupling/analyses.h>
+#include <rockdda/coupling/block1_seismic.h>
+#include <rockdda/coupling/calibrate_analysis.h>
+#include <rockdda/io/error.h>
+#include <rockdda/io/parameters.h>
+#include <rockdda/io/plot.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+namespace rockdda::coupling
+{
+  namespace
+  {
+    using dealii::Patterns::Bool;
+    using dealii::Patterns::Integer;
+    using dealii::Patterns::List;
+    using dealii::Patterns::Selection;
+    using io::DoubleInterval;
+
+    /// One run of the grid and its outcome.
+    struct GridRun
+    {
+      double        frequency = 0., penalty = 0., dt = 0.;
+      double        analytical = 0., dda = 0., error = 0.;
+      double        max_rotation = 0., wall_time = 0.;
+      unsigned long steps = 0, cuts = 0;
+      /// Empty if the run finished, else why DDA stopped.
+      std::string failure;
+    };
+
+    /// The values of the list key @p key (all > 0: the pattern checked).
+    std::vector<double>
+    positive_list(dealii::ParameterHandler &prm,
+                  const std::string        &key,
+                  const std::string        &prm_file,
+                  const std::string        &unit)
+    {
+      std::vector<double> v;
+      for (const auto &s : dealii::Utilities::split_string_list(prm.get(key)))
+        {
+          const double x = dealii::Utilities::string_to_double(s);
+          io::require(x > 0., prm_file, "Calibration/" + key, x, "> 0 " + unit);
+          v.push_back(x);
+        }
+      if (v.empty())
+        throw InputError(prm_file + ": key 'Calibration/" + key
+                         + "' is empty; give at least one value > 0 " + unit);
+      return v;
+    }
+
+    class CalibrateAnalysis : public io::Analysis
+    {
+    public:
+      std::string
+      name() const override
+      {
+        return "calibrate";
+      }
+
+      std::string
+      description() const override
+      {
+        return "calibration of DDA's penalty and time step on Masada Block 1 "
+               "without infill under sinusoids against the analytical "
+               "sliding block (thesis 5.5.2, Eq. 5.10, Fig. 5-16)";
+      }
+
+      void
+      declare_parameters(dealii::ParameterHandler &prm) const override
+      {
+        const Block1Geometry  g;
+        const Block1Materials m;
+        const auto            num
+          = [](const double x) { return io::format_number(x, 12); };
+        prm.enter_subsection("Calibration");
+        io::declare(prm,
+                    "Penalties",
+                    "1e9, 5e9, 1e10, 1e11, 5e11, 1e12",
+                    List(DoubleInterval::positive(), 1, 50, ","),
+                    "N/m",
+                    "Normal contact penalties k of the grid, each > 0 N/m "
+                    "(1 to 50 values; the shear penalty is 0.4 k). Thesis "
+                    "Fig. 5-16: 1, 5, 10, 100, 500, 1000 GN/m.");
+        io::declare(prm,
+                    "Time steps",
+                    "0.01, 0.005, 0.002",
+                    List(DoubleInterval::positive(), 1, 50, ","),
+                    "s",
+                    "DDA time steps dt of the grid (maximum step; the engine "
+                    "may cut it), each > 0 s (1 to 50 values).");
+        io::declare(prm,
+                    "Frequencies",
+                    "1.3, 3.8",
+                    List(DoubleInterval::positive(), 1, 20, ","),
+                    "Hz",
+                    "Frequencies f of the sinusoidal input A sin(2 pi f t), "
+                    "each > 0 Hz (1 to 20 values; Masada's modes: 1.3 and "
+                    "3.8 Hz).");
+        io::declare(prm,
+                    "Amplitude",
+                    "0.5",
+                    DoubleInterval(0., true, 5., false),
+                    "g",
+                    "Amplitude A of the horizontal ground acceleration, "
+                    "0 < A <= 5 g (thesis: 0.5 g).");
+        io::declare(prm,
+                    "Duration",
+                    "5",
+                    DoubleInterval(0., true, 1e4, false),
+                    "s",
+                    "Length of each run and of the input, 0 < T <= 1e4 s; "
+                    "Eq. 5.10 compares the displacements at its end.");
+        io::declare(prm,
+                    "Record time step",
+                    "0.001",
+                    DoubleInterval::positive(),
+                    "s",
+                    "Sampling of the sinusoid, > 0 s (both solutions "
+                    "interpolate it linearly).");
+        io::declare(prm,
+                    "Analytical time step",
+                    "1e-4",
+                    DoubleInterval::positive(),
+                    "s",
+                    "Integration step of the analytical sliding block, > 0 "
+                    "s.");
+        io::declare(prm,
+                    "Loading mode",
+                    "loading",
+                    Selection("loading|displacement"),
+                    "-",
+                    "How DDA applies the input: loading (an inertial body "
+                    "force -a(t) g on the block) or displacement (the base "
+                    "follows the double integral of a(t)).");
+        io::declare(prm,
+                    "Settling steps",
+                    "50",
+                    Integer(0, 100000),
+                    "-",
+                    "Static steps under gravity before t = 0, 0 to 100000.");
+        io::declare(prm,
+                    "Threads",
+                    "0",
+                    Integer(0, 256),
+                    "-",
+                    "Runs of the grid at once, 0 to 256 (0: one per core); "
+                    "each run's linear solver uses one thread.");
+        io::declare(prm,
+                    "Block length",
+                    num(g.length),
+                    DoubleInterval::positive(),
+                    "m",
+                    "Horizontal length L_B of Block 1's base, > 0 m.");
+        io::declare(prm,
+                    "Block height",
+                    num(g.height),
+                    DoubleInterval::positive(),
+                    "m",
+                    "Height H of Block 1's front (downslope) face, > 0 m; "
+                    "the back face is H - L_B tan(slope) high (area as in "
+                    "thesis Eq. 5.3).");
+        io::declare(prm,
+                    "Slope",
+                    num(g.slope_deg),
+                    DoubleInterval::right_open(0., 45.),
+                    "deg",
+                    "Dip of the bedding plane, 0 <= slope < 45 deg.");
+        io::declare(prm,
+                    "Toe length",
+                    num(g.toe_length),
+                    DoubleInterval::positive(),
+                    "m",
+                    "Horizontal length of the bedding plane beyond the "
+                    "block's toe, > 0 m (room to slide).");
+        io::declare(prm,
+                    "Friction angle",
+                    num(m.friction_deg),
+                    DoubleInterval::right_open(0., 90.),
+                    "deg",
+                    "Friction angle of the bedding plane, 0 <= phi < 90 "
+                    "deg (thesis: 41 deg).");
+        io::declare(prm,
+                    "Density",
+                    num(m.rock.density),
+                    DoubleInterval::positive(),
+                    "kg/m^3",
+                    "Density of the rock, > 0 kg/m^3.");
+        io::declare(prm,
+                    "Young's modulus",
+                    num(m.rock.young),
+                    DoubleInterval::positive(),
+                    "Pa",
+                    "Young's modulus of the rock, > 0 Pa (plane strain).");
+        io::declare(prm,
+                    "Poisson's ratio",
+                    num(m.rock.poisson),
+                    DoubleInterval::right_open(0., 0.5),
+                    "-",
+                    "Poisson's ratio of the rock, 0 <= nu < 0.5.");
+        io::declare(prm,
+                    "Plot",
+                    "true",
+                    Bool(),
+                    "-",
+                    "Write calibration.png (scripts/plot_calibration.py).");
+        prm.leave_subsection();
+      }
+
+      void
+      parse_parameters(dealii::ParameterHandler &prm,
+                       const std::string        &prm_file) override
+      {
+        prm.enter_subsection("Calibration");
+        penalties           = positive_list(prm, "Penalties", prm_file, "N/m");
+        time_steps          = positive_list(prm, "Time steps", prm_file, "s");
+        frequencies         = positive_list(prm, "Frequencies", prm_file, "Hz");
+        amplitude           = prm.get_double("Amplitude");
+        duration            = prm.get_double("Duration");
+        record_dt           = prm.get_double("Record time step");
+        analytical_dt       = prm.get_double("Analytical time step");
+        displacement        = prm.get("Loading mode") == "displacement";
+        settle_steps        = prm.get_integer("Settling steps");
+        threads             = prm.get_integer("Threads");
+        geometry.length     = prm.get_double("Block length");
+        geometry.height     = prm.get_double("Block height");
+        geometry.slope_deg  = prm.get_double("Slope");
+        geometry.toe_length = prm.get_double("Toe length");
+        materials.friction_deg = prm.get_double("Friction angle");
+        materials.rock.density = prm.get_double("Density");
+        materials.rock.young   = prm.get_double("Young's modulus");
+        materials.rock.poisson = prm.get_double("Poisson's ratio");
+        plot                   = prm.get_bool("Plot");
+        prm.leave_subsection();
+        io::require(record_dt <= duration,
+                    prm_file,
+                    "Calibration/Record time step",
+                    record_dt,
+                    "> 0 s and at most 'Duration'");
+        io::require(materials.friction_deg > geometry.slope_deg,
+                    prm_file,
+                    "Calibration/Friction angle",
+                    materials.friction_deg,
+                    "> 'Slope' (else the block slides under gravity alone)");
+        io::with_parameter_file(prm_file, [&]() {
+          make_block1_seismic_scene(geometry, materials);
+        });
+      }
+
+      std::vector<std::string>
+      warnings() const override
+      {
+        std::vector<std::string> w;
+        const double ky = block1_yield_acceleration(geometry, materials);
+        if (amplitude <= ky)
+          w.push_back("key 'Calibration/Amplitude' = "
+                      + io::format_number(amplitude, 4)
+                      + " g does not exceed the yield acceleration "
+                      + io::format_number(ky, 4)
+                      + " g: the block does not slide and Eq. 5.10 is "
+                        "undefined (use A > ky)");
+        for (const double f : frequencies)
+          for (const double dt : time_steps)
+            if (dt > 0.05 / f)
+              w.push_back("key 'Calibration/Time steps': dt = "
+                          + io::format_number(dt, 4) + " s resolves "
+                          + io::format_number(f, 4)
+                          + " Hz with fewer than 20 steps per period");
+        return w;
+      }
+
+      void
+      run(io::RunContext &context) override;
+
+    private:
+      std::vector<double> penalties, time_steps, frequencies;
+      double              amplitude = 0.5, duration = 5., record_dt = 1e-3,
+             analytical_dt         = 1e-4;
+      bool            displacement = false, plot = true;
+      unsigned int    settle_steps = 50, threads = 0;
+      Block1Geometry  geometry;
+      Block1Materials materials;
+    };
+
+
+
+    void
+    CalibrateAnalysis::run(io::RunContext &context)
+    {
+      const auto   start = std::chrono::steady_clock::now();
+      const double ky    = block1_yield_acceleration(geometry, materials);
+      context.log.line("Block 1: L_B = " + io::format_number(geometry.length, 4)
+                       + " m, H = " + io::format_number(geometry.height, 4)
+                       + " m, dip " + io::format_number(geometry.slope_deg, 4)
+                       + " deg, friction "
+                       + io::format_number(materials.friction_deg, 4)
+                       + " deg: horizontal yield acceleration "
+                       + io::format_number(ky, 4) + " g");
+
+      // The analytical solution per frequency.
+      std::vector<seismic::Record> records;
+      std::vector<double>          exact;
+      for (const double f : frequencies)
+        {
+          records.push_back(sinusoid_record(amplitude, f, duration, record_dt));
+          exact.push_back(block1_analytical_slip(
+            geometry, materials, records.back(), duration, analytical_dt));
+          context.log.line("f = " + io::format_number(f, 4)
+                           + " Hz: analytical slip "
+                           + io::format_number(exact.back(), 6) + " m");
+        }
+
+      std::vector<GridRun> grid;
+      for (std::size_t i = 0; i < frequencies.size(); ++i)
+        for (const double k : penalties)
+          for (const double dt : time_steps)
+            {
+              GridRun r;
+              r.frequency  = frequencies[i];
+              r.penalty    = k;
+              r.dt         = dt;
+              r.analytical = exact[i];
+              grid.push_back(r);
+            }
+
+      // Run the grid concurrently: each worker takes the next run.
+      const unsigned int n_workers
+        = std::max(1u,
+                   std::min<unsigned int>(
+                     threads > 0 ? threads
+                                 : std::thread::hardware_concurrency(),
+                     grid.size()));
+      std::atomic<std::size_t> next{0};
+      const auto mode = displacement ? dda::SeismicInput::Mode::displacement
+                                     : dda::SeismicInput::Mode::inertial;
+      const auto work = [&]() {
+        for (std::size_t j = next++; j < grid.size(); j = next++)
+          {
+            GridRun   &r = grid[j];
+            const auto i
+              = std::find(frequencies.begin(), frequencies.end(), r.frequency)
+                - frequencies.begin();
+            const auto t0 = std::chrono::steady_clock::now();
+            try
+              {
+                const Block1Run run = run_block1_dda(geometry,
+                                                     materials,
+                                                     records[i],
+                                                     mode,
+                                                     r.penalty,
+                                                     r.dt,
+                                                     duration,
+                                                     settle_steps);
+                r.dda               = run.slip;
+                r.max_rotation      = run.max_rotation;
+                r.steps             = run.steps;
+                r.cuts              = run.cuts;
+                r.error             = 100. * std::abs(r.analytical - r.dda)
+                          / std::abs(r.analytical);
+              }
+            catch (const std::exception &e)
+              {
+                r.failure = e.what();
+                r.dda     = std::numeric_limits<double>::quiet_NaN();
+                r.error   = std::numeric_limits<double>::quiet_NaN();
+              }
+            r.wall_time = std::chrono::duration<double>(
+                            std::chrono::steady_clock::now() - t0)
+                            .count();
+          }
+      };
+      std::vector<std::thread> pool;
+      for (unsigned int w = 1; w < n_workers; ++w)
+        pool.emplace_back(work);
+      work();
+      for (auto &t : pool)
+        t.join();
+      const double grid_seconds = std::chrono::duration<double>(
+                                    std::chrono::steady_clock::now() - start)
+                                    .count();
+
+      io::Table table;
+      table.add_column("frequency", "Hz");
+      table.add_column("penalty", "N/m");
+      table.add_column("time_step", "s");
+      table.add_column("analytical", "m");
+      table.add_column("dda", "m");
+      table.add_column("error", "%");
+      table.add_column("max_rotation", "rad");
+      table.add_column("steps", "-");
+      table.add_column("cuts", "-");
+      table.add_column("wall_time", "s");
+      double cpu_seconds = 0.;
+      for (const auto &r : grid)
+        {
+          table.add_row({r.frequency,
+                         r.penalty,
+                         r.dt,
+                         r.analytical,
+                         r.dda,
+                         r.error,
+                         r.max_rotation,
+                         static_cast<double>(r.steps),
+                         static_cast<double>(r.cuts),
+                         r.wall_time});
+          cpu_seconds += r.wall_time;
+          if (!r.failure.empty())
+            context.log.line("f = " + io::format_number(r.frequency, 4)
+                             + " Hz, k = " + io::format_number(r.penalty, 4)
+                             + " N/m, dt = " + io::format_number(r.dt, 4)
+                             + " s: DDA failed: " + r.failure);
+        }
+      context.output.write("calibration.csv", table.csv());
+      context.output.write("statistics.csv", table.csv());
+
+      // Best pair per frequency, and for the product of the errors.
+      const auto finite = [](const double x) { return std::isfinite(x); };
+      for (std::size_t i = 0; i < frequencies.size(); ++i)
+        {
+          const GridRun *best = nullptr;
+          for (const auto &r : grid)
+            if (r.frequency == frequencies[i] && finite(r.error)
+                && (!best || r.error < best->error))
+              best = &r;
+          const std::string tag
+            = "_f" + io::format_number(frequencies[i], 6) + "Hz";
+          context.summary.add("analytical" + tag, exact[i], "m");
+          if (!best)
+            continue;
+          context.summary.add("best_penalty" + tag, best->penalty, "N/m");
+          context.summary.add("best_time_step" + tag, best->dt, "s");
+          context.summary.add("best_error" + tag, best->error, "%");
+          context.log.line(
+            "f = " + io::format_number(frequencies[i], 4)
+            + " Hz: best k = " + io::format_number(best->penalty, 4)
+            + " N/m, dt = " + io::format_number(best->dt, 4) + " s, error "
+            + io::format_number(best->error, 4) + " %");
+        }
+      double    best_product = std::numeric_limits<double>::infinity();
+      double    best_k = 0., best_dt = 0.;
+      io::Table products;
+      products.add_column("penalty", "N/m");
+      products.add_column("time_step", "s");
+      products.add_column("error_product", "%^n");
+      for (const double k : penalties)
+        for (const double dt : time_steps)
+          {
+            double p = 1.;
+            for (const auto &r : grid)
+              if (r.penalty == k && r.dt == dt)
+                p *= r.error;
+            products.add_row({k, dt, p});
+            if (finite(p) && p < best_product)
+              {
+                best_product = p;
+                best_k       = k;
+                best_dt      = dt;
+              }
+          }
+      context.output.write("error_products.csv", products.csv());
+      if (std::isfinite(best_product))
+        {
+          context.summary.add("best_penalty_product", best_k, "N/m");
+          context.summary.add("best_time_step_product", best_dt, "s");
+          context.summary.add("best_error_product", best_product, "%^n");
+          context.log.line(
+            "product of the errors: best k = " + io::format_number(best_k, 4)
+            + " N/m, dt = " + io::format_number(best_dt, 4) + " s");
+        }
+      unsigned int failed = 0;
+      for (const auto &r : grid)
+        failed += r.failure.empty() ? 0 : 1;
+      context.summary.add("yield_acceleration", ky, "g");
+      context.summary.add("runs", static_cast<double>(grid.size()), "-");
+      context.summary.add("failed_runs", failed, "-");
+      context.summary.add("concurrent_runs", n_workers, "-");
+      context.summary.add("grid_wall_time", grid_seconds, "s");
+      context.summary.add("run_wall_time_sum", cpu_seconds, "s");
+      context.log.line("grid of " + std::to_string(grid.size()) + " runs in "
+                       + io::format_number(grid_seconds, 4) + " s ("
+                       + std::to_string(n_workers) + " at once; "
+                       + io::format_number(cpu_seconds, 4)
+                       + " s summed over the runs)");
+      if (plot)
+        io::run_plot_script(context.output,
+                            context.log,
+                            "plot_calibration.py",
+                            {"calibration.png"});
+    }
+  } // namespace
+
+
+
+  std::unique_ptr<io::Analysis>
+  make_calibrate_analysis()
+  {
+    return std::make_unique<CalibrateAnalysis>();
+  }
+} // namespace rockdda::coupling
