@@ -5,14 +5,18 @@
  * limits of internal::limit_adaptation_flags() (minimum cell size, cell
  * budget, coarse size, a priori band), and the transfer of the field and
  * of the previous increment to the new mesh, with the heat the (not
- * conservative) transfer adds booked in the statistics.
+ * conservative) transfer adds booked in the statistics; for the serial
+ * and the distributed (p4est) mesh.
  */
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/grid_refinement.h>
+#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/grid/grid_refinement.h>
 #include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/solution_transfer.h>
 
 #include "heat_internal.h"
+#include "heat_solver_distributed.h"
 #include "heat_solver_serial.h"
 #include <limits>
 
@@ -68,4 +72,66 @@ namespace rockdda::thermal
     stats.mesh_transfer_heat += fixed.capacity * solution - heat_before;
     ++stats.n_adaptations;
   }
+
+
+
+  namespace internal
+  {
+    using VectorType = DistributedVector;
+
+    void
+    DistributedHeat::Impl::adapt_mesh()
+    {
+      TimerOutput::Scope scope(timer, "adapt mesh");
+      update_ghosts();
+      Vector<float> indicator(tria.n_active_cells());
+      KellyErrorEstimator<2>::estimate(mapping,
+                                       dof_handler,
+                                       QGauss<1>(fe.degree + 1),
+                                       {},
+                                       ghosted,
+                                       indicator,
+                                       ComponentMask(),
+                                       nullptr,
+                                       numbers::invalid_unsigned_int,
+                                       tria.locally_owned_subdomain());
+      if (!(Utilities::MPI::sum(double(indicator.l1_norm()), comm) > 0.))
+        return;
+      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_fraction(
+        tria, indicator, prm.refine_fraction, prm.coarsen_fraction);
+      const bool capped
+        = prm.adaptive_max_cells > 0
+          && tria.n_global_active_cells() >= prm.adaptive_max_cells;
+      bool any = false;
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->is_locally_owned())
+          any = limit_adaptation_flags(cell, prm, mesh.band_segments, capped)
+                || any;
+      if (!Utilities::MPI::logical_or(any, comm))
+        return;
+
+      const double heat_before = fixed.capacity * solution;
+      VectorType   old_increment(owned, relevant, comm);
+      old_increment = increment_old;
+      parallel::distributed::SolutionTransfer<2, VectorType> transfer(
+        dof_handler);
+      tria.prepare_coarsening_and_refinement();
+      const std::vector<const VectorType *> in{&ghosted, &old_increment};
+      transfer.prepare_for_coarsening_and_refinement(in);
+      tria.execute_coarsening_and_refinement();
+      setup_system();
+      assemble_fixed();
+      std::vector<VectorType *> out{&solution, &increment_old};
+      transfer.interpolate(out);
+      hanging.distribute(solution);
+      hanging.distribute(increment_old);
+      ghosted_valid = false;
+      operators.clear();
+      rhs_old_valid = false;
+      for (unsigned int k = 0; k < probes.size(); ++k)
+        probes[k] = locate(probe_points[k]);
+      stats.mesh_transfer_heat += fixed.capacity * solution - heat_before;
+      ++stats.n_adaptations;
+    }
+  } // namespace internal
 } // namespace rockdda::thermal

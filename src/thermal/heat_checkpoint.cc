@@ -4,18 +4,22 @@
  * run bit for bit (field, previous increment, time, heat balance,
  * counters) as bytes, with the mesh (a boost archive of the
  * triangulation) when it is adaptive, and the restore with its checks
- * (same mesh, finite values). The distributed solver's checkpoints are in
- * heat_solver_mpi.cc.
+ * (same mesh, finite values). The distributed solver writes its mesh and
+ * field with p4est into alternating file sets and the rest as bytes.
  */
 #include <rockdda/io/binary_stream.h>
 #include <rockdda/io/error.h>
 
+#include <deal.II/distributed/solution_transfer.h>
+
+#include "heat_solver_distributed.h"
 #include "heat_solver_mpi.h"
 #include "heat_solver_serial.h"
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <sstream>
 
 namespace rockdda::thermal
@@ -145,4 +149,107 @@ namespace rockdda::thermal
     impl->stats             = stats;
     impl->rhs_old_valid     = false; // reassembled at the restored time
   }
+
+
+
+  namespace internal
+  {
+    using VectorType = DistributedVector;
+
+    namespace
+    {
+      constexpr char distributed_magic[]
+        = "rockdda distributed heat checkpoint 1";
+    }
+
+    std::string
+    DistributedHeat::checkpoint(const std::string &mesh_files) const
+    {
+      Impl &d = *impl;
+      if (mesh_files.empty())
+        throw std::invalid_argument(
+          "heat: the distributed solver needs a file prefix for checkpoints");
+      // Alternate between two file sets: a save interrupted half-way leaves
+      // the set named by the previous checkpoint.bin intact.
+      const std::string name
+        = mesh_files + "-" + std::to_string(d.checkpoints_written++ % 2);
+      d.update_ghosts();
+      VectorType increment(d.owned, d.relevant, d.comm);
+      increment = d.increment_old;
+      parallel::distributed::SolutionTransfer<2, VectorType> transfer(
+        d.dof_handler);
+      transfer.prepare_for_serialization(
+        std::vector<const VectorType *>{&d.ghosted, &increment});
+      d.tria.save(name);
+      io::BinaryWriter w;
+      w.put_string(distributed_magic);
+      w.put_string(name);
+      w.put<std::uint64_t>(d.tria.n_global_active_cells());
+      w.put(d.time);
+      w.put(d.boundary_heat);
+      w.put(d.source_heat);
+      w.put<std::uint8_t>(d.last_step_flipped ? 1 : 0);
+      w.put<std::uint64_t>(d.steps_taken);
+      w.put<std::uint64_t>(d.linear_iterations);
+      w.put(d.stats);
+      return w.bytes;
+    }
+
+
+
+    void
+    DistributedHeat::restore(const std::string &bytes,
+                             const std::string &source)
+    {
+      Impl            &d = *impl;
+      io::BinaryReader r(bytes, source);
+      if (r.get_string() != distributed_magic)
+        throw InputError(source
+                         + ": not a checkpoint of the distributed heat solver "
+                           "(written by a serial run?)");
+      const std::string name   = r.get_string();
+      const auto        cells  = r.get<std::uint64_t>();
+      const double      time   = r.get<double>();
+      const double      q_in   = r.get<double>();
+      const double      s_in   = r.get<double>();
+      const bool        flip   = r.get<std::uint8_t>() != 0;
+      const auto        steps  = r.get<std::uint64_t>();
+      const auto        linear = r.get<std::uint64_t>();
+      const auto        stats  = r.get<HeatStatistics>();
+      if (!r.at_end())
+        throw InputError(source + ": the checkpoint has trailing data");
+      if (!std::ifstream(name + ".info"))
+        throw InputError(source + ": the mesh files " + name
+                         + ".* of the checkpoint are missing");
+      // p4est loads into a triangulation holding only the coarse mesh.
+      d.tria.clear();
+      MeshInfo coarse;
+      build_mesh(d.tria, d.prm, coarse, true);
+      d.tria.load(name);
+      if (d.tria.n_global_active_cells() != cells)
+        throw InputError(source + ": the mesh files " + name + ".* hold "
+                         + std::to_string(d.tria.n_global_active_cells())
+                         + " cells, the checkpoint " + std::to_string(cells));
+      d.setup_system();
+      d.assemble_fixed();
+      parallel::distributed::SolutionTransfer<2, VectorType> transfer(
+        d.dof_handler);
+      std::vector<VectorType *> targets{&d.solution, &d.increment_old};
+      transfer.deserialize(targets);
+      d.hanging.distribute(d.solution);
+      d.hanging.distribute(d.increment_old);
+      d.time              = time;
+      d.boundary_heat     = q_in;
+      d.source_heat       = s_in;
+      d.last_step_flipped = flip;
+      d.steps_taken       = steps;
+      d.linear_iterations = linear;
+      d.stats             = stats;
+      d.operators.clear();
+      d.rhs_old_valid = false;
+      d.ghosted_valid = false;
+      for (unsigned int k = 0; k < d.probes.size(); ++k)
+        d.probes[k] = d.locate(d.probe_points[k]);
+    }
+  } // namespace internal
 } // namespace rockdda::thermal

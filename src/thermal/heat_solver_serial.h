@@ -114,6 +114,9 @@ namespace rockdda::thermal
     /// Probe at @p p (throws InputError if outside the rock).
     internal::Probe
     locate_probe(const dealii::Point<2> &p) const;
+    /// One theta step of size @p dt (heat_time_stepping.cc).
+    void
+    theta_step(const double dt, const double theta);
     /// Kelly estimate, refine and coarsen, transfer the field, rebuild.
     void
     adapt_mesh();
@@ -140,8 +143,6 @@ namespace rockdda::thermal
     assemble_fixed();
     internal::StepOperator &
     get_operator(const double dt, const double theta);
-    void
-    theta_step(const double dt, const double theta);
     void
     arkode_advance(const double end_time);
   };

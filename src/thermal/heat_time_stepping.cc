@@ -1,18 +1,19 @@
 /**
  * @file
  * Time stepping of the heat solver with the theta scheme (Crank-Nicolson
- * with Rannacher start-up steps, or backward Euler): the step sequence
- * and the choice of theta shared by both solvers, and the serial solver's
- * step operators (factorised with Eigen's sparse Cholesky, or CG + SSOR)
- * and steps. The step itself, with its heat bookkeeping and oscillation
- * indicator, is internal::theta_step() (heat_internal.h); ARKODE is in
- * heat_arkode.cc.
+ * with Rannacher start-up steps, or backward Euler): the step sequence,
+ * the choice of theta and the time loop shared by both solvers, and each
+ * solver's step operators and linear solve (serial: Eigen's sparse
+ * Cholesky or CG + SSOR; distributed: Amesos KLU or CG + AMG). The step itself,
+ * with its heat bookkeeping and oscillation indicator, is
+ * internal::theta_step() (heat_internal.h); ARKODE is in heat_arkode.cc.
  */
 #include <deal.II/base/timer.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 
 #include "heat_internal.h"
+#include "heat_solver_distributed.h"
 #include "heat_solver_serial.h"
 #include <cmath>
 #include <stdexcept>
@@ -198,25 +199,180 @@ namespace rockdda::thermal
 
 
 
+  namespace
+  {
+    /// Throw if @p end_time lies before the current time @p time.
+    void
+    check_end_time(const HeatParameters &prm,
+                   const double          time,
+                   const double          end_time)
+    {
+      if (!(end_time >= time - 1e-9 * prm.time_step))
+        throw std::invalid_argument("heat: advance_to() into the past");
+    }
+
+    /**
+     * Theta steps of @p s (either solver: members prm, stats, time,
+     * steps_taken, timer, theta_step() and adapt_mesh()) to @p end_time,
+     * adapting the mesh every adaptive_interval steps.
+     */
+    template <typename Solver>
+    void
+    advance_theta_scheme(Solver &s, const double end_time)
+    {
+      check_end_time(s.prm, s.time, end_time);
+      TimerOutput::Scope scope(s.timer, "time stepping");
+      const auto         step = [&](const double h) {
+        s.theta_step(h, internal::step_theta(s.prm, s.stats, s.steps_taken));
+        if (s.prm.adaptive_refinement
+            && s.steps_taken % s.prm.adaptive_interval == 0)
+          s.adapt_mesh();
+      };
+      internal::take_steps(s.time, end_time, s.prm.time_step, step);
+      s.time = end_time;
+    }
+  } // namespace
+
+
+
   void
   HeatSolver::Impl::advance_to(const double end_time)
   {
-    if (!(end_time >= time - 1e-9 * prm.time_step))
-      throw std::invalid_argument("heat: advance_to() into the past");
     if (prm.stepper == TimeStepper::arkode)
       {
+        check_end_time(prm, time, end_time);
         TimerOutput::Scope scope(timer, "time stepping (ARKODE)");
         arkode_advance(end_time);
         return;
       }
-    TimerOutput::Scope scope(timer, "time stepping");
-    const double       dt   = prm.time_step;
-    const auto         step = [&](const double h) {
-      theta_step(h, internal::step_theta(prm, stats, steps_taken));
-      if (prm.adaptive_refinement && steps_taken % prm.adaptive_interval == 0)
-        adapt_mesh();
-    };
-    internal::take_steps(time, end_time, dt, step);
-    time = end_time;
+    advance_theta_scheme(*this, end_time);
   }
+
+
+
+  namespace internal
+  {
+    using VectorType = DistributedVector;
+
+    DistributedOperator &
+    DistributedHeat::Impl::get_operator(const double dt, const double theta)
+    {
+      for (auto &op : operators)
+        if (op->dt == dt && op->theta == theta)
+          return *op;
+      if (operators.size() >= 4)
+        operators.erase(operators.begin());
+      TimerOutput::Scope scope(timer, "factorize");
+      auto               op = std::make_unique<DistributedOperator>();
+      op->dt                = dt;
+      op->theta             = theta;
+      op->a_hom.reinit(owned, owned, dsp, comm);
+      op->a_full.reinit(owned, owned, dsp, comm);
+      op->b.reinit(owned, owned, dsp, comm);
+
+      internal::CellIntegrators integrators(mapping,
+                                            fe,
+                                            update_values | update_gradients
+                                              | update_JxW_values,
+                                            update_values | update_JxW_values);
+      FEValues<2>              &fe_values = integrators.values;
+      FEFaceValues<2>          &fe_face   = integrators.face;
+      const unsigned int        dpc       = fe.n_dofs_per_cell();
+      FullMatrix<double>        cell_mass(dpc, dpc), cell_stiff(dpc, dpc),
+        cell_a(dpc, dpc), cell_b(dpc, dpc);
+      std::vector<types::global_dof_index> dofs(dpc);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            cell_matrices(prm, cell, fe_values, fe_face, cell_mass, cell_stiff);
+            cell_a = cell_mass;
+            cell_a.add(theta * dt, cell_stiff);
+            cell_b = cell_mass;
+            cell_b.add(-(1. - theta) * dt, cell_stiff);
+            cell->get_dof_indices(dofs);
+            constraints_hom.distribute_local_to_global(cell_a, dofs, op->a_hom);
+            hanging.distribute_local_to_global(cell_a, dofs, op->a_full);
+            hanging.distribute_local_to_global(cell_b, dofs, op->b);
+          }
+      op->a_hom.compress(VectorOperation::add);
+      op->a_full.compress(VectorOperation::add);
+      op->b.compress(VectorOperation::add);
+
+      if (prm.direct_solver && !prm.distributed)
+        {
+          op->direct = std::make_unique<TrilinosWrappers::SolverDirect>(
+            op->direct_control,
+            TrilinosWrappers::SolverDirect::AdditionalData(false,
+                                                           "Amesos_Klu"));
+          op->direct->initialize(op->a_hom);
+        }
+      else
+        {
+          TrilinosWrappers::PreconditionAMG::AdditionalData data;
+          data.elliptic              = true;
+          data.higher_order_elements = fe.degree > 1;
+          data.smoother_sweeps       = 2;
+          data.aggregation_threshold = 0.02;
+          op->amg.initialize(op->a_hom, data);
+        }
+      ++stats.n_factorizations;
+      operators.push_back(std::move(op));
+      return *operators.back();
+    }
+
+
+
+    void
+    DistributedHeat::Impl::theta_step(const double dt, const double theta)
+    {
+      DistributedOperator &op = get_operator(dt, theta);
+      internal::theta_step(*this, dt, theta, [&]() {
+        // (M + theta dt K)(T_new) = B T + dt (theta F_new + (1 - theta) F_old),
+        // solved for u = T_new - g with g the Dirichlet values (zero
+        // elsewhere).
+        op.b.vmult(tmp, solution);
+        tmp.add(dt * theta, rhs_new, dt * (1. - theta), rhs_old);
+        g_ext = 0.;
+        if (any_dirichlet)
+          {
+            dirichlet.set_values(prm, time + dt, g_ext);
+            g_ext.compress(VectorOperation::insert);
+            op.a_full.vmult(new_solution, g_ext);
+            tmp -= new_solution;
+          }
+        constraints_hom.set_zero(tmp);
+
+        {
+          TimerOutput::Scope scope(timer, "linear solve");
+          new_solution = solution;
+          new_solution -= g_ext;
+          constraints_hom.set_zero(new_solution);
+          if (op.direct)
+            op.direct->solve(new_solution, tmp);
+          else
+            {
+              SolverControl        control(10000,
+                                    prm.cg_tolerance
+                                      * std::max(tmp.l2_norm(), 1e-300));
+              SolverCG<VectorType> cg(control);
+              cg.solve(op.a_hom, new_solution, tmp, op.amg);
+              linear_iterations += control.last_step();
+            }
+        }
+        constraints_hom.set_zero(new_solution);
+        new_solution += g_ext;
+        hanging.distribute(new_solution);
+      });
+      ghosted_valid = false;
+    }
+
+
+
+    void
+    DistributedHeat::Impl::advance_to(const double end_time)
+    {
+      advance_theta_scheme(*this, end_time);
+    }
+  } // namespace internal
 } // namespace rockdda::thermal
