@@ -223,25 +223,6 @@ namespace rockdda::thermal::internal
       }
   }
 
-  /// The blocks' mean temperatures and linear trends of the field
-  /// @p solution, from the blocks' geometry integrals and the vectors of
-  /// int phi_i, x phi_i, y phi_i dA.
-  template <typename VectorType>
-  std::vector<BlockMoments>
-  block_moments_of(const std::vector<std::array<double, 6>> &geometry,
-                   const std::vector<VectorType>            &phi,
-                   const std::vector<VectorType>            &x_phi,
-                   const std::vector<VectorType>            &y_phi,
-                   const VectorType                         &solution)
-  {
-    std::vector<BlockMoments> result(phi.size());
-    for (unsigned int b = 0; b < result.size(); ++b)
-      result[b] = block_moments_from(geometry[b],
-                                     phi[b] * solution,
-                                     x_phi[b] * solution,
-                                     y_phi[b] * solution);
-    return result;
-  }
 
   /**
    * The theta of the next step: 1/2 (Crank-Nicolson) or 1 (backward

@@ -2,8 +2,8 @@
  * @file
  * Internal to the thermal subsystem: evaluating the temperature field of
  * either solver: probes (the dofs and shape values of a fixed point, on
- * the rank that owns it) and the L2 error against an exact field. The
- * block moments are in heat_internal.h (block_moments_of()).
+ * the rank that owns it), the blocks' mean temperatures and linear trends,
+ * and the L2 error against an exact field.
  */
 #ifndef ROCKDDA_THERMAL_HEAT_PROBES_H
 #define ROCKDDA_THERMAL_HEAT_PROBES_H
@@ -15,6 +15,8 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
 
+#include "heat_assembly.h"
+#include "heat_internal.h"
 #include <vector>
 
 namespace rockdda::thermal::internal
@@ -45,6 +47,22 @@ namespace rockdda::thermal::internal
     for (unsigned int i = 0; i < probe.dofs.size(); ++i)
       v += probe.weights[i] * field[probe.dofs[i]];
     return v;
+  }
+
+  /// The blocks' mean temperatures and linear trends of the field
+  /// @p solution, from the block integrals of @p fixed.
+  template <typename VectorType>
+  std::vector<BlockMoments>
+  block_moments_of(const FixedIntegrals<VectorType> &fixed,
+                   const VectorType                 &solution)
+  {
+    std::vector<BlockMoments> result(fixed.block_phi.size());
+    for (unsigned int b = 0; b < result.size(); ++b)
+      result[b] = block_moments_from(fixed.block_geometry[b],
+                                     fixed.block_phi[b] * solution,
+                                     fixed.block_xphi[b] * solution,
+                                     fixed.block_yphi[b] * solution);
+    return result;
   }
 
   /// L2 norm of @p field - @p exact at time @p t over the locally owned

@@ -97,12 +97,7 @@ namespace rockdda::thermal
   {
     if (distributed)
       return distributed->block_moments();
-    const auto &fixed = impl->fixed;
-    return internal::block_moments_of(fixed.block_geometry,
-                                      fixed.block_phi,
-                                      fixed.block_xphi,
-                                      fixed.block_yphi,
-                                      impl->solution);
+    return internal::block_moments_of(impl->fixed, impl->solution);
   }
 
   double

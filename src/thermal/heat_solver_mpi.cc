@@ -295,12 +295,7 @@ namespace rockdda::thermal::internal
   std::vector<BlockMoments>
   DistributedHeat::block_moments() const
   {
-    const auto &fixed = impl->fixed;
-    return internal::block_moments_of(fixed.block_geometry,
-                                      fixed.block_phi,
-                                      fixed.block_xphi,
-                                      fixed.block_yphi,
-                                      impl->solution);
+    return internal::block_moments_of(impl->fixed, impl->solution);
   }
 
   double

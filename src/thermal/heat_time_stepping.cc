@@ -66,6 +66,35 @@ namespace rockdda::thermal
   {
     using internal::StepOperator;
 
+    /**
+     * The step operator of (@p dt, @p theta) among the last four built
+     * (a run uses one or two: Rannacher start-up, whole and final step),
+     * or a new one that @p build assembles and factorises.
+     */
+    template <typename Operator, typename Build>
+    Operator &
+    cached_operator(std::vector<std::unique_ptr<Operator>> &operators,
+                    const double                            dt,
+                    const double                            theta,
+                    TimerOutput                            &timer,
+                    HeatStatistics                         &stats,
+                    Build                                 &&build)
+    {
+      for (auto &op : operators)
+        if (op->dt == dt && op->theta == theta)
+          return *op;
+      if (operators.size() >= 4)
+        operators.erase(operators.begin());
+      TimerOutput::Scope scope(timer, "factorize");
+      auto               op = std::make_unique<Operator>();
+      op->dt                = dt;
+      op->theta             = theta;
+      build(*op);
+      ++stats.n_factorizations;
+      operators.push_back(std::move(op));
+      return *operators.back();
+    }
+
     /// Copy a deal.II sparse matrix (optionally only some columns, renumbered
     /// by @p column_map, -1 = skip) into Eigen.
     template <typename EigenMatrix>
@@ -96,52 +125,44 @@ namespace rockdda::thermal
   StepOperator &
   HeatSolver::Impl::get_operator(const double dt, const double theta)
   {
-    for (auto &op : operators)
-      if (op->dt == dt && op->theta == theta)
-        return *op;
-    if (operators.size() >= 4)
-      operators.erase(operators.begin());
-    TimerOutput::Scope scope(timer, "factorize");
-    auto               op = std::make_unique<StepOperator>();
-    op->dt                = dt;
-    op->theta             = theta;
-    op->a.reinit(sparsity);
-    op->a.copy_from(mass);
-    op->a.add(theta * dt, stiffness);
-    op->b.reinit(sparsity);
-    op->b.copy_from(mass);
-    op->b.add(-(1. - theta) * dt, stiffness);
-    op->a_mod.reinit(sparsity);
-    op->a_mod.copy_from(op->a);
-    // Remove Dirichlet rows and columns (keeps the matrix symmetric).
-    if (!dirichlet.dofs.empty())
-      for (unsigned int row = 0; row < op->a_mod.m(); ++row)
-        for (auto it = op->a_mod.begin(row); it != op->a_mod.end(row); ++it)
-          if ((is_dirichlet[row] || is_dirichlet[it->column()])
-              && it->column() != row)
-            it->value() = 0.;
-    if (prm.direct_solver)
-      {
-        to_eigen(op->b, op->eigen_b);
-        std::vector<int> column_map(dof_handler.n_dofs(), -1);
-        for (std::size_t d = 0; d < dirichlet.dofs.size(); ++d)
-          column_map[dirichlet.dofs[d]] = d;
-        to_eigen(op->a,
-                 op->eigen_a_dirichlet,
-                 &column_map,
-                 dirichlet.dofs.size());
-        Eigen::SparseMatrix<double> a_mod;
-        to_eigen(op->a_mod, a_mod);
-        op->ldlt.compute(a_mod);
-        if (op->ldlt.info() != Eigen::Success)
-          throw std::runtime_error("heat: the factorisation of the system "
-                                   "matrix failed (not positive definite?)");
-      }
-    else
-      op->ssor.initialize(op->a_mod, 1.2);
-    ++stats.n_factorizations;
-    operators.push_back(std::move(op));
-    return *operators.back();
+    return cached_operator(
+      operators, dt, theta, timer, stats, [&](StepOperator &op) {
+        op.a.reinit(sparsity);
+        op.a.copy_from(mass);
+        op.a.add(theta * dt, stiffness);
+        op.b.reinit(sparsity);
+        op.b.copy_from(mass);
+        op.b.add(-(1. - theta) * dt, stiffness);
+        op.a_mod.reinit(sparsity);
+        op.a_mod.copy_from(op.a);
+        // Remove Dirichlet rows and columns (keeps the matrix symmetric).
+        if (!dirichlet.dofs.empty())
+          for (unsigned int row = 0; row < op.a_mod.m(); ++row)
+            for (auto it = op.a_mod.begin(row); it != op.a_mod.end(row); ++it)
+              if ((is_dirichlet[row] || is_dirichlet[it->column()])
+                  && it->column() != row)
+                it->value() = 0.;
+        if (prm.direct_solver)
+          {
+            to_eigen(op.b, op.eigen_b);
+            std::vector<int> column_map(dof_handler.n_dofs(), -1);
+            for (std::size_t d = 0; d < dirichlet.dofs.size(); ++d)
+              column_map[dirichlet.dofs[d]] = d;
+            to_eigen(op.a,
+                     op.eigen_a_dirichlet,
+                     &column_map,
+                     dirichlet.dofs.size());
+            Eigen::SparseMatrix<double> a_mod;
+            to_eigen(op.a_mod, a_mod);
+            op.ldlt.compute(a_mod);
+            if (op.ldlt.info() != Eigen::Success)
+              throw std::runtime_error(
+                "heat: the factorisation of the system "
+                "matrix failed (not positive definite?)");
+          }
+        else
+          op.ssor.initialize(op.a_mod, 1.2);
+      });
   }
 
 
@@ -257,68 +278,63 @@ namespace rockdda::thermal
     DistributedOperator &
     DistributedHeat::Impl::get_operator(const double dt, const double theta)
     {
-      for (auto &op : operators)
-        if (op->dt == dt && op->theta == theta)
-          return *op;
-      if (operators.size() >= 4)
-        operators.erase(operators.begin());
-      TimerOutput::Scope scope(timer, "factorize");
-      auto               op = std::make_unique<DistributedOperator>();
-      op->dt                = dt;
-      op->theta             = theta;
-      op->a_hom.reinit(owned, owned, dsp, comm);
-      op->a_full.reinit(owned, owned, dsp, comm);
-      op->b.reinit(owned, owned, dsp, comm);
+      return cached_operator(
+        operators, dt, theta, timer, stats, [&](DistributedOperator &op) {
+          op.a_hom.reinit(owned, owned, dsp, comm);
+          op.a_full.reinit(owned, owned, dsp, comm);
+          op.b.reinit(owned, owned, dsp, comm);
 
-      internal::CellIntegrators integrators(mapping,
-                                            fe,
-                                            update_values | update_gradients
-                                              | update_JxW_values,
-                                            update_values | update_JxW_values);
-      FEValues<2>              &fe_values = integrators.values;
-      FEFaceValues<2>          &fe_face   = integrators.face;
-      const unsigned int        dpc       = fe.n_dofs_per_cell();
-      FullMatrix<double>        cell_mass(dpc, dpc), cell_stiff(dpc, dpc),
-        cell_a(dpc, dpc), cell_b(dpc, dpc);
-      std::vector<types::global_dof_index> dofs(dpc);
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            fe_values.reinit(cell);
-            cell_matrices(prm, cell, fe_values, fe_face, cell_mass, cell_stiff);
-            cell_a = cell_mass;
-            cell_a.add(theta * dt, cell_stiff);
-            cell_b = cell_mass;
-            cell_b.add(-(1. - theta) * dt, cell_stiff);
-            cell->get_dof_indices(dofs);
-            constraints_hom.distribute_local_to_global(cell_a, dofs, op->a_hom);
-            hanging.distribute_local_to_global(cell_a, dofs, op->a_full);
-            hanging.distribute_local_to_global(cell_b, dofs, op->b);
-          }
-      op->a_hom.compress(VectorOperation::add);
-      op->a_full.compress(VectorOperation::add);
-      op->b.compress(VectorOperation::add);
+          internal::CellIntegrators integrators(mapping,
+                                                fe,
+                                                update_values | update_gradients
+                                                  | update_JxW_values,
+                                                update_values
+                                                  | update_JxW_values);
+          FEValues<2>              &fe_values = integrators.values;
+          FEFaceValues<2>          &fe_face   = integrators.face;
+          const unsigned int        dpc       = fe.n_dofs_per_cell();
+          FullMatrix<double>        cell_mass(dpc, dpc), cell_stiff(dpc, dpc),
+            cell_a(dpc, dpc), cell_b(dpc, dpc);
+          std::vector<types::global_dof_index> dofs(dpc);
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                fe_values.reinit(cell);
+                cell_matrices(
+                  prm, cell, fe_values, fe_face, cell_mass, cell_stiff);
+                cell_a = cell_mass;
+                cell_a.add(theta * dt, cell_stiff);
+                cell_b = cell_mass;
+                cell_b.add(-(1. - theta) * dt, cell_stiff);
+                cell->get_dof_indices(dofs);
+                constraints_hom.distribute_local_to_global(cell_a,
+                                                           dofs,
+                                                           op.a_hom);
+                hanging.distribute_local_to_global(cell_a, dofs, op.a_full);
+                hanging.distribute_local_to_global(cell_b, dofs, op.b);
+              }
+          op.a_hom.compress(VectorOperation::add);
+          op.a_full.compress(VectorOperation::add);
+          op.b.compress(VectorOperation::add);
 
-      if (prm.direct_solver && !prm.distributed)
-        {
-          op->direct = std::make_unique<TrilinosWrappers::SolverDirect>(
-            op->direct_control,
-            TrilinosWrappers::SolverDirect::AdditionalData(false,
-                                                           "Amesos_Klu"));
-          op->direct->initialize(op->a_hom);
-        }
-      else
-        {
-          TrilinosWrappers::PreconditionAMG::AdditionalData data;
-          data.elliptic              = true;
-          data.higher_order_elements = fe.degree > 1;
-          data.smoother_sweeps       = 2;
-          data.aggregation_threshold = 0.02;
-          op->amg.initialize(op->a_hom, data);
-        }
-      ++stats.n_factorizations;
-      operators.push_back(std::move(op));
-      return *operators.back();
+          if (prm.direct_solver && !prm.distributed)
+            {
+              op.direct = std::make_unique<TrilinosWrappers::SolverDirect>(
+                op.direct_control,
+                TrilinosWrappers::SolverDirect::AdditionalData(false,
+                                                               "Amesos_Klu"));
+              op.direct->initialize(op.a_hom);
+            }
+          else
+            {
+              TrilinosWrappers::PreconditionAMG::AdditionalData data;
+              data.elliptic              = true;
+              data.higher_order_elements = fe.degree > 1;
+              data.smoother_sweeps       = 2;
+              data.aggregation_threshold = 0.02;
+              op.amg.initialize(op.a_hom, data);
+            }
+        });
     }
 
 
