@@ -270,6 +270,34 @@ namespace rockdda::thermal::internal
     previous = increment;
   }
   /**
+   * The time, heat balance and counters of either solver (the members of
+   * its state that theta_step() and the checkpoints use).
+   */
+  struct StepState
+  {
+    double         time            = 0.; ///< s
+    double         boundary_heat   = 0.; ///< heat in through the boundary, J/m
+    double         source_heat     = 0.; ///< heat added by the source, J/m
+    double         rate_old        = 0.; ///< boundary heat rate at time, W/m
+    double         source_rate_old = 0.; ///< source heat rate at time, W/m
+    bool           rhs_old_valid   = false;   ///< the load at time is assembled
+    bool           last_step_flipped = false; ///< see check_oscillation()
+    unsigned long  steps_taken       = 0;
+    double         kappa_max         = 0.; ///< largest diffusivity, m^2/s
+    double         h_min             = 0.; ///< smallest node spacing, m
+    HeatStatistics stats;
+
+    /// The statistics with the stiffness ratio of the time step @p dt.
+    HeatStatistics
+    statistics(const double dt) const
+    {
+      HeatStatistics s  = stats;
+      s.stiffness_ratio = dt * kappa_max / (h_min * h_min);
+      return s;
+    }
+  };
+
+  /**
    * One theta step of either solver. @p s is the solver's state (members
    * prm, stats, time, steps_taken, solution, new_solution, tmp, rhs_old,
    * rhs_new, rhs_old_valid, rate_old, source_rate_old, fixed (robin_weights),

@@ -169,10 +169,7 @@ namespace rockdda::thermal
   {
     if (distributed)
       return distributed->statistics();
-    HeatStatistics s = impl->stats;
-    s.stiffness_ratio
-      = impl->prm.time_step * impl->kappa_max / (impl->h_min * impl->h_min);
-    return s;
+    return impl->statistics(impl->prm.time_step);
   }
 
   std::string

@@ -59,7 +59,7 @@ namespace rockdda::thermal::internal
 
 
 
-  class DistributedHeat::Impl
+  class DistributedHeat::Impl : public StepState
   {
   public:
     explicit Impl(const HeatParameters &parameters);
@@ -96,20 +96,9 @@ namespace rockdda::thermal::internal
     std::vector<Probe>            probes;
     std::vector<dealii::Point<2>> probe_points;
 
-    double        time              = 0.;
-    double        boundary_heat     = 0.;
-    double        source_heat       = 0.;
-    double        rate_old          = 0.;
-    double        source_rate_old   = 0.;
-    bool          rhs_old_valid     = false;
-    bool          last_step_flipped = false;
-    unsigned long steps_taken       = 0;
     unsigned long linear_iterations = 0;
     /// Checkpoints written (selects the file set of the next one).
-    unsigned long  checkpoints_written = 0;
-    double         kappa_max           = 0.;
-    double         h_min               = 0.;
-    HeatStatistics stats;
+    unsigned long checkpoints_written = 0;
 
     std::ostringstream  timer_stream;
     dealii::TimerOutput timer;

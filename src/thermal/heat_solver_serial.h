@@ -29,6 +29,7 @@
 #include <Eigen/SparseCore>
 
 #include "heat_assembly.h"
+#include "heat_internal.h"
 #include "heat_probes.h"
 #include <array>
 #include <memory>
@@ -60,7 +61,7 @@ namespace rockdda::thermal
 
 
 
-  class HeatSolver::Impl
+  class HeatSolver::Impl : public internal::StepState
   {
   public:
     explicit Impl(const HeatParameters &parameters);
@@ -96,17 +97,6 @@ namespace rockdda::thermal
     dealii::types::boundary_id       joint_id = 0;
     std::vector<internal::JointPair> joint_pairs;
 
-    double         time              = 0.;
-    double         boundary_heat     = 0.;
-    double         source_heat       = 0.;
-    double         rate_old          = 0.; ///< boundary heat rate at time
-    double         source_rate_old   = 0.;
-    bool           rhs_old_valid     = false;
-    bool           last_step_flipped = false;
-    unsigned long  steps_taken       = 0;
-    double         kappa_max         = 0.;
-    double         h_min             = 0.;
-    HeatStatistics stats;
 
     std::ostringstream  timer_stream;
     dealii::TimerOutput timer;
