@@ -11,6 +11,7 @@
 #include <rockdda/io/progress.h>
 #include <rockdda/thermal/analyses.h>
 #include <rockdda/thermal/boundary_data.h>
+#include <rockdda/thermal/heat_cycles.h>
 #include <rockdda/thermal/heat_solver.h>
 
 #include <deal.II/base/mpi.h>
@@ -1100,46 +1101,29 @@ namespace rockdda::thermal
                  io::planned_steps(solver.time(), end, parameters.time_step));
       };
       // Stopped early by SIGINT / SIGTERM, polled (on every MPI rank alike)
-      // about 100 times per spin-up cycle and between output times. A
-      // cycle is advanced in chunks of whole time steps counted from its
-      // start (the theta-scheme takes the same steps as in one call);
-      // ARKODE, whose steps adapt, advances a whole cycle per call.
-      int                interrupted = 0;
-      const unsigned int steps_per_chunk
-        = parameters.stepper == TimeStepper::arkode
-            ? 1u
-            : static_cast<unsigned int>(std::max(
-              1., std::floor(spin_up_period / parameters.time_step / 100.)));
-      const double chunk = parameters.time_step * steps_per_chunk;
+      // about 100 times per spin-up cycle (see thermal::spin_up()) and
+      // between output times.
+      int interrupted = 0;
       {
         io::ProgressBar progress("heat spin-up",
                                  solver.time(),
                                  record_start,
                                  planned_to(record_start));
-        while (spin_up_done < spin_up_cycles
-               && (interrupted = io::interrupt_signal_all_ranks()) == 0)
-          {
-            const double cycle_start
-              = parameters.start_time + spin_up_done * spin_up_period;
-            const double cycle_end = cycle_start + spin_up_period;
-            for (unsigned int j = 1;
-                 steps_per_chunk > 1
-                 && cycle_start + j * chunk < cycle_end - 0.5 * chunk
-                 && (interrupted = io::interrupt_signal_all_ranks()) == 0;
-                 ++j)
-              {
-                if (cycle_start + j * chunk > solver.time())
-                  solver.advance_to(cycle_start + j * chunk);
-                progress.update(solver.statistics().n_steps, solver.time());
-              }
-            if (interrupted != 0)
-              break;
-            solver.advance_to(cycle_end);
-            ++spin_up_done;
-            progress.update(solver.statistics().n_steps, solver.time());
-            if (spin_up_done < spin_up_cycles)
-              checkpoint_if_due();
-          }
+        SpinUpCallbacks callbacks;
+        callbacks.stop = [&]() {
+          return (interrupted = io::interrupt_signal_all_ranks()) != 0;
+        };
+        callbacks.progress = [&]() {
+          progress.update(solver.statistics().n_steps, solver.time());
+        };
+        callbacks.cycle_done = checkpoint_if_due;
+        thermal::spin_up(solver,
+                         parameters,
+                         SpinUp{spin_up_cycles,
+                                spin_up_period,
+                                parameters.start_time},
+                         spin_up_done,
+                         callbacks);
       }
       if (spin_up_cycles > 0 && !resume && interrupted == 0)
         context.log.line("spin-up: " + std::to_string(spin_up_cycles)
