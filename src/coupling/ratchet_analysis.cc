@@ -11,6 +11,7 @@
 #include <rockdda/analytical/ratchet.h>
 #include <rockdda/coupling/analyses.h>
 #include <rockdda/coupling/calibrate_analysis.h>
+#include <rockdda/coupling/earthquakes_analysis.h>
 #include <rockdda/coupling/ratchet.h>
 #include <rockdda/io/checkpoint.h>
 #include <rockdda/io/error.h>
@@ -726,6 +727,7 @@ namespace rockdda::coupling
     std::vector<std::unique_ptr<io::Analysis>> list;
     list.push_back(std::make_unique<RatchetAnalysis>());
     list.push_back(make_calibrate_analysis());
+    list.push_back(make_earthquakes_analysis());
     return list;
   }
 } // namespace rockdda::coupling
