@@ -164,7 +164,9 @@ namespace rockdda::coupling
     dda::DdaSystem d(scene.blocks, c);
     d.settle(settle_steps);
     Block1Run r;
-    while (d.time() < duration - 1e-12)
+    // run_until stops within 1e-9 dt of its end: test the end with a
+    // margin above that, or a run that stops just short loops for ever.
+    while (d.time() < duration - 1e-3 * dt)
       {
         d.run_until(std::min(duration, d.time() + dt));
         r.max_rotation
