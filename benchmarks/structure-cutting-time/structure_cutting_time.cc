@@ -22,7 +22,7 @@ main(int argc, char **argv)
       std::cerr << "usage: structure_cutting_time OUTPUT_DIR [max_segments]\n";
       return 2;
     }
-  const double  max_n = argc > 2 ? std::stod(argv[2]) : 1e5;
+  const double           max_n = argc > 2 ? std::stod(argv[2]) : 1e5;
   rockdda::io::CsvWriter out;
   out.record(
     {"segments", "blocks", "vertices", "domain_side_m", "generate_s", "cut_s"});
