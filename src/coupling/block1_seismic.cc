@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 namespace rockdda::coupling
 {
@@ -30,42 +31,44 @@ namespace rockdda::coupling
 
 
   Block1Scene
-  make_block1_seismic_scene(const Block1Geometry &g, const Block1Materials &m)
+  make_block1_seismic_scene(const Block1Geometry  &g,
+                            const Block1Materials &m,
+                            const std::string     &section)
   {
     require_in_range(g.length > 0.,
-                     "Calibration/Block length",
+                     section + "/Block length",
                      g.length,
                      "> 0 m");
     require_in_range(g.height > 0.,
-                     "Calibration/Block height",
+                     section + "/Block height",
                      g.height,
                      "> 0 m");
     require_in_range(g.slope_deg >= 0. && g.slope_deg < 45.,
-                     "Calibration/Slope",
+                     section + "/Slope",
                      g.slope_deg,
                      "0 <= slope < 45 deg");
     require_in_range(g.toe_length > 0.,
-                     "Calibration/Toe length",
+                     section + "/Toe length",
                      g.toe_length,
                      "> 0 m");
     require_in_range(g.heel_length > 0.,
-                     "Calibration/Heel length",
+                     section + "/Heel length",
                      g.heel_length,
                      "> 0 m");
     require_in_range(g.base_depth > 0.,
-                     "Calibration/Base depth",
+                     section + "/Base depth",
                      g.base_depth,
                      "> 0 m");
     require_in_range(m.friction_deg >= 0. && m.friction_deg < 90.,
-                     "Calibration/Friction angle",
+                     section + "/Friction angle",
                      m.friction_deg,
                      "0 <= friction < 90 deg");
 
     const double t  = std::tan(g.slope_deg * pi / 180.);
     const auto   yb = [&](const double x) { return -t * x; };
     if (!(g.height - g.length * t > 0.1 * g.height))
-      throw InputError("key 'Calibration/Block height' = "
-                       + std::to_string(g.height)
+      throw InputError("key '" + section
+                       + "/Block height' = " + std::to_string(g.height)
                        + " m is too low for the block length and slope: the "
                          "back face would be shorter than 10 % of it");
 
@@ -135,50 +138,60 @@ namespace rockdda::coupling
 
 
   Block1Run
-  run_block1_dda(const Block1Geometry         &geometry,
-                 const Block1Materials        &materials,
-                 const seismic::Record        &record,
-                 const dda::SeismicInput::Mode mode,
-                 const double                  penalty,
-                 const double                  dt,
-                 const double                  duration,
-                 const unsigned int            settle_steps)
+  run_block1_dda(const Block1Geometry    &geometry,
+                 const Block1Materials   &materials,
+                 const seismic::Record   &record,
+                 const Block1RunControls &o,
+                 const double             duration)
   {
-    require_in_range(penalty > 0., "Calibration/Penalties", penalty, "> 0 N/m");
-    require_in_range(dt > 0., "Calibration/Time steps", dt, "> 0 s");
-    const auto start = std::chrono::steady_clock::now();
+    require_in_range(o.penalty > 0., o.penalty_key, o.penalty, "> 0 N/m");
+    require_in_range(o.dt > 0., o.time_step_key, o.dt, "> 0 s");
+    const auto start   = std::chrono::steady_clock::now();
+    const auto elapsed = [&]() {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now()
+                                           - start)
+        .count();
+    };
 
-    Block1Scene scene         = make_block1_seismic_scene(geometry, materials);
-    scene.blocks.seismic.mode = mode;
-    scene.blocks.seismic.record = cut(record, duration + 2. * dt);
+    Block1Scene scene
+      = make_block1_seismic_scene(geometry, materials, o.section);
+    scene.blocks.seismic.mode   = o.mode;
+    scene.blocks.seismic.record = cut(record, duration + 2. * o.dt);
     scene.blocks.seismic.g      = 9.80665;
 
     dda::Controls c;
-    c.time_step          = dt;
+    c.time_step          = o.dt;
     c.dynamic            = 1.;
-    c.law.normal_penalty = penalty;
+    c.law.normal_penalty = o.penalty;
     c.solver.threads     = 1;
-    // As many steps as the run needs with room for cuts.
-    c.max_steps = static_cast<unsigned long>(200. * duration / dt) + 1000;
+    c.max_steps
+      = static_cast<unsigned long>(o.max_steps_per_dt * duration / o.dt) + 1000;
 
     dda::DdaSystem d(scene.blocks, c);
-    d.settle(settle_steps);
+    d.settle(o.settle_steps);
     Block1Run r;
     // run_until stops within 1e-9 dt of its end: test the end with a
     // margin above that, or a run that stops just short loops for ever.
-    while (d.time() < duration - 1e-3 * dt)
+    while (d.time() < duration - 1e-3 * o.dt)
       {
-        d.run_until(std::min(duration, d.time() + dt));
+        d.run_until(std::min(duration, d.time() + o.dt));
         r.max_rotation
           = std::max(r.max_rotation,
                      std::abs(d.system().blocks[scene.block].rotation));
+        if (o.wall_time_limit > 0. && elapsed() > o.wall_time_limit)
+          throw std::runtime_error(
+            "wall-time limit: " + std::to_string(o.wall_time_limit)
+            + " s reached at t = " + std::to_string(d.time()) + " s");
+        if (o.stop && o.stop())
+          {
+            r.stopped = true;
+            break;
+          }
       }
-    r.slip  = block1_slip(d, scene);
-    r.steps = d.n_steps;
-    r.cuts  = d.n_cuts;
-    r.wall_time
-      = std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-          .count();
+    r.slip      = block1_slip(d, scene);
+    r.steps     = d.n_steps;
+    r.cuts      = d.n_cuts;
+    r.wall_time = elapsed();
     return r;
   }
 

@@ -10,18 +10,18 @@
 #include <rockdda/coupling/analyses.h>
 #include <rockdda/coupling/block1_seismic.h>
 #include <rockdda/coupling/calibrate_analysis.h>
+#include <rockdda/coupling/concurrent_runs.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/interrupt.h>
 #include <rockdda/io/parameters.h>
 #include <rockdda/io/plot.h>
 
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 namespace rockdda::coupling
 {
@@ -338,58 +338,62 @@ namespace rockdda::coupling
               grid.push_back(r);
             }
 
-      // Run the grid concurrently: each worker takes the next run.
-      const unsigned int n_workers
-        = std::max(1u,
-                   std::min<unsigned int>(
-                     threads > 0 ? threads
-                                 : std::thread::hardware_concurrency(),
-                     grid.size()));
-      std::atomic<std::size_t> next{0};
-      const auto mode = displacement ? dda::SeismicInput::Mode::displacement
-                                     : dda::SeismicInput::Mode::inertial;
-      const auto work = [&]() {
-        for (std::size_t j = next++; j < grid.size(); j = next++)
-          {
+      // Run the grid concurrently (TBB), stopped between runs and within a
+      // run by SIGINT / SIGTERM.
+      Block1RunControls controls;
+      controls.mode = displacement ? dda::SeismicInput::Mode::displacement
+                                   : dda::SeismicInput::Mode::inertial;
+      controls.settle_steps = settle_steps;
+      controls.stop         = []() { return io::interrupt_signal() != 0; };
+      const auto runs
+        = run_concurrently(grid.size(), threads, [&](const std::size_t j) {
             GridRun   &r = grid[j];
             const auto i
               = std::find(frequencies.begin(), frequencies.end(), r.frequency)
                 - frequencies.begin();
-            const auto t0 = std::chrono::steady_clock::now();
+            Block1RunControls c = controls;
+            c.penalty           = r.penalty;
+            c.dt                = r.dt;
             try
               {
-                const Block1Run run = run_block1_dda(geometry,
-                                                     materials,
-                                                     records[i],
-                                                     mode,
-                                                     r.penalty,
-                                                     r.dt,
-                                                     duration,
-                                                     settle_steps);
-                r.dda               = run.slip;
-                r.max_rotation      = run.max_rotation;
-                r.steps             = run.steps;
-                r.cuts              = run.cuts;
-                r.error             = 100. * std::abs(r.analytical - r.dda)
+                const Block1Run run = run_block1_dda(
+                  geometry, materials, records[i], c, duration);
+                r.dda          = run.slip;
+                r.max_rotation = run.max_rotation;
+                r.steps        = run.steps;
+                r.cuts         = run.cuts;
+                r.wall_time    = run.wall_time;
+                r.error        = 100. * std::abs(r.analytical - r.dda)
                           / std::abs(r.analytical);
+                if (run.stopped)
+                  r.failure = "interrupted";
               }
             catch (const std::exception &e)
               {
                 r.failure = e.what();
-                r.dda     = std::numeric_limits<double>::quiet_NaN();
-                r.error   = std::numeric_limits<double>::quiet_NaN();
               }
-            r.wall_time = std::chrono::duration<double>(
-                            std::chrono::steady_clock::now() - t0)
-                            .count();
+            if (!r.failure.empty())
+              r.dda = r.error = std::numeric_limits<double>::quiet_NaN();
+          });
+      const unsigned int n_workers = runs.threads;
+      for (std::size_t j = 0; j < grid.size(); ++j)
+        if (!runs.done[j])
+          {
+            grid[j].failure = "not run (interrupted)";
+            grid[j].dda     = grid[j].error
+              = std::numeric_limits<double>::quiet_NaN();
           }
-      };
-      std::vector<std::thread> pool;
-      for (unsigned int w = 1; w < n_workers; ++w)
-        pool.emplace_back(work);
-      work();
-      for (auto &t : pool)
-        t.join();
+      if (io::interrupt_signal() != 0)
+        {
+          std::size_t finished = 0;
+          for (const auto &r : grid)
+            finished += r.failure.empty() ? 1 : 0;
+          context.stopped_early = true;
+          context.stopped_note  = std::to_string(finished) + " of "
+                                 + std::to_string(grid.size())
+                                 + " runs done (calibration.csv; the others "
+                                   "are NaN).";
+        }
       const double grid_seconds = std::chrono::duration<double>(
                                     std::chrono::steady_clock::now() - start)
                                     .count();

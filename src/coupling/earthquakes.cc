@@ -1,66 +1,15 @@
+#include <rockdda/coupling/concurrent_runs.h>
 #include <rockdda/coupling/earthquakes.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/interrupt.h>
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <thread>
 
 namespace rockdda::coupling
 {
-  namespace
-  {
-    /**
-     * run_block1_dda() with a guard: at most 20 steps per time step dt on
-     * average and at most 60 s of wall time, checked after every step of
-     * dt (some stick-slip runs creep with ever smaller steps); throws
-     * dda::DdaFailure-like std::runtime_error when the guard trips.
-     */
-    Block1Run
-    run_guarded(const Block1Geometry    &geometry,
-                const Block1Materials   &materials,
-                const seismic::Record   &record,
-                const EarthquakeOptions &o,
-                const double             duration)
-    {
-      const auto  start = std::chrono::steady_clock::now();
-      Block1Scene scene = make_block1_seismic_scene(geometry, materials);
-      scene.blocks.seismic.mode   = o.mode;
-      scene.blocks.seismic.record = record;
-      scene.blocks.seismic.g      = 9.80665;
-      dda::Controls c;
-      c.time_step          = o.dt;
-      c.dynamic            = 1.;
-      c.law.normal_penalty = o.penalty;
-      c.solver.threads     = 1;
-      c.max_steps = static_cast<unsigned long>(20. * duration / o.dt) + 1000;
-      dda::DdaSystem d(scene.blocks, c);
-      d.settle(o.settle_steps);
-      Block1Run r;
-      while (d.time() < duration - 1e-3 * o.dt)
-        {
-          d.run_until(std::min(duration, d.time() + o.dt));
-          r.max_rotation
-            = std::max(r.max_rotation,
-                       std::abs(d.system().blocks[scene.block].rotation));
-          if (std::chrono::duration<double>(std::chrono::steady_clock::now()
-                                            - start)
-                .count()
-              > 60.)
-            throw std::runtime_error("wall-time guard: 60 s reached at t = "
-                                     + std::to_string(d.time()) + " s");
-        }
-      r.slip  = block1_slip(d, scene);
-      r.steps = d.n_steps;
-      r.cuts  = d.n_cuts;
-      return r;
-    }
-  } // namespace
-
-
   seismic::StochasticParameters
   EarthquakeOptions::default_motion()
   {
@@ -74,8 +23,10 @@ namespace rockdda::coupling
   std::vector<EarthquakeEvent>
   run_earthquakes(const Block1Geometry    &geometry,
                   const Block1Materials   &materials,
-                  const EarthquakeOptions &o)
+                  const EarthquakeOptions &o,
+                  unsigned int            *threads_used)
   {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     require_in_range(o.realisations >= 1,
                      "Earthquakes/Number of realisations",
                      o.realisations,
@@ -86,11 +37,14 @@ namespace rockdda::coupling
                        o.magnitudes[i],
                        "strictly increasing");
 
-    // The motions, serially (FFTW plans are made here).
+    // The motions, serially (FFTW plans are made here); SIGINT / SIGTERM
+    // ends the list.
     std::vector<EarthquakeEvent> events;
     std::vector<seismic::Record> records;
     for (const double m : o.magnitudes)
-      for (unsigned int i = 0; i < o.realisations; ++i)
+      for (unsigned int i = 0;
+           i < o.realisations && io::interrupt_signal() == 0;
+           ++i)
         {
           seismic::StochasticParameters p = o.motion;
           p.magnitude                     = m;
@@ -104,46 +58,55 @@ namespace rockdda::coupling
           events.push_back(e);
         }
 
-    // DDA and the analytical block, concurrently.
-    const unsigned int n_workers
-      = std::max(1u,
-                 std::min<unsigned int>(o.threads > 0
-                                          ? o.threads
-                                          : std::thread::hardware_concurrency(),
-                                        events.size()));
-    std::atomic<std::size_t> next{0};
-    const auto               work = [&]() {
-      for (std::size_t j = next++; j < events.size(); j = next++)
-        {
+    // DDA and the analytical block, concurrently. Each run is stopped
+    // after 20 steps per dt on average or 60 s of wall time (some stick-slip
+    // runs creep with ever smaller steps) and by SIGINT / SIGTERM.
+    Block1RunControls c;
+    c.mode             = o.mode;
+    c.penalty          = o.penalty;
+    c.dt               = o.dt;
+    c.settle_steps     = o.settle_steps;
+    c.max_steps_per_dt = 20.;
+    c.wall_time_limit  = 60.;
+    c.stop             = []() { return io::interrupt_signal() != 0; };
+    c.penalty_key      = "Earthquakes/Penalty";
+    c.time_step_key    = "Earthquakes/Time step";
+    c.section          = "Earthquakes";
+    const auto runs
+      = run_concurrently(events.size(), o.threads, [&](const std::size_t j) {
           EarthquakeEvent &e = events[j];
           e.analytical       = block1_analytical_slip(
             geometry, materials, records[j], e.duration, o.analytical_dt);
-          const auto t0 = std::chrono::steady_clock::now();
           try
             {
-              const Block1Run r
-                = run_guarded(geometry, materials, records[j], o, e.duration);
+              const Block1Run r = run_block1_dda(
+                geometry, materials, records[j], c, e.duration);
               e.dda          = r.slip;
               e.max_rotation = r.max_rotation;
               e.steps        = r.steps;
               e.cuts         = r.cuts;
+              e.wall_time    = r.wall_time;
+              if (r.stopped)
+                {
+                  e.failure = "interrupted";
+                  e.dda     = nan;
+                }
             }
           catch (const std::exception &x)
             {
               e.failure = x.what();
-              e.dda = std::numeric_limits<double>::quiet_NaN();
+              e.dda     = nan;
             }
-          e.wall_time = std::chrono::duration<double>(
-                          std::chrono::steady_clock::now() - t0)
-                          .count();
+        });
+    for (std::size_t j = 0; j < events.size(); ++j)
+      if (!runs.done[j])
+        {
+          events[j].failure    = "not run (interrupted)";
+          events[j].dda        = nan;
+          events[j].analytical = nan;
         }
-    };
-    std::vector<std::thread> pool;
-    for (unsigned int w = 1; w < n_workers; ++w)
-      pool.emplace_back(work);
-    work();
-    for (auto &t : pool)
-      t.join();
+    if (threads_used != nullptr)
+      *threads_used = runs.threads;
     return events;
   }
 

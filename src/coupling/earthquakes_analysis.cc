@@ -10,6 +10,7 @@
 #include <rockdda/coupling/earthquakes.h>
 #include <rockdda/coupling/earthquakes_analysis.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/interrupt.h>
 #include <rockdda/io/parameters.h>
 #include <rockdda/io/plot.h>
 
@@ -274,7 +275,7 @@ namespace rockdda::coupling
                   materials.friction_deg,
                   "> 'Slope' (else the block slides under gravity alone)");
       io::with_parameter_file(prm_file, [&]() {
-        make_block1_seismic_scene(geometry, materials);
+        make_block1_seismic_scene(geometry, materials, "Earthquakes");
         // Checks the recurrence intervals (> 0, increasing, count).
         displacement_rate(options.magnitudes,
                           std::vector<double>(options.magnitudes.size(), 0.),
@@ -298,7 +299,23 @@ namespace rockdda::coupling
       context.log.line("motion: " + seismic::describe(options.motion)
                        + "; site: " + options.motion.site.description());
 
-      const auto   events = run_earthquakes(geometry, materials, options);
+      unsigned int threads = 1;
+      const auto   events
+        = run_earthquakes(geometry, materials, options, &threads);
+      // SIGINT / SIGTERM: the events done are kept, the rest are NaN; the
+      // trigger distances (bisections) are skipped.
+      const bool interrupted = io::interrupt_signal() != 0;
+      if (interrupted)
+        {
+          std::size_t done = 0;
+          for (const auto &e : events)
+            done += std::isfinite(e.dda) ? 1 : 0;
+          context.stopped_early = true;
+          context.stopped_note
+            = std::to_string(done) + " of " + std::to_string(events.size())
+              + " events done (events.csv; the others are NaN, no trigger "
+                "distances).";
+        }
       const double events_seconds = std::chrono::duration<double>(
                                       std::chrono::steady_clock::now() - start)
                                       .count();
@@ -366,13 +383,15 @@ namespace rockdda::coupling
                 w.push_back(e.wall_time);
               }
           const Spread sd = spread(d), sa = spread(a);
-          const double r = trigger_distance(options.motion,
-                                            m,
-                                            ky,
-                                            options.realisations,
-                                            options.first_seed,
-                                            max_distance,
-                                            tolerance);
+          const double r = interrupted
+                             ? std::numeric_limits<double>::quiet_NaN()
+                             : trigger_distance(options.motion,
+                                                m,
+                                                ky,
+                                                options.realisations,
+                                                options.first_seed,
+                                                max_distance,
+                                                tolerance);
           per.add_row({m,
                        spread(pga).median,
                        sd.p16,
@@ -443,6 +462,7 @@ namespace rockdda::coupling
       context.summary.add("rate_total", total, "mm/yr");
       context.summary.add("events", static_cast<double>(events.size()), "-");
       context.summary.add("failed_runs", failed, "-");
+      context.summary.add("concurrent_runs", threads, "-");
       context.summary.add("events_wall_time", events_seconds, "s");
       context.summary.add("run_wall_time_median",
                           spread([&]() {

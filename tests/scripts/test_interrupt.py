@@ -17,6 +17,11 @@ CASE:
   heat_sigint  a heat run in its spin-up gets SIGINT: exit 130,
                statistics.csv, log.txt, summary.csv (completed = 0),
                checkpoint.bin.
+  calibrate_sigterm, earthquakes_sigint
+               a calibrate grid / an earthquakes run long enough to be
+               interrupted: exit 143 / 130, summary.csv 'completed,0,-',
+               the runs done kept in calibration.csv / events.csv (at least
+               one finite, the rest NaN), log.txt, parameters.prm.
   stale        a dda run with many VTU snapshots, then a shorter one into the
                same folder: the VTU files on disk are exactly those of the
                new blocks.pvd and contacts.pvd, no checkpoint.bin is left, and
@@ -201,6 +206,48 @@ elif case == "heat_sigint":
         return True
     # Stopped in the spin-up: no rows are recorded yet.
     interrupt(prm, folder, started, signal.SIGINT, 130, min_rows=0)
+elif case in ("calibrate_sigterm", "earthquakes_sigint"):
+    if case == "calibrate_sigterm":
+        sig, table = signal.SIGTERM, "calibration.csv"
+        prm = write(case + ".prm", f"""set Analysis type    = calibrate
+set Output directory = {folder}
+subsection Calibration
+  set Penalties   = 1e9, 5e9, 1e10, 5e10, 1e11, 5e11, 1e12, 2e12
+  set Time steps  = 0.001
+  set Frequencies = 1.3, 3.8
+  set Duration    = 60
+  set Threads     = 2
+  set Plot        = false
+end
+""")
+    else:
+        sig, table = signal.SIGINT, "events.csv"
+        prm = write(case + ".prm", f"""set Analysis type    = earthquakes
+set Output directory = {folder}
+subsection Earthquakes
+  set Magnitudes             = 7.5
+  set Number of realisations = 200
+  set Recurrence intervals   = 4000
+  set Threads                = 2
+  set Plot                   = false
+end
+""")
+    def started():
+        if not os.path.exists(os.path.join(folder, "parameters.prm")):
+            return False
+        time.sleep(3.0)
+        return True
+    interrupt(prm, folder, started, sig, 128 + int(sig),
+              files=("log.txt", "summary.csv", "parameters.prm", table))
+    path = os.path.join(folder, table)
+    if os.path.isfile(path):
+        with open(path) as f:
+            rows = [line.split(",") for line in f.read().splitlines()[1:]]
+        column = 4 if case == "calibrate_sigterm" else 4  # the 'dda' column
+        finite = [r for r in rows if r[column] not in ("nan", "-nan", "")]
+        check(len(finite) >= 1, f"{table}: {len(finite)} runs done kept")
+        check(len(finite) < (16 if case == "calibrate_sigterm" else 200),
+              f"{table}: not every run was done ({len(finite)})")
 elif case == "stale":
     # A file the user put there is never removed.
     os.makedirs(folder)

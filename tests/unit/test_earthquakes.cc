@@ -4,12 +4,15 @@
  * `earthquakes` analysis rests on.
  */
 #include <rockdda/coupling/block1_seismic.h>
+#include <rockdda/coupling/concurrent_runs.h>
 #include <rockdda/coupling/earthquakes.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/interrupt.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <csignal>
 
 using namespace rockdda;
 using namespace rockdda::coupling;
@@ -101,5 +104,113 @@ TEST(Earthquakes, RatesFromRecurrenceIntervals)
           EXPECT_NE(std::string(e.what()).find("key"), std::string::npos)
             << e.what();
         }
+    }
+}
+
+// The shared runner of independent runs: every index runs exactly once
+// whatever the number of threads.
+TEST(ConcurrentRuns, EveryRunOnce)
+{
+  for (const unsigned int threads : {1u, 2u, 0u})
+    {
+      std::vector<int> count(57, 0);
+      const auto       runs
+        = run_concurrently(count.size(), threads, [&](const std::size_t i) {
+            ++count[i];
+          });
+      EXPECT_EQ(runs.n_done(), count.size());
+      EXPECT_EQ(runs.signal, 0);
+      for (const int c : count)
+        EXPECT_EQ(c, 1);
+    }
+}
+
+// After SIGINT no further run starts: the runs done are kept and flagged,
+// the others are not started.
+TEST(ConcurrentRuns, InterruptStopsBetweenRuns)
+{
+  io::InterruptGuard guard;
+  std::vector<int>   count(20, 0);
+  const auto runs = run_concurrently(count.size(), 1, [&](const std::size_t i) {
+    ++count[i];
+    if (i == 4)
+      std::raise(SIGINT);
+  });
+  io::clear_interrupt();
+  EXPECT_EQ(runs.signal, SIGINT);
+  EXPECT_EQ(runs.n_done(), 5u);
+  for (std::size_t i = 0; i < count.size(); ++i)
+    {
+      EXPECT_EQ(count[i], i < 5 ? 1 : 0);
+      EXPECT_EQ(runs.done[i], i < 5);
+    }
+}
+
+// The events of run_earthquakes() are independent runs: on one and on two
+// threads every number is the same to the bit (each DDA run uses one
+// linear-solver thread and its own scene; the motions are made serially).
+TEST(Earthquakes, SameResultsOnOneAndTwoThreads)
+{
+  EarthquakeOptions o;
+  o.magnitudes   = {6.5, 7.};
+  o.realisations = 2;
+  std::vector<EarthquakeEvent> results[2];
+  for (const unsigned int threads : {1u, 2u})
+    {
+      o.threads         = threads;
+      unsigned int used = 0;
+      results[threads - 1]
+        = run_earthquakes(Block1Geometry(), Block1Materials(), o, &used);
+      EXPECT_EQ(used, threads);
+    }
+  ASSERT_EQ(results[0].size(), 4u);
+  ASSERT_EQ(results[1].size(), 4u);
+  for (std::size_t j = 0; j < 4; ++j)
+    {
+      const auto &a = results[0][j], &b = results[1][j];
+      EXPECT_TRUE(a.failure.empty()) << a.failure;
+      EXPECT_EQ(a.seed, b.seed);
+      EXPECT_EQ(a.pga, b.pga);
+      EXPECT_EQ(a.dda, b.dda);
+      EXPECT_EQ(a.analytical, b.analytical);
+      EXPECT_EQ(a.max_rotation, b.max_rotation);
+      EXPECT_EQ(a.steps, b.steps);
+    }
+}
+
+// The key names of the one Block 1 runner are parameters: the earthquake
+// analysis' errors name its own keys.
+TEST(Earthquakes, RunnerNamesTheCallersKeys)
+{
+  Block1RunControls c;
+  c.penalty       = -1.;
+  c.penalty_key   = "Earthquakes/Penalty";
+  c.time_step_key = "Earthquakes/Time step";
+  c.section       = "Earthquakes";
+  const auto rec  = sinusoid_record(0.5, 1.3, 0.1, 1e-3);
+  try
+    {
+      run_block1_dda(Block1Geometry(), Block1Materials(), rec, c, 0.1);
+      ADD_FAILURE() << "no error";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("Earthquakes/Penalty"),
+                std::string::npos)
+        << e.what();
+    }
+  Block1Geometry g;
+  g.height  = 1.;
+  c.penalty = 1e11;
+  try
+    {
+      run_block1_dda(g, Block1Materials(), rec, c, 0.1);
+      ADD_FAILURE() << "no error";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("Earthquakes/Block height"),
+                std::string::npos)
+        << e.what();
     }
 }

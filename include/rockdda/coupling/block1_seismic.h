@@ -14,6 +14,9 @@
 #include <rockdda/dda/engine.h>
 #include <rockdda/seismic/record.h>
 
+#include <functional>
+#include <string>
+
 namespace rockdda::coupling
 {
   /// Geometry of Block 1 on its bedding plane (m, deg). x is horizontal,
@@ -68,12 +71,14 @@ namespace rockdda::coupling
    * bedding plane, with a rigid joint (penalty only) of friction
    * Block1Materials::friction_deg on every face. Without infill the tension
    * crack never closes on a block that slides downslope, so the cliff
-   * behind it is left out. Throws InputError naming the key
-   * ('Calibration/...') for an impossible geometry.
+   * behind it is left out. Throws
+   * InputError naming the key ('@p section/...') for an impossible
+   * geometry.
    */
   Block1Scene
   make_block1_seismic_scene(const Block1Geometry  &geometry,
-                            const Block1Materials &materials);
+                            const Block1Materials &materials,
+                            const std::string     &section = "Calibration");
 
   /// Slip (m) of the middle of the block's base relative to the base
   /// block, along the bedding plane, positive downslope.
@@ -91,17 +96,57 @@ namespace rockdda::coupling
     double wall_time = 0.;
     /// Accepted steps and step cuts.
     unsigned long steps = 0, cuts = 0;
+    /// True if Block1RunControls::stop ended the run before @p duration.
+    bool stopped = false;
+  };
+
+  /**
+   * How run_block1_dda() runs DDA and names the keys of its errors. The
+   * calibration and the earthquake analyses differ only in these values.
+   */
+  struct Block1RunControls
+  {
+    /// Inertial (loading) or displacement mode.
+    dda::SeismicInput::Mode mode = dda::SeismicInput::Mode::inertial;
+    /// Normal contact penalty (N/m), > 0, and time step (s), > 0.
+    double penalty = 1e11, dt = 0.005;
+    /// Static settling steps under gravity before t = 0.
+    unsigned int settle_steps = 50;
+    /// Accepted steps allowed per time step dt on average (room for step
+    /// cuts), > 0; DDA stops with DdaFailure beyond them.
+    double max_steps_per_dt = 200.;
+    /// Wall-time limit of one run (s), checked after every interval dt
+    /// (some stick-slip runs creep with ever smaller steps); 0: none.
+    double wall_time_limit = 0.;
+    /// Polled after every interval dt: true stops the run there with
+    /// Block1Run::stopped set (e.g. on SIGINT); empty: never.
+    std::function<bool()> stop;
+    /// Key names in the errors: the penalty, the time step, and the section
+    /// of the geometry keys ('<section>/Block length', ...).
+    std::string penalty_key   = "Calibration/Penalties";
+    std::string time_step_key = "Calibration/Time steps";
+    std::string section       = "Calibration";
   };
 
   /**
    * Run Block 1 in DDA under the horizontal ground acceleration @p record
-   * (g, positive towards +x, i.e. downslope) until @p duration (s), in
-   * inertial (loading) or displacement mode, with normal penalty
-   * @p penalty (N/m) and time step @p dt (s), the linear solver on one
-   * thread. The scene first settles under gravity (@p settle_steps static
-   * steps). Throws dda::DdaFailure if the run cannot continue.
+   * (g, positive towards +x, i.e. downslope) until @p duration (s) with
+   * the controls @p controls, the linear solver on one thread. The scene
+   * first settles under gravity. Throws InputError naming the key for a
+   * penalty or time step <= 0, dda::DdaFailure if the run cannot continue
+   * or the step budget is used up, std::runtime_error when the wall-time
+   * limit is reached.
    */
   Block1Run
+  run_block1_dda(const Block1Geometry    &geometry,
+                 const Block1Materials   &materials,
+                 const seismic::Record   &record,
+                 const Block1RunControls &controls,
+                 const double             duration);
+
+  /// run_block1_dda() with the default controls but @p mode, @p penalty
+  /// (N/m), @p dt (s) and @p settle_steps.
+  inline Block1Run
   run_block1_dda(const Block1Geometry         &geometry,
                  const Block1Materials        &materials,
                  const seismic::Record        &record,
@@ -109,7 +154,15 @@ namespace rockdda::coupling
                  const double                  penalty,
                  const double                  dt,
                  const double                  duration,
-                 const unsigned int            settle_steps = 50);
+                 const unsigned int            settle_steps = 50)
+  {
+    Block1RunControls c;
+    c.mode         = mode;
+    c.penalty      = penalty;
+    c.dt           = dt;
+    c.settle_steps = settle_steps;
+    return run_block1_dda(geometry, materials, record, c, duration);
+  }
 
   /**
    * The analytical solution for the same input: a rigid block on a plane of

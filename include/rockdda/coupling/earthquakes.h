@@ -70,14 +70,19 @@ namespace rockdda::coupling
   /**
    * Simulate options.realisations site-amplified motions per magnitude at
    * options.distance (serially: FFTW planning is not thread-safe) and run
-   * each in DDA and analytically; the DDA runs go concurrently, one per
-   * thread. Events are ordered by magnitude, then seed. A DDA run that fails
-   * is recorded (failure, dda = NaN), not thrown.
+   * each in DDA and analytically; the runs go concurrently
+   * (run_concurrently(): the results do not depend on the number of
+   * threads). Events are ordered by magnitude, then seed. A DDA run that
+   * fails is recorded (failure, dda = NaN), not thrown; after SIGINT or
+   * SIGTERM the runs not yet done are recorded as "not run (interrupted)"
+   * (dda = analytical = NaN). @p threads_used (optional) receives the
+   * number of threads.
    */
   std::vector<EarthquakeEvent>
   run_earthquakes(const Block1Geometry    &geometry,
                   const Block1Materials   &materials,
-                  const EarthquakeOptions &options);
+                  const EarthquakeOptions &options,
+                  unsigned int            *threads_used = nullptr);
 
   /// The 16th, 50th and 84th percentiles of a sample.
   struct Spread
