@@ -3,6 +3,7 @@
 #include <rockdda/io/error.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -226,6 +227,31 @@ namespace rockdda::coupling
                             const Block1Materials &materials)
   {
     return std::tan((materials.friction_deg - geometry.slope_deg) * pi / 180.);
+  }
+
+
+
+  double
+  block1_rocking_acceleration(const Block1Geometry &g)
+  {
+    // The block's polygon as make_block1_seismic_scene() builds it.
+    const double               t = std::tan(g.slope_deg * pi / 180.);
+    const std::array<Point, 4> p{Point(0., 0.),
+                                 Point(g.length, -t * g.length),
+                                 Point(g.length, -t * g.length + g.height),
+                                 Point(0., -t * g.length + g.height)};
+    double                     a = 0., cx = 0., cy = 0.;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      {
+        const Point &u = p[i], &v = p[(i + 1) % p.size()];
+        const double c = u[0] * v[1] - v[0] * u[1];
+        a += c;
+        cx += (u[0] + v[0]) * c;
+        cy += (u[1] + v[1]) * c;
+      }
+    cx /= 3. * a;
+    cy /= 3. * a;
+    return (p[1][0] - cx) / (cy - p[1][1]);
   }
 
 

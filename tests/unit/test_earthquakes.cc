@@ -214,3 +214,67 @@ TEST(Earthquakes, RunnerNamesTheCallersKeys)
         << e.what();
     }
 }
+
+// Pseudo-static rocking about the toe: Block 1 (L_B 7 m, H 15 m on 19 deg)
+// tips at 0.42 g, just above its yield acceleration 0.404 g; a squat block
+// (H 4 m) only at 1.19 g, a slender one (H 25 m) already at 0.26 g. (The
+// centroids by hand: (3.602, 5.675) m for H 15 m; toe at (7, -2.410) m.)
+TEST(Earthquakes, RockingAcceleration)
+{
+  Block1Geometry g;
+  EXPECT_NEAR(block1_rocking_acceleration(g),
+              (7. - 3.602) / (5.675 + 7. * std::tan(19. * M_PI / 180.)),
+              1e-3);
+  EXPECT_GT(block1_rocking_acceleration(g),
+            block1_yield_acceleration(g, Block1Materials()));
+  g.height = 4.;
+  EXPECT_NEAR(block1_rocking_acceleration(g), 1.191, 1e-3);
+  g.height = 25.;
+  EXPECT_NEAR(block1_rocking_acceleration(g), 0.263, 1e-3);
+}
+
+// Why DDA and the rigid sliding block part at Mw >= 7 (issue 15, item 2):
+// Block 1's rocking acceleration (0.42 g) is barely above its yield
+// acceleration (0.404 g), and the strong pulses of Mw 7.5 at 1 km (PGA
+// 0.9-1.0 g) make it rock as it slides: the heel lifts (rotations of
+// 1e-3-5e-3 rad) and the slide-rock motion slides further than pure
+// sliding (+39 % and +49 % on these two motions), a mode the rigid sliding
+// block excludes. The same motions on a squat block (H = 4 m, rocking
+// acceleration 1.19 g, everything else equal: the rigid solution does not
+// depend on the block's shape) do not rock (rotation ~1e-6 rad) and DDA
+// matches the rigid block within 1 % (measured 0.1-0.5 % over 12 Mw 7-7.5
+// motions; the calibration's 1-7 % was for stick-slip of a block near
+// yield). So the gap is physical, not a defect of DDA's contacts or time
+// step: 10x the penalty or dt / 5 leave it (29-46 % and 51-116 % on these
+// motions).
+TEST(Earthquakes, GapAtLargeMagnitudesIsRocking)
+{
+  auto motion      = EarthquakeOptions::default_motion();
+  motion.magnitude = 7.5;
+  motion.distance  = 1e3;
+  for (const std::uint64_t seed : {5u, 6u})
+    {
+      const seismic::Record rec = seismic::simulate(motion, seed, true);
+      const double          T   = rec.duration();
+      Block1Geometry        g;
+      const Block1Materials m;
+      const double          rigid = block1_analytical_slip(g, m, rec, T);
+      Block1RunControls     c;
+      const Block1Run       block1 = run_block1_dda(g, m, rec, c, T);
+      g.height                     = 4.;
+      const Block1Run squat        = run_block1_dda(g, m, rec, c, T);
+      std::printf("Mw 7.5 seed %d: rigid %.4f m; Block 1 %.4f m (rotation "
+                  "%.1e rad); squat %.4f m (rotation %.1e rad)\n",
+                  static_cast<int>(seed),
+                  rigid,
+                  block1.slip,
+                  block1.max_rotation,
+                  squat.slip,
+                  squat.max_rotation);
+      EXPECT_GT(rigid, 0.05);
+      EXPECT_NEAR(squat.slip / rigid, 1., 0.01);
+      EXPECT_LT(squat.max_rotation, 1e-5);
+      EXPECT_GT(block1.max_rotation, 1e-3);
+      EXPECT_GT(block1.slip / rigid, 1.2);
+    }
+}

@@ -187,6 +187,17 @@ namespace rockdda::coupling
   block1_yield_acceleration(const Block1Geometry  &geometry,
                             const Block1Materials &materials);
 
+  /**
+   * Horizontal acceleration (g) towards downslope at which the resultant of
+   * gravity and the inertial force through the block's centroid passes
+   * through its toe (pseudo-static rocking about the toe, rigid block,
+   * Shenton 1996): (x_toe - x_c) / (y_c - y_toe). Below
+   * block1_yield_acceleration() the block rocks before it slides; Block 1
+   * (19 deg, L_B 7 m, H 15 m) has 0.42 g against ky = 0.404 g.
+   */
+  double
+  block1_rocking_acceleration(const Block1Geometry &geometry);
+
   /// A sinusoid A sin(2 pi f t) (g) from t = 0 to @p duration (s), sampled
   /// at @p dt (s).
   seismic::Record
