@@ -11,6 +11,7 @@
 #include <rockdda/analytical/ratchet.h>
 #include <rockdda/coupling/analyses.h>
 #include <rockdda/coupling/calibrate_analysis.h>
+#include <rockdda/coupling/compare_analysis.h>
 #include <rockdda/coupling/earthquakes_analysis.h>
 #include <rockdda/coupling/ratchet.h>
 #include <rockdda/io/checkpoint.h>
@@ -728,6 +729,7 @@ namespace rockdda::coupling
     list.push_back(std::make_unique<RatchetAnalysis>());
     list.push_back(make_calibrate_analysis());
     list.push_back(make_earthquakes_analysis());
+    list.push_back(make_compare_analysis());
     return list;
   }
 } // namespace rockdda::coupling
