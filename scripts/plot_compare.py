@@ -7,7 +7,7 @@ Left: displacement rates of Block 1 over the window (log scale): the thermal
 ratchet for each (beta, alpha) curve at the start of the window and its mean
 over the window (rates.csv), the seismic rate of DDA and of the rigid block
 over the catalogues (median, 16-84 %), the sum of the separate rates and the
-combined history (catalogues.csv, summary.csv). Right: cumulative
+combined history (catalogues.csv, spreads.csv). Right: cumulative
 displacement against time: the thermal history alone and the combined
 history (median and 16-84 % over the catalogues; histories.csv), with each
 catalogue's seismic total at the end.
@@ -35,8 +35,8 @@ def main():
     rates = table(os.path.join(out, "rates.csv"))
     cats = table(os.path.join(out, "catalogues.csv"))
     hist = table(os.path.join(out, "histories.csv"))
-    with open(os.path.join(out, "summary.csv")) as f:
-        summ = {r[0]: r[1] for r in csv.reader(f)}
+    # spreads.csv rows: seismic, seismic_rigid, combined, sum.
+    spreads = table(os.path.join(out, "spreads.csv"))
     years = hist[-1]["year"]
     fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.8))
 
@@ -52,15 +52,15 @@ def main():
         lows.append(0.)
         highs.append(0.)
         colours.append("C1")
-    for name, label, colour in (("seismic", "seismic\nDDA", "C0"),
-                                ("seismic_rigid", "seismic\nrigid", "C9"),
-                                ("sum", "thermal +\nseismic", "C7"),
-                                ("combined", "combined\nhistory", "C2")):
-        med = float(summ[name + "_rate_median"])
+    for row, label, colour in ((0, "seismic\nDDA", "C0"),
+                               (1, "seismic\nrigid", "C9"),
+                               (3, "thermal +\nseismic", "C7"),
+                               (2, "combined\nhistory", "C2")):
+        med = spreads[row]["rate_median_mm_yr"]
         labels.append(label)
         values.append(med)
-        lows.append(med - float(summ[name + "_rate_p16"]))
-        highs.append(float(summ[name + "_rate_p84"]) - med)
+        lows.append(med - spreads[row]["rate_p16_mm_yr"])
+        highs.append(spreads[row]["rate_p84_mm_yr"] - med)
         colours.append(colour)
     x = range(len(values))
     left.bar(x, values, color=colours, yerr=[lows, highs], capsize=3)

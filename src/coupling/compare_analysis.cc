@@ -613,6 +613,14 @@ namespace rockdda::coupling
       const Spread ss = spread(seismic), sr = spread(seismic_rigid),
                    sc = spread(combined), su = spread(sum),
                    si = spread(interaction), sq = spread(ratio);
+      // The spreads also go to spreads.csv: the plot runs before the driver
+      // writes summary.csv.
+      io::Table spreads;
+      spreads.add_column("quantity", "-");
+      spreads.add_column("rate_median", "mm/yr");
+      spreads.add_column("rate_p16", "mm/yr");
+      spreads.add_column("rate_p84", "mm/yr");
+      double quantity = 0.;
       for (const auto &[name, sp] :
            std::vector<std::pair<std::string, Spread>>{{"seismic", ss},
                                                        {"seismic_rigid", sr},
@@ -622,7 +630,10 @@ namespace rockdda::coupling
           context.summary.add(name + "_rate_median", rate(sp.median), "mm/yr");
           context.summary.add(name + "_rate_p16", rate(sp.p16), "mm/yr");
           context.summary.add(name + "_rate_p84", rate(sp.p84), "mm/yr");
+          spreads.add_row(
+            {quantity++, rate(sp.median), rate(sp.p16), rate(sp.p84)});
         }
+      context.output.write("spreads.csv", spreads.csv());
       context.summary.add("interaction_median", si.median, "m");
       context.summary.add("interaction_p16", si.p16, "m");
       context.summary.add("interaction_p84", si.p84, "m");
