@@ -14,26 +14,8 @@
 # magnitude; Mw <= 6.5 stays below the thesis' 42 mm; the Mw 7.5 trigger
 # distance is 10-40 km (thesis: about 20 km); the whole run takes < 300 s.
 set -euo pipefail
-build=$(cd "${1:?usage: run.sh BUILD_DIR}" && pwd)
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/../.." && pwd)
-if [[ ! -x "$build/rockdda" ]]; then
-  echo "run.sh: $build/rockdda not found (build it first: cmake --build $build)" >&2
-  exit 1
-fi
-
-status=0
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-(cd "$work" && "$build/rockdda" --quiet \
-  "$root/parameter-files/masada/earthquakes-block1.prm") || status=1
-out="$work/output-earthquakes-block1"
-if [[ -f "$out/earthquakes.png" ]]; then
-  cp "$out/earthquakes.png" "$here/earthquakes.png"
-else
-  echo "run.sh: earthquakes.png was not drawn (python3-matplotlib?)" >&2
-  status=1
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/../run_prm.sh"
+run_prm "${1:-}" masada/earthquakes-block1.prm earthquakes.png
 python3 - "$out" "$here/results.md" <<'PY' || status=1
 import csv, math, os, sys
 out, md = sys.argv[1], sys.argv[2]

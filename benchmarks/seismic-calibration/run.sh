@@ -12,26 +12,8 @@
 # takes under 300 s, the calibrated pair (500 GN/m, 0.005 s) is within 15 %
 # at both frequencies, the best error per frequency is below 5 %.
 set -euo pipefail
-build=$(cd "${1:?usage: run.sh BUILD_DIR}" && pwd)
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/../.." && pwd)
-if [[ ! -x "$build/rockdda" ]]; then
-  echo "run.sh: $build/rockdda not found (build it first: cmake --build $build)" >&2
-  exit 1
-fi
-
-status=0
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-(cd "$work" && "$build/rockdda" --quiet \
-  "$root/parameter-files/masada/calibrate-block1.prm") || status=1
-out="$work/output-calibrate-block1"
-if [[ -f "$out/calibration.png" ]]; then
-  cp "$out/calibration.png" "$here/calibration.png"
-else
-  echo "run.sh: calibration.png was not drawn (python3-matplotlib?)" >&2
-  status=1
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/../run_prm.sh"
+run_prm "${1:-}" masada/calibrate-block1.prm calibration.png
 python3 - "$out" "$here/results.md" <<'PY' || status=1
 import csv, math, os, sys
 out, md = sys.argv[1], sys.argv[2]

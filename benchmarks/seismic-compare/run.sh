@@ -15,26 +15,8 @@
 # thesis' conclusion); the thermal rate at L_W = 0 within 20 % of the
 # thesis' 0.181 mm/yr (beta 0.45); the whole run < 300 s.
 set -euo pipefail
-build=$(cd "${1:?usage: run.sh BUILD_DIR}" && pwd)
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/../.." && pwd)
-if [[ ! -x "$build/rockdda" ]]; then
-  echo "run.sh: $build/rockdda not found (build it first: cmake --build $build)" >&2
-  exit 1
-fi
-
-status=0
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-(cd "$work" && "$build/rockdda" --quiet \
-  "$root/parameter-files/masada/compare-block1.prm") || status=1
-out="$work/output-compare-block1"
-if [[ -f "$out/compare.png" ]]; then
-  cp "$out/compare.png" "$here/compare.png"
-else
-  echo "run.sh: compare.png was not drawn (python3-matplotlib?)" >&2
-  status=1
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/../run_prm.sh"
+run_prm "${1:-}" masada/compare-block1.prm compare.png
 python3 - "$out" "$here/results.md" <<'PY' || status=1
 import csv, os, sys
 out, md = sys.argv[1], sys.argv[2]

@@ -9,6 +9,7 @@
  * histories combine them year by year (coupling::combined_history).
  */
 #include <rockdda/analytical/yield.h>
+#include <rockdda/coupling/block1_parameters.h>
 #include <rockdda/coupling/block1_seismic.h>
 #include <rockdda/coupling/compare.h>
 #include <rockdda/coupling/compare_analysis.h>
@@ -50,15 +51,6 @@ namespace rockdda::coupling
       bool           triggers  = false;
       std::string    failure;
     };
-
-    std::vector<double>
-    number_list(dealii::ParameterHandler &prm, const std::string &key)
-    {
-      std::vector<double> v;
-      for (const auto &s : dealii::Utilities::split_string_list(prm.get(key)))
-        v.push_back(dealii::Utilities::string_to_double(s));
-      return v;
-    }
 
     class CompareAnalysis : public io::Analysis
     {
@@ -136,9 +128,6 @@ namespace rockdda::coupling
     void
     CompareAnalysis::declare_parameters(dealii::ParameterHandler &prm) const
     {
-      const Block1Geometry  g;
-      const Block1Materials m;
-      const auto num = [](const double x) { return io::format_number(x, 12); };
       prm.enter_subsection("Compare");
       io::declare(prm,
                   "Window",
@@ -232,50 +221,7 @@ namespace rockdda::coupling
                   "m",
                   "Wedge length L_W (the crack opening filled by infill) at "
                   "the start of the window, 0 to 10 m.");
-      io::declare(prm,
-                  "Penalty",
-                  "1e11",
-                  DoubleInterval::positive(),
-                  "N/m",
-                  "Normal contact penalty of the DDA runs, > 0 N/m (the "
-                  "calibrated 100 GN/m).");
-      io::declare(prm,
-                  "Time step",
-                  "0.005",
-                  DoubleInterval::positive(),
-                  "s",
-                  "DDA time step, > 0 s (calibrated: 0.005 s).");
-      io::declare(prm,
-                  "Threads",
-                  "0",
-                  Integer(0, 256),
-                  "-",
-                  "DDA runs at once, 0 to 256 (0: one per core).");
-      io::declare(prm,
-                  "Block length",
-                  num(g.length),
-                  DoubleInterval::positive(),
-                  "m",
-                  "Horizontal length L_B of Block 1's base, > 0 m.");
-      io::declare(prm,
-                  "Block height",
-                  num(g.height),
-                  DoubleInterval::positive(),
-                  "m",
-                  "Height H of Block 1, > 0 m (DDA: its front face; the "
-                  "ratchet model: H of Eq. 5.3).");
-      io::declare(prm,
-                  "Slope",
-                  num(g.slope_deg),
-                  DoubleInterval::right_open(0., 45.),
-                  "deg",
-                  "Dip of the bedding plane, 0 <= slope < 45 deg.");
-      io::declare(prm,
-                  "Friction angle",
-                  num(m.friction_deg),
-                  DoubleInterval::right_open(0., 90.),
-                  "deg",
-                  "Friction angle of the bedding plane, 0 <= phi < 90 deg.");
+      declare_block1_keys(prm);
       io::declare(prm,
                   "Plot",
                   "true",
@@ -292,26 +238,25 @@ namespace rockdda::coupling
                                       const std::string        &prm_file)
     {
       prm.enter_subsection("Compare");
-      window             = prm.get_double("Window");
-      catalogues         = prm.get_integer("Number of catalogues");
-      first_seed         = prm.get_integer("Seed");
-      gr.b_value         = prm.get_double("b-value");
-      gr.min_magnitude   = prm.get_double("Minimum magnitude");
-      gr.max_magnitude   = prm.get_double("Maximum magnitude");
-      gr.recurrence      = prm.get_double("Recurrence interval");
-      distance           = prm.get_double("Distance");
-      masada_site        = prm.get("Site amplification") == "masada";
-      betas              = number_list(prm, "Betas");
-      alphas             = number_list(prm, "Thermal expansion coefficients");
-      initial_wedge      = prm.get_double("Initial wedge length");
-      controls.penalty   = prm.get_double("Penalty");
-      controls.dt        = prm.get_double("Time step");
-      threads            = prm.get_integer("Threads");
-      geometry.length    = prm.get_double("Block length");
-      geometry.height    = prm.get_double("Block height");
-      geometry.slope_deg = prm.get_double("Slope");
-      materials.friction_deg = prm.get_double("Friction angle");
-      plot                   = prm.get_bool("Plot");
+      window           = prm.get_double("Window");
+      catalogues       = prm.get_integer("Number of catalogues");
+      first_seed       = prm.get_integer("Seed");
+      gr.b_value       = prm.get_double("b-value");
+      gr.min_magnitude = prm.get_double("Minimum magnitude");
+      gr.max_magnitude = prm.get_double("Maximum magnitude");
+      gr.recurrence    = prm.get_double("Recurrence interval");
+      distance         = prm.get_double("Distance");
+      masada_site      = prm.get("Site amplification") == "masada";
+      betas            = number_list(prm, "Betas");
+      alphas           = number_list(prm, "Thermal expansion coefficients");
+      initial_wedge    = prm.get_double("Initial wedge length");
+      const Block1Keys block1 = parse_block1_keys(prm);
+      geometry                = block1.geometry;
+      materials               = block1.materials;
+      controls.penalty        = block1.penalty;
+      controls.dt             = block1.dt;
+      threads                 = block1.threads;
+      plot                    = prm.get_bool("Plot");
       prm.leave_subsection();
       io::require(gr.max_magnitude > gr.min_magnitude,
                   prm_file,
@@ -420,8 +365,11 @@ namespace rockdda::coupling
       std::vector<std::vector<CatalogueEvent>> catalogue(catalogues);
       std::vector<EventRun>                    runs;
       std::vector<seismic::Record>             records;
+      // Catalogues whose motions were made (fewer after SIGINT / SIGTERM).
+      unsigned int generated = 0;
       for (unsigned int c = 0; c < catalogues; ++c)
         {
+          ++generated;
           catalogue[c]
             = gutenberg_richter_catalogue(gr, window, first_seed + c);
           for (const auto &e : catalogue[c])
@@ -536,7 +484,7 @@ namespace rockdda::coupling
       std::vector<double>              ratio, seismic_rigid;
       std::vector<std::vector<double>> yearly;
       unsigned int                     complete = 0;
-      for (unsigned int k = 0; k < catalogues; ++k)
+      for (unsigned int k = 0; k < generated; ++k)
         {
           std::vector<CatalogueEvent> ev;
           std::vector<double>         slip;

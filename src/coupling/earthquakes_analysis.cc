@@ -7,6 +7,7 @@
  * and the displacement rate from recurrence intervals.
  */
 #include <rockdda/analytical/yield.h>
+#include <rockdda/coupling/block1_parameters.h>
 #include <rockdda/coupling/earthquakes.h>
 #include <rockdda/coupling/earthquakes_analysis.h>
 #include <rockdda/io/error.h>
@@ -30,16 +31,6 @@ namespace rockdda::coupling
     using dealii::Patterns::List;
     using dealii::Patterns::Selection;
     using io::DoubleInterval;
-
-    /// The numbers of the list key @p key.
-    std::vector<double>
-    number_list(dealii::ParameterHandler &prm, const std::string &key)
-    {
-      std::vector<double> v;
-      for (const auto &s : dealii::Utilities::split_string_list(prm.get(key)))
-        v.push_back(dealii::Utilities::string_to_double(s));
-      return v;
-    }
 
     class EarthquakesAnalysis : public io::Analysis
     {
@@ -84,8 +75,6 @@ namespace rockdda::coupling
     void
     EarthquakesAnalysis::declare_parameters(dealii::ParameterHandler &prm) const
     {
-      const Block1Geometry  g;
-      const Block1Materials m;
       const auto num = [](const double x) { return io::format_number(x, 12); };
       prm.enter_subsection("Earthquakes");
       io::declare(prm,
@@ -158,19 +147,6 @@ namespace rockdda::coupling
                   "m",
                   "Bisection tolerance of the trigger distance, > 0 m.");
       io::declare(prm,
-                  "Penalty",
-                  "1e11",
-                  DoubleInterval::positive(),
-                  "N/m",
-                  "Normal contact penalty of DDA, > 0 N/m (calibrate: best "
-                  "100 GN/m; thesis 500 GN/m).");
-      io::declare(prm,
-                  "Time step",
-                  "0.005",
-                  DoubleInterval::positive(),
-                  "s",
-                  "DDA time step, > 0 s (thesis and calibrate: 0.005 s).");
-      io::declare(prm,
                   "Loading mode",
                   "loading",
                   Selection("loading|displacement"),
@@ -190,38 +166,7 @@ namespace rockdda::coupling
                   Integer(0, 100000),
                   "-",
                   "Static DDA steps under gravity before t = 0, 0 to 100000.");
-      io::declare(prm,
-                  "Threads",
-                  "0",
-                  Integer(0, 256),
-                  "-",
-                  "DDA runs at once, 0 to 256 (0: one per core); each run's "
-                  "linear solver uses one thread.");
-      io::declare(prm,
-                  "Block length",
-                  num(g.length),
-                  DoubleInterval::positive(),
-                  "m",
-                  "Horizontal length L_B of Block 1's base, > 0 m.");
-      io::declare(prm,
-                  "Block height",
-                  num(g.height),
-                  DoubleInterval::positive(),
-                  "m",
-                  "Height H of Block 1's front face, > 0 m.");
-      io::declare(prm,
-                  "Slope",
-                  num(g.slope_deg),
-                  DoubleInterval::right_open(0., 45.),
-                  "deg",
-                  "Dip of the bedding plane, 0 <= slope < 45 deg.");
-      io::declare(prm,
-                  "Friction angle",
-                  num(m.friction_deg),
-                  DoubleInterval::right_open(0., 90.),
-                  "deg",
-                  "Friction angle of the bedding plane, 0 <= phi < 90 deg "
-                  "(thesis: 41 deg).");
+      declare_block1_keys(prm);
       io::declare(prm,
                   "Plot",
                   "true",
@@ -245,22 +190,21 @@ namespace rockdda::coupling
       if (prm.get("Site amplification") == "none")
         options.motion.site = seismic::SiteAmplification();
       options.motion.stress_parameter = prm.get_double("Stress parameter");
-      recurrence             = number_list(prm, "Recurrence intervals");
-      max_distance           = prm.get_double("Maximum distance");
-      tolerance              = prm.get_double("Distance tolerance");
-      options.penalty        = prm.get_double("Penalty");
-      options.dt             = prm.get_double("Time step");
-      options.mode           = prm.get("Loading mode") == "displacement"
-                                 ? dda::SeismicInput::Mode::displacement
-                                 : dda::SeismicInput::Mode::inertial;
-      options.analytical_dt  = prm.get_double("Analytical time step");
-      options.settle_steps   = prm.get_integer("Settling steps");
-      options.threads        = prm.get_integer("Threads");
-      geometry.length        = prm.get_double("Block length");
-      geometry.height        = prm.get_double("Block height");
-      geometry.slope_deg     = prm.get_double("Slope");
-      materials.friction_deg = prm.get_double("Friction angle");
-      plot                   = prm.get_bool("Plot");
+      recurrence              = number_list(prm, "Recurrence intervals");
+      max_distance            = prm.get_double("Maximum distance");
+      tolerance               = prm.get_double("Distance tolerance");
+      options.mode            = prm.get("Loading mode") == "displacement"
+                                  ? dda::SeismicInput::Mode::displacement
+                                  : dda::SeismicInput::Mode::inertial;
+      options.analytical_dt   = prm.get_double("Analytical time step");
+      options.settle_steps    = prm.get_integer("Settling steps");
+      const Block1Keys block1 = parse_block1_keys(prm);
+      geometry                = block1.geometry;
+      materials               = block1.materials;
+      options.penalty         = block1.penalty;
+      options.dt              = block1.dt;
+      options.threads         = block1.threads;
+      plot                    = prm.get_bool("Plot");
       prm.leave_subsection();
 
       for (std::size_t i = 1; i < options.magnitudes.size(); ++i)

@@ -17,11 +17,13 @@ CASE:
   heat_sigint  a heat run in its spin-up gets SIGINT: exit 130,
                statistics.csv, log.txt, summary.csv (completed = 0),
                checkpoint.bin.
-  calibrate_sigterm, earthquakes_sigint
-               a calibrate grid / an earthquakes run long enough to be
-               interrupted: exit 143 / 130, summary.csv 'completed,0,-',
-               the runs done kept in calibration.csv / events.csv (at least
-               one finite, the rest NaN), log.txt, parameters.prm.
+  calibrate_sigterm, earthquakes_sigint, compare_sigint
+               a calibrate grid / an earthquakes / a compare run long enough
+               to be interrupted: exit 143 / 130 / 130, summary.csv
+               'completed,0,-', the runs done kept in calibration.csv /
+               events.csv (at least one finite, the rest NaN) /
+               catalogues.csv (at least one complete catalogue, not all),
+               log.txt, parameters.prm.
   stale        a dda run with many VTU snapshots, then a shorter one into the
                same folder: the VTU files on disk are exactly those of the
                new blocks.pvd and contacts.pvd, no checkpoint.bin is left, and
@@ -206,6 +208,30 @@ elif case == "heat_sigint":
         return True
     # Stopped in the spin-up: no rows are recorded yet.
     interrupt(prm, folder, started, signal.SIGINT, 130, min_rows=0)
+elif case == "compare_sigint":
+    prm = write(case + ".prm", f"""set Analysis type    = compare
+set Output directory = {folder}
+subsection Compare
+  set Number of catalogues = 40
+  set Threads              = 2
+  set Plot                 = false
+end
+""")
+    def dda_started():
+        log = os.path.join(folder, "parameters.prm")
+        if not os.path.exists(log):
+            return False
+        time.sleep(5.0)
+        return True
+    interrupt(prm, folder, dda_started, signal.SIGINT, 130,
+              files=("log.txt", "summary.csv", "parameters.prm",
+                     "catalogues.csv", "events.csv"))
+    path = os.path.join(folder, "catalogues.csv")
+    if os.path.isfile(path):
+        with open(path) as f:
+            rows = f.read().splitlines()[1:]
+        check(1 <= len(rows) < 40,
+              f"catalogues.csv: {len(rows)} complete catalogues kept")
 elif case in ("calibrate_sigterm", "earthquakes_sigint"):
     if case == "calibrate_sigterm":
         sig, table = signal.SIGTERM, "calibration.csv"

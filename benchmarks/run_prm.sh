@@ -1,0 +1,33 @@
+# Sourced by the run.sh of the benchmarks that run one parameter file of
+# parameter-files/ and keep its plot (seismic-calibration, seismic-block1,
+# seismic-compare):
+#   source "$(dirname "${BASH_SOURCE[0]}")/../run_prm.sh"
+#   run_prm "$1" masada/NAME.prm PLOT.png
+# run_prm BUILD_DIR PRM PNG checks BUILD_DIR/rockdda (exit 1 if missing),
+# runs parameter-files/PRM with --quiet in a temporary folder (removed at
+# exit), copies its PNG next to the calling run.sh, and sets:
+#   build (absolute BUILD_DIR), here (the caller's folder), root (the
+#   repository), out (the run's output folder), status (0, or 1 if the run
+#   failed or the PNG was not drawn).
+run_prm() {
+  build=$(cd "${1:?usage: run.sh BUILD_DIR}" && pwd)
+  here=$(cd "$(dirname "${BASH_SOURCE[1]}")" && pwd)
+  root=$(cd "$here/../.." && pwd)
+  if [[ ! -x "$build/rockdda" ]]; then
+    echo "run.sh: $build/rockdda not found (build it first: cmake --build $build)" >&2
+    exit 1
+  fi
+  status=0
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+  (cd "$work" && "$build/rockdda" --quiet "$root/parameter-files/$2") || status=1
+  local name
+  name=$(basename "$2" .prm)
+  out="$work/output-$name"
+  if [[ -f "$out/$3" ]]; then
+    cp "$out/$3" "$here/$3"
+  else
+    echo "run.sh: $3 was not drawn (python3-matplotlib?)" >&2
+    status=1
+  fi
+}

@@ -1,0 +1,48 @@
+/**
+ * @file
+ * The parameter keys that the analyses running Block 1 in DDA share
+ * ('earthquakes', 'compare'): the block's geometry and friction, and DDA's
+ * penalty, time step and concurrent runs, declared and read in the current
+ * subsection of a ParameterHandler.
+ */
+#ifndef ROCKDDA_COUPLING_BLOCK1_PARAMETERS_H
+#define ROCKDDA_COUPLING_BLOCK1_PARAMETERS_H
+
+#include <rockdda/coupling/block1_seismic.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+#include <vector>
+
+namespace rockdda::coupling
+{
+  /// The numbers of the comma-separated list key @p key (its pattern has
+  /// checked them).
+  std::vector<double>
+  number_list(dealii::ParameterHandler &prm, const std::string &key);
+
+  /**
+   * Declare 'Block length', 'Block height', 'Slope', 'Friction angle'
+   * (Block1Geometry and Block1Materials defaults) and 'Penalty', 'Time
+   * step', 'Threads' (the calibrated 100 GN/m and 0.005 s; 0 threads = one
+   * per core) in the current subsection.
+   */
+  void
+  declare_block1_keys(dealii::ParameterHandler &prm);
+
+  /// What declare_block1_keys() declared, read from the current subsection.
+  struct Block1Keys
+  {
+    Block1Geometry  geometry;
+    Block1Materials materials;
+    double          penalty = 1e11, dt = 0.005;
+    unsigned int    threads = 0;
+  };
+
+  /// Read the keys of declare_block1_keys() from the current subsection.
+  Block1Keys
+  parse_block1_keys(dealii::ParameterHandler &prm);
+} // namespace rockdda::coupling
+
+#endif

@@ -1,0 +1,90 @@
+#include <rockdda/coupling/block1_parameters.h>
+#include <rockdda/io/output.h>
+#include <rockdda/io/parameters.h>
+
+#include <deal.II/base/utilities.h>
+
+namespace rockdda::coupling
+{
+  std::vector<double>
+  number_list(dealii::ParameterHandler &prm, const std::string &key)
+  {
+    std::vector<double> v;
+    for (const auto &s : dealii::Utilities::split_string_list(prm.get(key)))
+      v.push_back(dealii::Utilities::string_to_double(s));
+    return v;
+  }
+
+
+
+  void
+  declare_block1_keys(dealii::ParameterHandler &prm)
+  {
+    using io::DoubleInterval;
+    const Block1Geometry  g;
+    const Block1Materials m;
+    const auto num = [](const double x) { return io::format_number(x, 12); };
+    io::declare(prm,
+                "Block length",
+                num(g.length),
+                DoubleInterval::positive(),
+                "m",
+                "Horizontal length L_B of Block 1's base, > 0 m.");
+    io::declare(prm,
+                "Block height",
+                num(g.height),
+                DoubleInterval::positive(),
+                "m",
+                "Height H of Block 1's front face, > 0 m (the ratchet model "
+                "of 'compare' takes it as H of Eq. 5.3).");
+    io::declare(prm,
+                "Slope",
+                num(g.slope_deg),
+                DoubleInterval::right_open(0., 45.),
+                "deg",
+                "Dip of the bedding plane, 0 <= slope < 45 deg.");
+    io::declare(prm,
+                "Friction angle",
+                num(m.friction_deg),
+                DoubleInterval::right_open(0., 90.),
+                "deg",
+                "Friction angle of the bedding plane, 0 <= phi < 90 deg "
+                "(thesis: 41 deg).");
+    io::declare(prm,
+                "Penalty",
+                "1e11",
+                DoubleInterval::positive(),
+                "N/m",
+                "Normal contact penalty of DDA, > 0 N/m (calibrate: best "
+                "100 GN/m; thesis 500 GN/m).");
+    io::declare(prm,
+                "Time step",
+                "0.005",
+                DoubleInterval::positive(),
+                "s",
+                "DDA time step, > 0 s (thesis and calibrate: 0.005 s).");
+    io::declare(prm,
+                "Threads",
+                "0",
+                dealii::Patterns::Integer(0, 256),
+                "-",
+                "DDA runs at once, 0 to 256 (0: one per core); each run's "
+                "linear solver uses one thread.");
+  }
+
+
+
+  Block1Keys
+  parse_block1_keys(dealii::ParameterHandler &prm)
+  {
+    Block1Keys k;
+    k.geometry.length        = prm.get_double("Block length");
+    k.geometry.height        = prm.get_double("Block height");
+    k.geometry.slope_deg     = prm.get_double("Slope");
+    k.materials.friction_deg = prm.get_double("Friction angle");
+    k.penalty                = prm.get_double("Penalty");
+    k.dt                     = prm.get_double("Time step");
+    k.threads                = prm.get_integer("Threads");
+    return k;
+  }
+} // namespace rockdda::coupling
