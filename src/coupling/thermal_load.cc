@@ -1,6 +1,7 @@
 #include <rockdda/coupling/thermal_load.h>
 #include <rockdda/dda/block_matrices.h>
 #include <rockdda/io/error.h>
+#include <rockdda/thermal/heat_cycles.h>
 
 #include <cmath>
 
@@ -64,27 +65,22 @@ namespace rockdda::coupling
     p.boundary_conditions.push_back(none);
 
     thermal::HeatSolver heat(p);
-    const double        t0 = controls.spin_up_cycles * forcing.period;
-    heat.advance_to(t0);
-    table.resize(samples);
+    const auto          moments = thermal::sample_block_moments(
+      heat,
+      p,
+      controls.spin_up_cycles * forcing.period,
+      dt_sample,
+      samples,
+      "check its polygon and the heat controls (Thermal forcing/Cell size, "
+               "Time step)");
+    table.assign(samples, std::vector<double>(blocks.size()));
+    areas.resize(blocks.size());
     for (unsigned int k = 0; k < samples; ++k)
-      {
-        heat.advance_to(t0 + k * dt_sample);
-        const auto moments = heat.block_moments();
-        table[k].resize(moments.size());
-        areas.resize(moments.size());
-        for (std::size_t b = 0; b < moments.size(); ++b)
-          {
-            if (!std::isfinite(moments[b].mean))
-              throw InputError("the heat solution of block '" + blocks[b].name
-                               + "' is not finite at t = "
-                               + std::to_string(heat.time())
-                               + " s: check its polygon and the heat controls "
-                                 "(Thermal forcing/Cell size, Time step)");
-            table[k][b] = moments[b].mean;
-            areas[b]    = moments[b].area;
-          }
-      }
+      for (std::size_t b = 0; b < blocks.size(); ++b)
+        {
+          table[k][b] = moments[k][b].mean;
+          areas[b]    = moments[k][b].area;
+        }
     n_steps = heat.statistics().n_steps;
     n_cells = heat.statistics().n_cells;
   }

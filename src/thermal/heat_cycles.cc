@@ -61,11 +61,18 @@ namespace rockdda::thermal
 
 
   std::vector<std::vector<BlockMoments>>
-  sample_block_moments(HeatSolver        &solver,
-                       const double       start,
-                       const double       interval,
-                       const unsigned int n)
+  sample_block_moments(HeatSolver           &solver,
+                       const HeatParameters &parameters,
+                       const double          start,
+                       const double          interval,
+                       const unsigned int    n,
+                       const std::string    &advice)
   {
+    const auto block_name = [&](const std::size_t b) {
+      return b < parameters.blocks.size() && !parameters.blocks[b].name.empty()
+               ? "'" + parameters.blocks[b].name + "'"
+               : std::to_string(b + 1);
+    };
     std::vector<std::vector<BlockMoments>> samples(n);
     for (unsigned int k = 0; k < n; ++k)
       {
@@ -73,9 +80,10 @@ namespace rockdda::thermal
         samples[k] = solver.block_moments();
         for (std::size_t b = 0; b < samples[k].size(); ++b)
           if (!std::isfinite(samples[k][b].mean))
-            throw InputError("heat: the mean temperature of block "
-                             + std::to_string(b + 1) + " is not finite at t = "
-                             + io::format_number(solver.time(), 10) + " s");
+            throw InputError("the heat solution of block " + block_name(b)
+                             + " is not finite at t = "
+                             + io::format_number(solver.time(), 10) + " s"
+                             + (advice.empty() ? "" : ": " + advice));
       }
     return samples;
   }

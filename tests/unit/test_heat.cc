@@ -6,6 +6,7 @@
  */
 #include <rockdda/io/error.h>
 #include <rockdda/thermal/boundary_data.h>
+#include <rockdda/thermal/heat_cycles.h>
 #include <rockdda/thermal/heat_solver.h>
 #include <rockdda/thermal/verification.h>
 
@@ -376,6 +377,59 @@ TEST(Heat, BlockMomentsOfLinearField)
   EXPECT_NEAR(m[0].gradient_x, 2., 1e-9);
   EXPECT_NEAR(m[0].gradient_y, 3., 1e-9);
   EXPECT_NEAR(solver.value(2., -1.), linear(2., -1., 0.), 1e-9);
+}
+
+
+
+// The block moments sampled at equal intervals (thermal::sample_block_moments,
+// what the coupling reads): a steady linear field gives the same moments at
+// every sample; a non-finite field is an error naming the block and ending
+// with the caller's advice.
+TEST(Heat, SampledBlockMomentsNameTheBlock)
+{
+  HeatParameters p;
+  p.blocks = {rectangle(1., -2., 4., 0., {"a", "a", "a", "a"})};
+  auto linear
+    = [](double x, double y, double) { return 10. + 2. * x + 3. * y; };
+  BoundaryCondition bc;
+  bc.tag                = "a";
+  bc.type               = BoundaryCondition::Type::temperature;
+  bc.value              = linear;
+  bc.uniform            = false;
+  p.boundary_conditions = {bc};
+  p.initial_field       = [&](double x, double y) { return linear(x, y, 0.); };
+  p.coarse_cell_size    = 0.5;
+  p.degree              = 1;
+  HeatSolver solver(p);
+  const auto samples = sample_block_moments(solver, p, day, day, 3);
+  ASSERT_EQ(samples.size(), 3u);
+  EXPECT_DOUBLE_EQ(solver.time(), 3. * day);
+  for (const auto &row : samples)
+    {
+      ASSERT_EQ(row.size(), 1u);
+      // The linear field is the steady solution: the CG tolerance bounds
+      // the drift of the mean (12 degC) and of the gradients (2, 3 K/m).
+      EXPECT_NEAR(row[0].mean, 12., 1e-9);
+      EXPECT_NEAR(row[0].gradient_x, 2., 1e-9);
+      EXPECT_NEAR(row[0].gradient_y, 3., 1e-9);
+    }
+
+  HeatParameters broken = p;
+  broken.blocks[0].name = "Block 7";
+  broken.initial_field  = [](double, double) { return std::nan(""); };
+  HeatSolver nan_solver(broken);
+  try
+    {
+      sample_block_moments(nan_solver, broken, 0., day, 2, "check the mesh");
+      FAIL() << "a non-finite block mean was sampled";
+    }
+  catch (const InputError &e)
+    {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("block 'Block 7'"), std::string::npos) << what;
+      EXPECT_NE(what.find("not finite at t = 0 s"), std::string::npos) << what;
+      EXPECT_NE(what.find(": check the mesh"), std::string::npos) << what;
+    }
 }
 
 

@@ -12,6 +12,7 @@
 #include <rockdda/thermal/heat_solver.h>
 
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace rockdda::thermal
@@ -63,13 +64,17 @@ namespace rockdda::thermal
   /**
    * The block moments at the @p n times @p start + k @p interval (k = 0 to
    * n - 1, from the solver's time on): one sample per row, one entry per
-   * block. Throws InputError naming the block if a mean is not finite.
+   * block of @p parameters (the solver's). Throws InputError naming the
+   * block (its name in @p parameters, or its number if it has none) if a
+   * mean is not finite, followed by @p advice if that is not empty.
    */
   std::vector<std::vector<BlockMoments>>
-  sample_block_moments(HeatSolver        &solver,
-                       const double       start,
-                       const double       interval,
-                       const unsigned int n);
+  sample_block_moments(HeatSolver           &solver,
+                       const HeatParameters &parameters,
+                       const double          start,
+                       const double          interval,
+                       const unsigned int    n,
+                       const std::string    &advice = "");
 } // namespace rockdda::thermal
 
 #endif
