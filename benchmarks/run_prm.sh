@@ -8,8 +8,23 @@
 # exit), copies its PNG next to the calling run.sh, and sets:
 #   build (absolute BUILD_DIR), here (the caller's folder), root (the
 #   repository), out (the run's output folder), status (0, or 1 if the run
-#   failed or the PNG was not drawn).
+#   failed or the PNG was not drawn); exports ROCKDDA_BENCHMARKS (this
+#   folder, for run_prm.py).
+# run_unit NAME PATTERN runs BUILD_DIR/unit-NAME if built, appends its lines
+# matching PATTERN to results.md and sets status to 1 if it fails.
+run_unit() {
+  if [[ -x "$build/unit-$1" ]]; then
+    echo
+    echo "unit-$1:"
+    "$build/unit-$1" | grep -E "$2|PASSED|FAILED" \
+      | tee -a "$here/results.md" || status=1
+    "$build/unit-$1" > /dev/null || status=1
+  fi
+}
+
 run_prm() {
+  export ROCKDDA_BENCHMARKS
+  ROCKDDA_BENCHMARKS=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
   build=$(cd "${1:?usage: run.sh BUILD_DIR}" && pwd)
   here=$(cd "$(dirname "${BASH_SOURCE[1]}")" && pwd)
   root=$(cd "$here/../.." && pwd)

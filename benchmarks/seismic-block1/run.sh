@@ -17,22 +17,15 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../run_prm.sh"
 run_prm "${1:-}" masada/earthquakes-block1.prm earthquakes.png
 python3 - "$out" "$here/results.md" <<'PY' || status=1
-import csv, math, os, sys
+import math, os, sys
+sys.path.insert(0, os.environ["ROCKDDA_BENCHMARKS"])
+from run_prm import Checks, finish, summary, table  # noqa: E402
 out, md = sys.argv[1], sys.argv[2]
 
-def table(name):
-    rows = list(csv.reader(open(os.path.join(out, name))))
-    return [dict(zip(rows[0], map(float, r))) for r in rows[1:]]
-
-summ = {r[0]: r[1] for r in csv.reader(open(os.path.join(out, "summary.csv")))}
-mags, events, rates = table("magnitudes.csv"), table("events.csv"), table("rates.csv")
+summ = summary(out)
+mags, events, rates = table(out, "magnitudes.csv"), table(out, "events.csv"), table(out, "rates.csv")
 mm = lambda x: f"{1e3 * x:.3g}"
-ok = True
-def check(cond, what):
-    global ok
-    if not cond:
-        ok = False
-        print("check failed:", what)
+check = Checks()
 
 ky = float(summ["yield_acceleration"])
 lines = ["# Block 1 under earthquakes (measured by run.sh)", "",
@@ -82,15 +75,7 @@ lines += ["", f"Total: {float(summ['rate_total']):.3g} mm/yr.", "",
           f"{float(summ['run_wall_time_max']):.3f} s; whole analysis "
           f"{float(summ['wall_time']):.2f} s (trigger-distance bisections "
           f"included)."]
-open(md, "w").write("\n".join(lines) + "\n")
-print("\n".join(lines))
-sys.exit(0 if ok else 1)
+finish(md, lines, check)
 PY
-if [[ -x "$build/unit-earthquakes" ]]; then
-  echo
-  echo "unit-earthquakes:"
-  "$build/unit-earthquakes" | grep -E "^Mw|g: DDA|PASSED|FAILED" \
-    | tee -a "$here/results.md" || status=1
-  "$build/unit-earthquakes" > /dev/null || status=1
-fi
+run_unit earthquakes "^Mw|g: DDA"
 exit $status

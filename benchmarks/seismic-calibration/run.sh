@@ -74,11 +74,5 @@ open(md, "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))
 sys.exit(0 if ok else 1)
 PY
-if [[ -x "$build/unit-calibrate" ]]; then
-  echo
-  echo "El Centro (unit-calibrate):"
-  "$build/unit-calibrate" | grep -E "El Centro|Hz:|PASSED|FAILED" \
-    | tee -a "$here/results.md" || status=1
-  "$build/unit-calibrate" > /dev/null || status=1
-fi
+run_unit calibrate "El Centro|Hz:"
 exit $status

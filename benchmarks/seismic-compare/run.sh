@@ -18,22 +18,15 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../run_prm.sh"
 run_prm "${1:-}" masada/compare-block1.prm compare.png
 python3 - "$out" "$here/results.md" <<'PY' || status=1
-import csv, os, sys
+import os, sys
+sys.path.insert(0, os.environ["ROCKDDA_BENCHMARKS"])
+from run_prm import Checks, finish, summary, table  # noqa: E402
 out, md = sys.argv[1], sys.argv[2]
 
-def table(name):
-    rows = list(csv.reader(open(os.path.join(out, name))))
-    return [dict(zip(rows[0], map(float, r))) for r in rows[1:]]
-
-summ = {r[0]: r[1] for r in csv.reader(open(os.path.join(out, "summary.csv")))}
+summ = summary(out)
 f = lambda k: float(summ[k])
-rates, cats = table("rates.csv"), table("catalogues.csv")
-ok = True
-def check(cond, what):
-    global ok
-    if not cond:
-        ok = False
-        print("check failed:", what)
+rates, cats = table(out, "rates.csv"), table(out, "catalogues.csv")
+check = Checks()
 
 lines = ["# Thermal against seismic displacement of Block 1 (measured by run.sh)",
          "", f"`parameter-files/masada/compare-block1.prm`: {len(cats)} "
@@ -81,15 +74,7 @@ check(f("thermal_rate_1") > f("seismic_rate_p84"), "thermal above seismic")
 check(abs(f("thermal_rate_initial_1") / 0.181 - 1) < 0.2,
       "thermal rate at L_W = 0 within 20 % of 0.181 mm/yr")
 check(f("wall_time") < 300, "whole run < 300 s")
-open(md, "w").write("\n".join(lines) + "\n")
-print("\n".join(lines))
-sys.exit(0 if ok else 1)
+finish(md, lines, check)
 PY
-if [[ -x "$build/unit-compare" ]]; then
-  echo
-  echo "unit-compare:"
-  "$build/unit-compare" | grep -E "event at|PASSED|FAILED" \
-    | tee -a "$here/results.md" || status=1
-  "$build/unit-compare" > /dev/null || status=1
-fi
+run_unit compare "event at"
 exit $status

@@ -18,12 +18,28 @@ namespace rockdda::coupling
 
 
   void
-  declare_block1_keys(dealii::ParameterHandler &prm)
+  declare_block1_keys(dealii::ParameterHandler &prm, const std::string &name)
   {
     using io::DoubleInterval;
     const Block1Geometry  g;
     const Block1Materials m;
     const auto num = [](const double x) { return io::format_number(x, 12); };
+    io::declare(prm,
+                "Distance",
+                "1000",
+                dealii::Patterns::Double(0., 1e6),
+                "m",
+                "Joyner-Boore distance of every event, 0 to 1e6 m (thesis: "
+                "1 km, an upper bound of the displacement).");
+    io::declare(prm,
+                "Site amplification",
+                "masada",
+                dealii::Patterns::Selection("masada|none"),
+                "-",
+                "Topographic amplification multiplied into the target "
+                "spectrum of the synthetic motions: masada (modes at 1.3, 3.8 "
+                "and 6.5 Hz, cut at 10 Hz; SiteAmplification::masada()) or "
+                "none.");
     io::declare(prm,
                 "Block length",
                 num(g.length),
@@ -70,6 +86,12 @@ namespace rockdda::coupling
                 "-",
                 "DDA runs at once, 0 to 256 (0: one per core); each run's "
                 "linear solver uses one thread.");
+    io::declare(prm,
+                "Plot",
+                "true",
+                dealii::Patterns::Bool(),
+                "-",
+                "Write " + name + ".png (scripts/plot_" + name + ".py).");
   }
 
 
@@ -85,6 +107,9 @@ namespace rockdda::coupling
     k.penalty                = prm.get_double("Penalty");
     k.dt                     = prm.get_double("Time step");
     k.threads                = prm.get_integer("Threads");
+    k.distance               = prm.get_double("Distance");
+    k.masada_site            = prm.get("Site amplification") == "masada";
+    k.plot                   = prm.get_bool("Plot");
     return k;
   }
 } // namespace rockdda::coupling

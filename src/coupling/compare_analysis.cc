@@ -184,20 +184,6 @@ namespace rockdda::coupling
                   "Mean interval between events of at least the minimum "
                   "magnitude, > 0 yr (thesis 5.6.2: 300 yr for Mw >= 6).");
       io::declare(prm,
-                  "Distance",
-                  "1000",
-                  Double(0., 1e6),
-                  "m",
-                  "Joyner-Boore distance of every event, 0 to 1e6 m (thesis: "
-                  "1 km, an upper bound of the seismic rate).");
-      io::declare(prm,
-                  "Site amplification",
-                  "masada",
-                  Selection("masada|none"),
-                  "-",
-                  "Topographic amplification of the synthetic motions: "
-                  "masada or none.");
-      io::declare(prm,
                   "Betas",
                   "0.45, 0.7",
                   List(DoubleInterval(0., true, 1., false), 1, 10, ","),
@@ -221,13 +207,7 @@ namespace rockdda::coupling
                   "m",
                   "Wedge length L_W (the crack opening filled by infill) at "
                   "the start of the window, 0 to 10 m.");
-      declare_block1_keys(prm);
-      io::declare(prm,
-                  "Plot",
-                  "true",
-                  Bool(),
-                  "-",
-                  "Write compare.png (scripts/plot_compare.py).");
+      declare_block1_keys(prm, "compare");
       prm.leave_subsection();
     }
 
@@ -245,8 +225,6 @@ namespace rockdda::coupling
       gr.min_magnitude = prm.get_double("Minimum magnitude");
       gr.max_magnitude = prm.get_double("Maximum magnitude");
       gr.recurrence    = prm.get_double("Recurrence interval");
-      distance         = prm.get_double("Distance");
-      masada_site      = prm.get("Site amplification") == "masada";
       betas            = number_list(prm, "Betas");
       alphas           = number_list(prm, "Thermal expansion coefficients");
       initial_wedge    = prm.get_double("Initial wedge length");
@@ -256,7 +234,9 @@ namespace rockdda::coupling
       controls.penalty        = block1.penalty;
       controls.dt             = block1.dt;
       threads                 = block1.threads;
-      plot                    = prm.get_bool("Plot");
+      distance                = block1.distance;
+      masada_site             = block1.masada_site;
+      plot                    = block1.plot;
       prm.leave_subsection();
       io::require(gr.max_magnitude > gr.min_magnitude,
                   prm_file,

@@ -86,13 +86,6 @@ namespace rockdda::coupling
                   "each 3 to 8.5 (1 to 20 values; thesis Fig. 5-18: 6.0, "
                   "6.5, 7.0, 7.5).");
       io::declare(prm,
-                  "Distance",
-                  "1000",
-                  Double(0., 1e6),
-                  "m",
-                  "Joyner-Boore distance of every event, 0 to 1e6 m (thesis: "
-                  "1 km).");
-      io::declare(prm,
                   "Number of realisations",
                   "12",
                   Integer(1, 10000),
@@ -106,14 +99,6 @@ namespace rockdda::coupling
                   "-",
                   "Seed of the first realisation, 0 to 2147483647; "
                   "realisation i (1-based) uses seed + i - 1.");
-      io::declare(prm,
-                  "Site amplification",
-                  "masada",
-                  Selection("masada|none"),
-                  "-",
-                  "Topographic amplification multiplied into the target "
-                  "spectrum: masada (modes at 1.3, 3.8 and 6.5 Hz, cut at "
-                  "10 Hz; SiteAmplification::masada()) or none.");
       io::declare(prm,
                   "Stress parameter",
                   num(options.motion.stress_parameter),
@@ -166,13 +151,7 @@ namespace rockdda::coupling
                   Integer(0, 100000),
                   "-",
                   "Static DDA steps under gravity before t = 0, 0 to 100000.");
-      declare_block1_keys(prm);
-      io::declare(prm,
-                  "Plot",
-                  "true",
-                  Bool(),
-                  "-",
-                  "Write earthquakes.png (scripts/plot_earthquakes.py).");
+      declare_block1_keys(prm, "earthquakes");
       prm.leave_subsection();
     }
 
@@ -184,11 +163,8 @@ namespace rockdda::coupling
     {
       prm.enter_subsection("Earthquakes");
       options.magnitudes   = number_list(prm, "Magnitudes");
-      options.distance     = prm.get_double("Distance");
       options.realisations = prm.get_integer("Number of realisations");
       options.first_seed   = prm.get_integer("Seed");
-      if (prm.get("Site amplification") == "none")
-        options.motion.site = seismic::SiteAmplification();
       options.motion.stress_parameter = prm.get_double("Stress parameter");
       recurrence              = number_list(prm, "Recurrence intervals");
       max_distance            = prm.get_double("Maximum distance");
@@ -204,7 +180,10 @@ namespace rockdda::coupling
       options.penalty         = block1.penalty;
       options.dt              = block1.dt;
       options.threads         = block1.threads;
-      plot                    = prm.get_bool("Plot");
+      options.distance        = block1.distance;
+      plot                    = block1.plot;
+      if (!block1.masada_site)
+        options.motion.site = seismic::SiteAmplification();
       prm.leave_subsection();
 
       for (std::size_t i = 1; i < options.magnitudes.size(); ++i)

@@ -23,13 +23,15 @@ namespace rockdda::coupling
   number_list(dealii::ParameterHandler &prm, const std::string &key);
 
   /**
-   * Declare 'Block length', 'Block height', 'Slope', 'Friction angle'
-   * (Block1Geometry and Block1Materials defaults) and 'Penalty', 'Time
-   * step', 'Threads' (the calibrated 100 GN/m and 0.005 s; 0 threads = one
-   * per core) in the current subsection.
+   * Declare 'Distance' and 'Site amplification' of the events, 'Block
+   * length', 'Block height', 'Slope', 'Friction angle' (Block1Geometry and
+   * Block1Materials defaults), 'Penalty', 'Time step', 'Threads' (the
+   * calibrated 100 GN/m and 0.005 s; 0 threads = one per core) and 'Plot'
+   * (write @p name.png with scripts/plot_@p name.py) in the current
+   * subsection.
    */
   void
-  declare_block1_keys(dealii::ParameterHandler &prm);
+  declare_block1_keys(dealii::ParameterHandler &prm, const std::string &name);
 
   /// What declare_block1_keys() declared, read from the current subsection.
   struct Block1Keys
@@ -38,6 +40,10 @@ namespace rockdda::coupling
     Block1Materials materials;
     double          penalty = 1e11, dt = 0.005;
     unsigned int    threads = 0;
+    /// Joyner-Boore distance of the events (m); Masada site or none.
+    double distance    = 1e3;
+    bool   masada_site = true;
+    bool   plot        = true;
   };
 
   /// Read the keys of declare_block1_keys() from the current subsection.
