@@ -23,6 +23,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace rockdda::coupling
 {
@@ -244,11 +245,18 @@ namespace rockdda::coupling
                     "with a diagnosis.");
         io::declare(prm,
                     "Pseudo time step",
-                    "1",
-                    positive,
+                    "0",
+                    DoubleInterval::right_open(
+                      0., std::numeric_limits<double>::infinity()),
                     "s",
-                    "Step of the static DDA steps (> 0): only the inertia "
-                    "term 2 M / dt^2 that regularises them depends on it.");
+                    "Step of the static DDA steps (>= 0): only the inertia "
+                    "term 2 M / dt^2 that regularises them depends on it. "
+                    "0: automatic, sqrt(2 M / (1e-9 p)) with M the mass of "
+                    "the heaviest block slice (kg/m) and p the normal "
+                    "penalty (N/m), the quasi-static limit (about 19 s for "
+                    "Block 1). A step of 1 s or less adds enough inertia to "
+                    "change which contacts slide on the way to each "
+                    "equilibrium, and with it the slip.");
         io::declare(prm,
                     "Contact penalty",
                     "0",
@@ -594,6 +602,7 @@ namespace rockdda::coupling
                             "-");
         context.summary.add("heat_seconds", heat_seconds, "s");
         context.summary.add("dda_seconds", dda_seconds, "s");
+        context.summary.add("pseudo_time_step", run_.time_step(), "s");
         context.summary.add("dda_steps",
                             static_cast<double>(run_.dda().n_steps),
                             "-");

@@ -67,6 +67,7 @@ namespace rockdda::dda
             r.shear_force     = o.shear_force;
             r.slide_direction = o.slide_direction;
             r.broken          = o.broken;
+            r.held            = o.held;
             if (o.state == ContactState::locked)
               r.xi_ref = o.xi_ref;
           }

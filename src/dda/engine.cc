@@ -418,7 +418,7 @@ namespace rockdda::dda
           factor[c]
             = flips[c] >= 2 ? std::pow(10., std::min(flips[c] - 1, 2)) : 1.;
           hold[c] = 0.;
-          if (flips[c] >= static_cast<int>(ctrl.hold_after))
+          if (flips[c] >= static_cast<int>(ctrl.hold_after) || contacts[c].held)
             {
               const auto &g = contacts[c].geometry;
               hold[c]
@@ -658,6 +658,13 @@ namespace rockdda::dda
     for (std::size_t c = 0; c < contacts.size(); ++c)
       {
         Contact &ct = contacts[c];
+        // Static steps (dynamic control 0) are an iteration towards
+        // equilibrium: a contact held in one stays held in the next (its
+        // hold ends when it changes state beyond it). Dynamic steps carry
+        // their history in the velocities, and no hold.
+        ct.held = ctrl.dynamic == 0.
+                  && (flips[c] >= static_cast<int>(ctrl.hold_after)
+                      || (ct.held && ct.state == ct.state_at_start));
         if (ct.state == ContactState::sliding)
           {
             // Work of the friction force over this step's slip.

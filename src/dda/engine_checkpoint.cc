@@ -117,7 +117,8 @@ namespace rockdda::dda
         w.put(c.normal_force);
         w.put(c.shear_force);
         w.put<std::int32_t>(c.slide_direction);
-        w.put<std::uint8_t>(c.broken ? 1 : 0);
+        // Flags: bit 0 broken, bit 1 held (older checkpoints: 0).
+        w.put<std::uint8_t>((c.broken ? 1 : 0) | (c.held ? 2 : 0));
         w.put<std::int32_t>(c.joint);
       }
     w.put(t);
@@ -211,7 +212,9 @@ namespace rockdda::dda
         c.normal_force     = r.get<double>();
         c.shear_force      = r.get<double>();
         c.slide_direction  = r.get<std::int32_t>();
-        c.broken           = r.get<std::uint8_t>() != 0;
+        const auto flags   = r.get<std::uint8_t>();
+        c.broken           = (flags & 1) != 0;
+        c.held             = (flags & 2) != 0;
         c.joint            = r.get<std::int32_t>();
         const int n_blocks = static_cast<int>(s.blocks.size());
         if (g.block_i < 0 || g.block_i >= n_blocks || g.block_j < 0

@@ -148,3 +148,54 @@ TEST(RatchetCoupled, RestartIsIdentical)
   EXPECT_EQ(second.displacement(), straight.displacement());
   EXPECT_EQ(second.aperture(), straight.aperture());
 }
+
+
+
+// A narrow crack (50 mm at the top, 5 mm at the bedding plane) jams its
+// light infill wedge between the block and the cliff: its contacts sit at
+// the friction limit at forces of the order of its own weight, a 1e-3 of
+// the block's. Each sample must still reach a true equilibrium (a static
+// step that moves no vertex by more than the tolerance), without the
+// driver's fallbacks: before contacts held in one static step stayed held
+// in the next, successive static steps flipped the wedge's contacts and
+// cycled between two states (9 of 48 samples needed a smaller pseudo time
+// step and 10 were accepted as only stationary).
+TEST(RatchetCoupled, NarrowCrackReachesEquilibriumEverySample)
+{
+  RatchetMaterials m;
+  SeasonalForcing  f;
+  RatchetGeometry  g;
+  g.crack_top_width              = 0.05;
+  g.crack_bottom_width           = 0.005;
+  const RatchetScene       scene = make_ratchet_scene(g, m);
+  PeriodicBlockTemperature T(scene.heat_blocks, f, cheap_heat());
+  RatchetRun               run(scene, T, f, 8e-6, RatchetControls());
+  for (int k = 0; k < 2; ++k)
+    {
+      const CycleRecord r = run.run_cycle();
+      EXPECT_EQ(r.regularised_samples, 0u) << "cycle " << r.cycle;
+      EXPECT_EQ(r.stationary_samples, 0u) << "cycle " << r.cycle;
+    }
+}
+
+
+
+// The automatic pseudo time step is the quasi-static limit and scale-free:
+// 2 M / dt^2 = 1e-9 p for the heaviest slice, so dt grows as the square
+// root of the slice's mass over the penalty.
+TEST(RatchetCoupled, AutomaticPseudoTimeStepIsQuasiStatic)
+{
+  RatchetMaterials   m;
+  RatchetGeometry    g;
+  const RatchetScene scene = make_ratchet_scene(g, m);
+  const double       p     = 4e11;
+  const double       dt    = RatchetRun::quasi_static_time_step(scene, p);
+  double             mass  = 0.;
+  for (const int b : scene.block_slices)
+    mass
+      = std::max(mass, m.rock.density * scene.blocks.blocks[b].polygon.area());
+  EXPECT_NEAR(2. * mass / (dt * dt), 1e-9 * p, 1e-12 * p);
+  EXPECT_NEAR(RatchetRun::quasi_static_time_step(scene, 4. * p),
+              0.5 * dt,
+              1e-12 * dt);
+}

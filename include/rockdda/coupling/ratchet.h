@@ -23,8 +23,9 @@ namespace rockdda::coupling
     /// Normal contact penalty (N/m); 0 = automatic (dda::automatic_penalty).
     double penalty = 0.;
     /// Pseudo time step of the static steps (s): only the inertia term
-    /// 2 M / dt^2 that regularises them depends on it.
-    double pseudo_time_step = 1.;
+    /// 2 M / dt^2 that regularises them depends on it. 0 = automatic
+    /// (RatchetRun::quasi_static_time_step()): the quasi-static limit.
+    double pseudo_time_step = 0.;
     /// A sample is in equilibrium when a static step moves no vertex by more
     /// than this fraction of the block height (1e-8: 0.15 um for Block 1,
     /// 1e-3 of the ratchet per cycle; tighter tolerances meet the
@@ -97,6 +98,17 @@ namespace rockdda::coupling
     /// mean of its base corners' displacements (the slip).
     double
     displacement() const;
+    /// The automatic pseudo time step of @p scene's static steps (s) at the
+    /// normal penalty @p penalty (N/m): 2 M / dt^2 = 1e-9 p for the
+    /// heaviest block slice, the quasi-static limit.
+    static double
+    quasi_static_time_step(const RatchetScene &scene, const double penalty);
+    /// The pseudo time step of the static steps in use (s).
+    double
+    time_step() const
+    {
+      return pseudo_time_step;
+    }
     /// Change of the crack aperture at the top since the start (m).
     double
     aperture() const;
@@ -147,8 +159,11 @@ namespace rockdda::coupling
     std::unique_ptr<dda::DdaSystem> engine;
     unsigned int                    n_cycles  = 0;
     double                          aperture0 = 0., last_displacement = 0.;
-    double                          tolerance  = 0.;
-    double                          block_area = 0.;
+    double                          tolerance = 0.;
+    /// The pseudo time step in use (s): RatchetControls::pseudo_time_step
+    /// or, if that is 0, quasi_static_time_step().
+    double pseudo_time_step = 0.;
+    double block_area       = 0.;
     /// Sum of the base corners' positions after settling (m).
     geometry::Point base_corners0 = geometry::Point::Zero();
   };

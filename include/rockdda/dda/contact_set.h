@@ -42,6 +42,14 @@ namespace rockdda::dda
     /// with the contact sliding or opened (trial states of the open-close
     /// iteration do not break it).
     bool broken = false;
+    /// Held across static steps (dynamic control 0): the contact cycled in
+    /// the open-close iteration of an accepted static step and was held
+    /// there. It keeps the hold in the following static steps, until a
+    /// force beyond the hold tolerance changes its state: otherwise a
+    /// static step that starts from a held state flips it again, and
+    /// successive steps cycle between two equilibria (a contact hysteresis
+    /// of p_s x hold_fraction x the block size, Doolin & Sitar 2004).
+    bool held = false;
     /// Joint material index.
     int joint = 0;
   };
