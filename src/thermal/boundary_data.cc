@@ -1,5 +1,6 @@
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
+#include <rockdda/io/text.h>
 #include <rockdda/thermal/boundary_data.h>
 
 #include <algorithm>
@@ -12,22 +13,10 @@ namespace rockdda::thermal
 {
   namespace
   {
-    std::vector<std::string>
-    split(const std::string &text, const char separator)
-    {
-      std::vector<std::string> parts;
-      std::string              part;
-      std::istringstream       in(text);
-      while (std::getline(in, part, separator))
-        parts.push_back(part);
-      return parts;
-    }
-
     bool
-    to_double(std::string token, double &v)
+    to_double(const std::string &text, double &v)
     {
-      token.erase(0, token.find_first_not_of(" \t\r"));
-      token.erase(token.find_last_not_of(" \t\r") + 1);
+      const std::string token = io::trim(text);
       if (token.empty())
         return false;
       std::size_t used = 0;
@@ -49,11 +38,11 @@ namespace rockdda::thermal
   parse_sinusoids(const std::string &text, const std::string &where)
   {
     std::vector<Sinusoid> terms;
-    for (const auto &term : split(text, ';'))
+    for (const auto &term : io::split_fields(text, ';'))
       {
         if (term.find_first_not_of(" \t") == std::string::npos)
           continue;
-        const auto parts = split(term, ',');
+        const auto parts = io::split_fields(term, ',');
         Sinusoid   s;
         if (parts.size() != 3 || !to_double(parts[0], s.amplitude)
             || !to_double(parts[1], s.period) || !to_double(parts[2], s.phase))

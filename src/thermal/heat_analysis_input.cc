@@ -8,6 +8,7 @@
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
 #include <rockdda/io/progress.h>
+#include <rockdda/io/text.h>
 #include <rockdda/thermal/boundary_data.h>
 
 #include <deal.II/base/mpi.h>
@@ -22,28 +23,6 @@ namespace rockdda::thermal::internal
 {
   namespace
   {
-    std::string
-    trim(const std::string &s)
-    {
-      const auto a = s.find_first_not_of(" \t");
-      if (a == std::string::npos)
-        return "";
-      return s.substr(a, s.find_last_not_of(" \t") - a + 1);
-    }
-
-    std::vector<std::string>
-    split(const std::string &text, const char separator)
-    {
-      std::vector<std::string> parts;
-      std::string              part;
-      std::istringstream       in(text);
-      while (std::getline(in, part, separator))
-        parts.push_back(trim(part));
-      if (!text.empty() && text.back() == separator)
-        parts.push_back("");
-      return parts;
-    }
-
     double
     number(const std::string &text,
            const std::string &prm_file,
@@ -53,13 +32,13 @@ namespace rockdda::thermal::internal
       double      v    = 0.;
       try
         {
-          v = std::stod(trim(text), &used);
+          v = std::stod(io::trim(text), &used);
         }
       catch (const std::exception &)
         {
           used = 0;
         }
-      if (used == 0 || used != trim(text).size() || !std::isfinite(v))
+      if (used == 0 || used != io::trim(text).size() || !std::isfinite(v))
         throw InputError(prm_file + ": key '" + key + "': '" + text
                          + "' is not a finite number");
       return v;
@@ -72,11 +51,11 @@ namespace rockdda::thermal::internal
            const std::string &key)
     {
       std::vector<Point2> result;
-      for (const auto &p : split(text, ';'))
+      for (const auto &p : io::split_fields(text, ';'))
         {
           if (p.empty())
             continue;
-          const auto xy = split(p, ',');
+          const auto xy = io::split_fields(p, ',');
           if (xy.size() != 2)
             throw InputError(prm_file + ": key '" + key + "': '" + p
                              + "' is not a point 'x, y' (m)");
@@ -92,7 +71,7 @@ namespace rockdda::thermal::internal
             const std::string &key)
     {
       std::vector<double> result;
-      for (const auto &v : split(text, ','))
+      for (const auto &v : io::split_fields(text, ','))
         if (!v.empty())
           result.push_back(number(v, prm_file, key));
       return result;
@@ -114,7 +93,7 @@ namespace rockdda::thermal::internal
     // Materials.
     prm.enter_subsection("Materials");
     {
-      const auto names = split(prm.get("Names"), ',');
+      const auto names = io::split_fields(prm.get("Names"), ',');
       const auto k     = numbers(prm.get("Thermal conductivity"),
                              prm_file,
                              "Heat/Materials/Thermal conductivity");
@@ -147,9 +126,9 @@ namespace rockdda::thermal::internal
     // Geometry.
     prm.enter_subsection("Geometry");
     {
-      const auto polys = split(prm.get("Blocks"), '|');
-      const auto tags  = split(prm.get("Boundary tags"), '|');
-      const auto mats  = split(prm.get("Block materials"), ',');
+      const auto polys = io::split_fields(prm.get("Blocks"), '|');
+      const auto tags  = io::split_fields(prm.get("Boundary tags"), '|');
+      const auto mats  = io::split_fields(prm.get("Block materials"), ',');
       if (tags.size() != polys.size())
         throw InputError(prm_file
                          + ": key 'Heat/Geometry/Boundary tags' "
@@ -168,7 +147,7 @@ namespace rockdda::thermal::internal
           Block block;
           block.name      = "block " + std::to_string(b + 1);
           block.vertices  = points(polys[b], prm_file, "Heat/Geometry/Blocks");
-          block.edge_tags = split(tags[b], ',');
+          block.edge_tags = io::split_fields(tags[b], ',');
           if (block.edge_tags.size() != block.vertices.size())
             throw InputError(
               prm_file + ": key 'Heat/Geometry/Boundary tags': " + block.name
@@ -207,7 +186,7 @@ namespace rockdda::thermal::internal
     p.degree             = prm.get_integer("Finite element degree");
     p.coarse_cell_size   = prm.get_double("Coarse cell size");
     p.global_refinements = prm.get_integer("Global refinements");
-    for (const auto &t : split(prm.get("Refine near tags"), ','))
+    for (const auto &t : io::split_fields(prm.get("Refine near tags"), ','))
       if (!t.empty())
         p.refine_near_tags.push_back(t);
     p.band_width             = prm.get_double("Band width");
@@ -331,7 +310,7 @@ namespace rockdda::thermal::internal
         const std::string where   = "Heat/" + section;
         prm.enter_subsection(section);
         BoundaryCondition bc;
-        bc.tag = trim(prm.get("Tag"));
+        bc.tag = io::trim(prm.get("Tag"));
         if (bc.tag.empty())
           {
             prm.leave_subsection();
@@ -388,11 +367,11 @@ namespace rockdda::thermal::internal
         else
           {
             const std::string file = prm.get("CSV file");
-            if (trim(file).empty())
+            if (io::trim(file).empty())
               throw InputError(prm_file + ": key '" + where
                                + "/CSV file' is empty but 'Data' is csv");
             const auto series = std::make_shared<TimeSeries>(read_time_series(
-              io::resolve_path(trim(file), prm_file, where + "/CSV file"),
+              io::resolve_path(io::trim(file), prm_file, where + "/CSV file"),
               prm.get_double("CSV time unit")));
             if (series->time.front() > first_time + 1e-6
                 || series->time.back() < end_time - 1e-6)

@@ -10,6 +10,7 @@
 #include <rockdda/io/parameters.h>
 #include <rockdda/io/progress.h>
 #include <rockdda/io/provenance.h>
+#include <rockdda/io/text.h>
 #include <rockdda/seismic/record.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -132,6 +133,23 @@ TEST(Output, CsvWriterQuotesFieldsAsRfc4180)
   EXPECT_EQ(rockdda::io::split_csv_record(line),
             (std::vector<std::string>{"x", "0.1", "a,\"b\""}));
   EXPECT_THROW(rockdda::io::split_csv_record("\"open"), std::invalid_argument);
+}
+
+
+
+// A parameter's list text: trimmed fields; a trailing separator is a last,
+// empty field (so that a count check sees it); no text, no field.
+TEST(Text, SplitFields)
+{
+  using rockdda::io::split_fields;
+  using V = std::vector<std::string>;
+  EXPECT_EQ(split_fields(" 0, 0 ; 4,0;\t4, 2 ", ';'),
+            (V{"0, 0", "4,0", "4, 2"}));
+  EXPECT_EQ(split_fields("a, b,", ','), (V{"a", "b", ""}));
+  EXPECT_EQ(split_fields("", ','), V{});
+  EXPECT_EQ(split_fields(" single ", '|'), V{"single"});
+  EXPECT_EQ(rockdda::io::trim(" \t x y \r"), "x y");
+  EXPECT_EQ(rockdda::io::trim("   "), "");
 }
 
 

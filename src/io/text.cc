@@ -1,0 +1,34 @@
+/**
+ * @file
+ * Splitting a parameter's list text into trimmed fields (see text.h).
+ */
+#include <rockdda/io/text.h>
+
+#include <sstream>
+
+namespace rockdda::io
+{
+  std::string
+  trim(const std::string &text)
+  {
+    const auto first = text.find_first_not_of(" \t\r");
+    if (first == std::string::npos)
+      return "";
+    return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+  }
+
+
+
+  std::vector<std::string>
+  split_fields(const std::string &text, const char separator)
+  {
+    std::vector<std::string> fields;
+    std::string              field;
+    std::istringstream       in(text);
+    while (std::getline(in, field, separator))
+      fields.push_back(trim(field));
+    if (!text.empty() && text.back() == separator)
+      fields.emplace_back();
+    return fields;
+  }
+} // namespace rockdda::io
