@@ -2,9 +2,9 @@
  * @file
  * The assembly of the heat equation for both linear-algebra types (see
  * heat_assembly.h): cell matrices, fixed integrals, loads, Dirichlet data
- * and the joint contact conductance, with the explicit instantiations for
- * dealii::Vector<double> (serial) and the Trilinos MPI vector
- * (distributed).
+ * with the explicit instantiations for dealii::Vector<double> (serial) and
+ * the Trilinos MPI vector (distributed). The joint contact conductance is
+ * in heat_joints.cc.
  */
 #include "heat_assembly.h"
 
@@ -434,135 +434,6 @@ namespace rockdda::thermal::internal
                                    + "' is not finite at t = "
                                    + io::format_number(t, 8) + " s");
         v[dofs[d]] = g;
-      }
-  }
-
-
-
-  std::vector<JointPair>
-  find_joint_pairs(const DoFHandler<2>     &dof_handler,
-                   const types::boundary_id joint_id)
-  {
-    std::vector<JointPair> pairs;
-    // Joint faces with their end points.
-    struct JointFace
-    {
-      DoFHandler<2>::active_cell_iterator cell;
-      Point<2>                            p0, p1;
-    };
-    std::vector<JointFace> faces;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      for (const auto f : cell->face_indices())
-        if (cell->face(f)->at_boundary()
-            && cell->face(f)->boundary_id() == joint_id)
-          faces.push_back(
-            {cell, cell->face(f)->vertex(0), cell->face(f)->vertex(1)});
-    // Sort by the x of the face centre so that only nearby faces are
-    // compared (the overlap test is exact for any pair).
-    std::sort(faces.begin(), faces.end(), [](const auto &u, const auto &v) {
-      return std::min(u.p0[0], u.p1[0]) < std::min(v.p0[0], v.p1[0]);
-    });
-    const QGauss<1> gauss(dof_handler.get_fe().degree + 1);
-    for (std::size_t i = 0; i < faces.size(); ++i)
-      {
-        const auto        &fa   = faces[i];
-        const double       len  = fa.p0.distance(fa.p1);
-        const double       tol  = 1e-6 * len;
-        const Tensor<1, 2> t    = (fa.p1 - fa.p0) / len;
-        const double       xmax = std::max(fa.p0[0], fa.p1[0]) + tol;
-        for (std::size_t j = i + 1; j < faces.size(); ++j)
-          {
-            const auto &fb = faces[j];
-            if (std::min(fb.p0[0], fb.p1[0]) > xmax)
-              break;
-            if (fb.cell->material_id() == fa.cell->material_id())
-              continue;
-            // Collinear (both end points of b on the line of a)?
-            const auto offset = [&](const Point<2> &q) {
-              const Tensor<1, 2> d = q - fa.p0;
-              return std::abs(d[0] * t[1] - d[1] * t[0]);
-            };
-            if (offset(fb.p0) > tol || offset(fb.p1) > tol)
-              continue;
-            const double s0 = (fb.p0 - fa.p0) * t, s1 = (fb.p1 - fa.p0) * t;
-            const double lo = std::max(0., std::min(s0, s1));
-            const double hi = std::min(len, std::max(s0, s1));
-            if (hi - lo <= tol)
-              continue;
-            JointPair pair;
-            pair.a = fa.cell;
-            pair.b = fb.cell;
-            for (unsigned int q = 0; q < gauss.size(); ++q)
-              {
-                const double s = lo + gauss.point(q)[0] * (hi - lo);
-                pair.points.push_back(fa.p0 + s * t);
-                pair.weights.push_back(gauss.weight(q) * (hi - lo));
-              }
-            pairs.push_back(std::move(pair));
-          }
-      }
-    return pairs;
-  }
-
-
-
-  std::vector<types::global_dof_index>
-  joint_pair_dofs(const JointPair &pair)
-  {
-    const unsigned int dpc = pair.a->get_fe().n_dofs_per_cell();
-    std::vector<types::global_dof_index> dofs(2 * dpc), dofs_b(dpc);
-    std::vector<types::global_dof_index> dofs_a(dpc);
-    pair.a->get_dof_indices(dofs_a);
-    pair.b->get_dof_indices(dofs_b);
-    std::copy(dofs_a.begin(), dofs_a.end(), dofs.begin());
-    std::copy(dofs_b.begin(), dofs_b.end(), dofs.begin() + dpc);
-    return dofs;
-  }
-
-
-
-  void
-  assemble_joint_conductance(const HeatParameters         &prm,
-                             const Mapping<2>             &mapping,
-                             const FiniteElement<2>       &fe,
-                             const AffineConstraints<>    &hanging,
-                             const std::vector<JointPair> &pairs,
-                             SparseMatrix<double>         &stiffness)
-  {
-    const unsigned int  dpc = fe.n_dofs_per_cell();
-    const double        hj  = prm.joint_conductance;
-    FullMatrix<double>  pair_matrix(2 * dpc, 2 * dpc);
-    std::vector<double> jump(2 * dpc);
-    for (const auto &pair : pairs)
-      {
-        std::vector<Point<2>> unit_a, unit_b;
-        for (const auto &x : pair.points)
-          {
-            unit_a.push_back(GeometryInfo<2>::project_to_unit_cell(
-              mapping.transform_real_to_unit_cell(pair.a, x)));
-            unit_b.push_back(GeometryInfo<2>::project_to_unit_cell(
-              mapping.transform_real_to_unit_cell(pair.b, x)));
-          }
-        FEValues<2> va(mapping, fe, Quadrature<2>(unit_a), update_values);
-        FEValues<2> vb(mapping, fe, Quadrature<2>(unit_b), update_values);
-        va.reinit(pair.a);
-        vb.reinit(pair.b);
-        pair_matrix = 0.;
-        for (unsigned int q = 0; q < pair.points.size(); ++q)
-          {
-            for (unsigned int i = 0; i < dpc; ++i)
-              {
-                jump[i]       = va.shape_value(i, q);
-                jump[dpc + i] = -vb.shape_value(i, q);
-              }
-            const double w = hj * pair.weights[q];
-            for (unsigned int i = 0; i < 2 * dpc; ++i)
-              for (unsigned int j = 0; j < 2 * dpc; ++j)
-                pair_matrix(i, j) += w * jump[i] * jump[j];
-          }
-        hanging.distribute_local_to_global(pair_matrix,
-                                           joint_pair_dofs(pair),
-                                           stiffness);
       }
   }
 

@@ -5,7 +5,8 @@
  * distributed (Trilinos) solver: the cell mass and stiffness matrices with
  * the convective (Robin) term, the fixed integrals (heat capacity, Robin
  * weights, uniform boundary loads, block moments), the time-dependent load
- * vector, the Dirichlet data and the joint contact conductance. The
+ * vector, the Dirichlet data and the joint contact conductance
+ * (heat_joints.cc). The
  * templates are defined in heat_assembly.cc and instantiated there for the
  * two linear-algebra types (VectorType = dealii::Vector<double> or
  * dealii::TrilinosWrappers::MPI::Vector); loops run over the locally owned
@@ -23,8 +24,10 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
 
 #include <array>
 #include <functional>
@@ -59,6 +62,26 @@ namespace rockdda::thermal::internal
                          const std::vector<dealii::types::global_dof_index> &,
                          const dealii::FullMatrix<double> &,
                          const dealii::FullMatrix<double> &)>;
+
+  /// A CellMatrixSink that adds the cell matrices into @p mass and
+  /// @p stiffness (serial or Trilinos), condensing the @p hanging nodes.
+  template <typename MatrixType>
+  CellMatrixSink
+  add_to_matrices(const dealii::AffineConstraints<> &hanging,
+                  MatrixType                        &mass,
+                  MatrixType                        &stiffness)
+  {
+    return
+      [h = &hanging,
+       m = &mass,
+       k = &stiffness](const dealii::DoFHandler<2>::active_cell_iterator &,
+                       const std::vector<dealii::types::global_dof_index> &dofs,
+                       const dealii::FullMatrix<double> &cell_mass,
+                       const dealii::FullMatrix<double> &cell_stiff) {
+        h->distribute_local_to_global(cell_mass, dofs, *m);
+        h->distribute_local_to_global(cell_stiff, dofs, *k);
+      };
+  }
 
   /**
    * Cell mass rho c_p phi_i phi_j and stiffness lambda grad phi_i grad phi_j
@@ -162,6 +185,54 @@ namespace rockdda::thermal::internal
                              const dealii::AffineConstraints<> &hanging,
                              const std::vector<JointPair>      &pairs,
                              dealii::SparseMatrix<double>      &stiffness);
+
+  /**
+   * The joint contact conductance of the distributed solver, whose two
+   * faces of a joint may lie on different ranks (their cells are not
+   * neighbours, so neither is a ghost of the other). setup() publishes
+   * each rank's joint faces (end points, cell vertices, dofs and their
+   * constraint lines) to all ranks and pairs the rank's own faces with
+   * the faces of other blocks; each rank assembles the rows of its own
+   * faces, so that every pair enters the matrix once. The shape values at
+   * the other face come from its cell's vertices (MappingQ1, straight
+   * cells). heat_joints.cc.
+   */
+  class DistributedJoints
+  {
+  public:
+    /// Find the pairs on the current mesh (collective).
+    void
+    setup(const HeatParameters              &prm,
+          const dealii::DoFHandler<2>       &dof_handler,
+          const dealii::AffineConstraints<> &hanging,
+          const dealii::AffineConstraints<> &constraints_hom,
+          const dealii::types::boundary_id   joint_id,
+          const MPI_Comm                     comm);
+
+    /// Add the entries of the pairs to @p dsp (before it is distributed).
+    void
+    add_sparsity(dealii::DynamicSparsityPattern &dsp) const;
+
+    /// Add @p factor times the conductance matrix to @p matrix, with the
+    /// hanging-node constraints or, if @p homogeneous, with the hanging
+    /// and homogeneous Dirichlet ones (not compressed).
+    void
+    add_to(dealii::TrilinosWrappers::SparseMatrix &matrix,
+           const double                            factor,
+           const bool                              homogeneous) const;
+
+  private:
+    /// One pair: h_j int jump_i jump_j over the rows of the own face's
+    /// dofs and the columns of both faces' dofs.
+    struct Pair
+    {
+      std::vector<dealii::types::global_dof_index> rows, columns;
+      dealii::FullMatrix<double>                   matrix;
+    };
+    std::vector<Pair> pairs;
+    /// The constraints of every dof of the pairs.
+    dealii::AffineConstraints<> joint_hanging, joint_hom;
+  };
 } // namespace rockdda::thermal::internal
 
 #endif

@@ -11,6 +11,8 @@
 #include <rockdda/io/output.h>
 #include <rockdda/thermal/heat_solver.h>
 
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -223,6 +225,20 @@ namespace rockdda::thermal::internal
       }
   }
 
+
+  /**
+   * Advance solver @p s (the serial or the distributed one; members prm,
+   * time, solution, mass, stiffness, hanging, dirichlet, fixed, stats,
+   * boundary_heat, source_heat, rhs_old_valid and assemble_rhs()) from its
+   * time to @p end_time with ARKODE (heat_arkode.cc); @p owned are its
+   * locally owned dofs, @p comm its communicator.
+   */
+  template <typename Solver>
+  void
+  arkode_advance(Solver                 &s,
+                 const double            end_time,
+                 const dealii::IndexSet &owned,
+                 const MPI_Comm          comm);
 
   /**
    * The theta of the next step: 1/2 (Crank-Nicolson) or 1 (backward

@@ -177,6 +177,9 @@ namespace rockdda::thermal
   {
     if (distributed)
       return distributed->method_description();
+    if (impl->prm.stepper == TimeStepper::arkode)
+      return internal::stepper_description(impl->prm)
+             + "; Newton systems GMRES + UMFPACK (direct)";
     return internal::stepper_description(impl->prm) + "; linear solver "
            + (impl->prm.direct_solver ? "sparse Cholesky (Eigen LDLT, direct)"
                                       : "CG + SSOR");

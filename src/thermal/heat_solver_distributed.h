@@ -5,8 +5,8 @@
  * and vectors) and the matrices and solver of one theta step. Its member
  * functions live in the files named after what they do:
  * heat_solver_mpi.cc (setup, probes, interface), heat_time_stepping.cc
- * (theta scheme), heat_adaptivity.cc (Kelly refinement) and
- * heat_checkpoint.cc (saving and restoring the state).
+ * (theta scheme), heat_arkode.cc (ARKODE), heat_adaptivity.cc (Kelly
+ * refinement) and heat_checkpoint.cc (saving and restoring the state).
  */
 #ifndef ROCKDDA_THERMAL_HEAT_SOLVER_DISTRIBUTED_H
 #define ROCKDDA_THERMAL_HEAT_SOLVER_DISTRIBUTED_H
@@ -88,6 +88,12 @@ namespace rockdda::thermal::internal
       increment_old;
     mutable DistributedVector ghosted;
     mutable bool              ghosted_valid = false;
+
+    /// The joint contact conductance ('Joint contact = conductance').
+    DistributedJoints joints;
+    /// Mass and stiffness matrices (hanging nodes condensed), assembled
+    /// for ARKODE only.
+    dealii::TrilinosWrappers::SparseMatrix mass, stiffness;
 
     DirichletDofs                     dirichlet;
     bool                              any_dirichlet = false;

@@ -87,14 +87,6 @@ namespace rockdda::thermal::internal
       , timer(timer_stream, TimerOutput::never, TimerOutput::wall_times)
   {
     validate_parameters(prm);
-    if (prm.stepper == TimeStepper::arkode)
-      throw InputError("heat: ARKODE is not available in the distributed "
-                       "(MPI) solver; use crank-nicolson or backward-euler "
-                       "with mpirun, or run on one rank without 'amg'");
-    if (prm.joint_contact == HeatParameters::JointContact::conductance)
-      throw InputError("heat: 'Joint contact = conductance' is not "
-                       "available in the distributed (MPI) solver; run on "
-                       "one rank without 'amg'");
     for (const auto &m : prm.materials)
       kappa_max = std::max(kappa_max, m.diffusivity());
 
@@ -148,6 +140,12 @@ namespace rockdda::thermal::internal
 
     dsp.reinit(relevant.size(), relevant.size(), relevant);
     DoFTools::make_sparsity_pattern(dof_handler, dsp, hanging, true);
+    if (prm.joint_contact == HeatParameters::JointContact::conductance)
+      {
+        joints.setup(
+          prm, dof_handler, hanging, constraints_hom, mesh.joint_id, comm);
+        joints.add_sparsity(dsp);
+      }
     SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
 
     for (VectorType *v : {&solution,
@@ -172,8 +170,23 @@ namespace rockdda::thermal::internal
   void
   DistributedHeat::Impl::assemble_fixed()
   {
-    assemble_fixed_integrals(
-      prm, mapping, dof_handler, hanging, owned, comm, fixed);
+    if (prm.stepper != TimeStepper::arkode)
+      return assemble_fixed_integrals(
+        prm, mapping, dof_handler, hanging, owned, comm, fixed);
+    // ARKODE works on the mass and stiffness matrices themselves.
+    mass.reinit(owned, owned, dsp, comm);
+    stiffness.reinit(owned, owned, dsp, comm);
+    assemble_fixed_integrals(prm,
+                             mapping,
+                             dof_handler,
+                             hanging,
+                             owned,
+                             comm,
+                             fixed,
+                             add_to_matrices(hanging, mass, stiffness));
+    joints.add_to(stiffness, 1., false);
+    mass.compress(VectorOperation::add);
+    stiffness.compress(VectorOperation::add);
   }
 
 
@@ -352,7 +365,10 @@ namespace rockdda::thermal::internal
     const auto &p = impl->prm;
     std::string s = stepper_description(p);
     s += "; distributed on " + std::to_string(impl->n_ranks)
-         + " MPI rank(s) (p4est, Trilinos); linear solver "
+         + " MPI rank(s) (p4est, Trilinos); ";
+    if (p.stepper == TimeStepper::arkode)
+      return s + "Newton systems GMRES + Amesos KLU (direct)";
+    s += "linear solver "
          + (p.direct_solver && !p.distributed
               ? "Amesos KLU (direct)"
               : "CG + AMG (ML), relative tolerance "

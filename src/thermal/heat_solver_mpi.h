@@ -22,8 +22,7 @@ namespace rockdda::thermal::internal
   class DistributedHeat
   {
   public:
-    /// Throws InputError for invalid parameters or unsupported options
-    /// (ARKODE, contact conductance).
+    /// Throws InputError for invalid parameters.
     explicit DistributedHeat(const HeatParameters &parameters);
     ~DistributedHeat();
 

@@ -124,21 +124,16 @@ namespace rockdda::thermal
   void
   HeatSolver::Impl::assemble_fixed()
   {
-    internal::assemble_fixed_integrals(
-      prm,
-      mapping,
-      dof_handler,
-      hanging,
-      dof_handler.locally_owned_dofs(),
-      tria.get_communicator(),
-      fixed,
-      [&](const DoFHandler<2>::active_cell_iterator &,
-          const std::vector<types::global_dof_index> &dofs,
-          const FullMatrix<double>                   &cell_mass,
-          const FullMatrix<double>                   &cell_stiff) {
-        hanging.distribute_local_to_global(cell_mass, dofs, mass);
-        hanging.distribute_local_to_global(cell_stiff, dofs, stiffness);
-      });
+    internal::assemble_fixed_integrals(prm,
+                                       mapping,
+                                       dof_handler,
+                                       hanging,
+                                       dof_handler.locally_owned_dofs(),
+                                       tria.get_communicator(),
+                                       fixed,
+                                       internal::add_to_matrices(hanging,
+                                                                 mass,
+                                                                 stiffness));
     internal::assemble_joint_conductance(
       prm, mapping, fe, hanging, joint_pairs, stiffness);
   }

@@ -5,8 +5,9 @@
  * sparse Cholesky) and the matrices of one theta step. Its member
  * functions live in the files named after what they do:
  * heat_solver_serial.cc (setup and assembly), heat_time_stepping.cc (theta
- * scheme), heat_arkode.cc (ARKODE), heat_adaptivity.cc (Kelly refinement)
- * and heat_checkpoint.cc (saving and restoring the state).
+ * scheme), heat_arkode.cc (ARKODE, written once for both solvers),
+ * heat_adaptivity.cc (Kelly refinement) and heat_checkpoint.cc (saving and
+ * restoring the state).
  */
 #ifndef ROCKDDA_THERMAL_HEAT_SOLVER_SERIAL_H
 #define ROCKDDA_THERMAL_HEAT_SOLVER_SERIAL_H
@@ -133,8 +134,6 @@ namespace rockdda::thermal
     assemble_fixed();
     internal::StepOperator &
     get_operator(const double dt, const double theta);
-    void
-    arkode_advance(const double end_time);
   };
 } // namespace rockdda::thermal
 

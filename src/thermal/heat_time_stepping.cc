@@ -252,6 +252,19 @@ namespace rockdda::thermal
       internal::take_steps(s.time, end_time, s.prm.time_step, step);
       s.time = end_time;
     }
+
+    /// Either solver @p s to @p end_time by ARKODE or the theta scheme;
+    /// @p owned: its locally owned dofs.
+    template <typename Solver>
+    void
+    advance(Solver &s, const double end_time, const IndexSet &owned)
+    {
+      if (s.prm.stepper != TimeStepper::arkode)
+        return advance_theta_scheme(s, end_time);
+      check_end_time(s.prm, s.time, end_time);
+      TimerOutput::Scope scope(s.timer, "time stepping (ARKODE)");
+      internal::arkode_advance(s, end_time, owned, s.tria.get_communicator());
+    }
   } // namespace
 
 
@@ -259,14 +272,7 @@ namespace rockdda::thermal
   void
   HeatSolver::Impl::advance_to(const double end_time)
   {
-    if (prm.stepper == TimeStepper::arkode)
-      {
-        check_end_time(prm, time, end_time);
-        TimerOutput::Scope scope(timer, "time stepping (ARKODE)");
-        arkode_advance(end_time);
-        return;
-      }
-    advance_theta_scheme(*this, end_time);
+    advance(*this, end_time, dof_handler.locally_owned_dofs());
   }
 
 
@@ -313,6 +319,9 @@ namespace rockdda::thermal
                 hanging.distribute_local_to_global(cell_a, dofs, op.a_full);
                 hanging.distribute_local_to_global(cell_b, dofs, op.b);
               }
+          joints.add_to(op.a_hom, theta * dt, true);
+          joints.add_to(op.a_full, theta * dt, false);
+          joints.add_to(op.b, -(1. - theta) * dt, false);
           op.a_hom.compress(VectorOperation::add);
           op.a_full.compress(VectorOperation::add);
           op.b.compress(VectorOperation::add);
@@ -388,7 +397,8 @@ namespace rockdda::thermal
     void
     DistributedHeat::Impl::advance_to(const double end_time)
     {
-      advance_theta_scheme(*this, end_time);
+      advance(*this, end_time, owned);
+      ghosted_valid = false;
     }
   } // namespace internal
 } // namespace rockdda::thermal

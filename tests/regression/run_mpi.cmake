@@ -1,5 +1,6 @@
 # One MPI case: the driver on PRM serially (one process, no MPI) and with
-# MPIEXEC -np RANKS (the distributed heat solver), each in its own folder
+# MPIEXEC -np RANKS (the distributed heat solver; on one rank with the
+# linear solver 'amg', which selects it), each in its own folder
 # under OUT; every numeric quantity of the serial summary.csv (except wall
 # times and counters of the method) must be matched by the parallel run
 # within the tolerances of the first '# compare: REL ABS' line of PRM, and
@@ -20,8 +21,23 @@ execute_process(COMMAND ${DRIVER} --quiet ${PRM}
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "serial run failed (exit ${rc}):\n${out}\n${err}")
 endif()
+# On one rank the distributed solver runs only if asked for ('amg'): a
+# copy of PRM (same name, so the same output folder) asks for it.
+set(mpi_prm ${PRM})
+if(RANKS EQUAL 1)
+  file(READ ${PRM} text)
+  if(text MATCHES "set Linear solver *= *[a-z]+")
+    string(REGEX REPLACE "set Linear solver( *)= *[a-z]+"
+      "set Linear solver\\1= amg" text "${text}")
+  else()
+    string(REPLACE "subsection Time stepping"
+      "subsection Time stepping\n    set Linear solver = amg" text "${text}")
+  endif()
+  set(mpi_prm ${OUT}/mpi/${name}.prm)
+  file(WRITE ${mpi_prm} "${text}")
+endif()
 execute_process(COMMAND ${MPIEXEC} --allow-run-as-root --oversubscribe
-    -np ${RANKS} ${DRIVER} --quiet ${PRM}
+    -np ${RANKS} ${DRIVER} --quiet ${mpi_prm}
   WORKING_DIRECTORY ${OUT}/mpi
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
@@ -68,6 +84,10 @@ foreach(line ${file_lines})
   string(REGEX REPLACE "^# files: +" "" files "${line}")
   separate_arguments(files)
   foreach(f ${files})
+    # The piece of a rank beyond the run's ranks is not expected.
+    if(f MATCHES "\\.([0-9]+)\\.vtu$" AND CMAKE_MATCH_1 GREATER_EQUAL RANKS)
+      continue()
+    endif()
     if(NOT EXISTS ${OUT}/mpi/output-${name}/${f})
       message(FATAL_ERROR "missing output file ${f} of the MPI run")
     endif()
