@@ -18,6 +18,57 @@ namespace rockdda::coupling
 
 
   void
+  declare_block1_geometry_keys(dealii::ParameterHandler &prm)
+  {
+    using io::DoubleInterval;
+    const Block1Geometry  g;
+    const Block1Materials m;
+    const auto num = [](const double x) { return io::format_number(x, 12); };
+    io::declare(prm,
+                "Block length",
+                num(g.length),
+                DoubleInterval::positive(),
+                "m",
+                "Horizontal length L_B of Block 1's base, > 0 m.");
+    io::declare(prm,
+                "Block height",
+                num(g.height),
+                DoubleInterval::positive(),
+                "m",
+                "Height H of Block 1's front (downslope) face, > 0 m; the "
+                "back face is H - L_B tan(slope) high (area as in thesis Eq. "
+                "5.3; the ratchet model of 'compare' takes it as H).");
+    io::declare(prm,
+                "Slope",
+                num(g.slope_deg),
+                DoubleInterval::right_open(0., 45.),
+                "deg",
+                "Dip of the bedding plane, 0 <= slope < 45 deg.");
+    io::declare(prm,
+                "Friction angle",
+                num(m.friction_deg),
+                DoubleInterval::right_open(0., 90.),
+                "deg",
+                "Friction angle of the bedding plane, 0 <= phi < 90 deg "
+                "(thesis: 41 deg).");
+  }
+
+
+
+  void
+  parse_block1_geometry_keys(dealii::ParameterHandler &prm,
+                             Block1Geometry           &geometry,
+                             Block1Materials          &materials)
+  {
+    geometry.length        = prm.get_double("Block length");
+    geometry.height        = prm.get_double("Block height");
+    geometry.slope_deg     = prm.get_double("Slope");
+    materials.friction_deg = prm.get_double("Friction angle");
+  }
+
+
+
+  void
   declare_block1_keys(dealii::ParameterHandler &prm, const std::string &name)
   {
     using io::DoubleInterval;
@@ -40,32 +91,7 @@ namespace rockdda::coupling
                 "spectrum of the synthetic motions: masada (modes at 1.3, 3.8 "
                 "and 6.5 Hz, cut at 10 Hz; SiteAmplification::masada()) or "
                 "none.");
-    io::declare(prm,
-                "Block length",
-                num(g.length),
-                DoubleInterval::positive(),
-                "m",
-                "Horizontal length L_B of Block 1's base, > 0 m.");
-    io::declare(prm,
-                "Block height",
-                num(g.height),
-                DoubleInterval::positive(),
-                "m",
-                "Height H of Block 1's front face, > 0 m (the ratchet model "
-                "of 'compare' takes it as H of Eq. 5.3).");
-    io::declare(prm,
-                "Slope",
-                num(g.slope_deg),
-                DoubleInterval::right_open(0., 45.),
-                "deg",
-                "Dip of the bedding plane, 0 <= slope < 45 deg.");
-    io::declare(prm,
-                "Friction angle",
-                num(m.friction_deg),
-                DoubleInterval::right_open(0., 90.),
-                "deg",
-                "Friction angle of the bedding plane, 0 <= phi < 90 deg "
-                "(thesis: 41 deg).");
+    declare_block1_geometry_keys(prm);
     io::declare(prm,
                 "Penalty",
                 "1e11",
@@ -100,16 +126,13 @@ namespace rockdda::coupling
   parse_block1_keys(dealii::ParameterHandler &prm)
   {
     Block1Keys k;
-    k.geometry.length        = prm.get_double("Block length");
-    k.geometry.height        = prm.get_double("Block height");
-    k.geometry.slope_deg     = prm.get_double("Slope");
-    k.materials.friction_deg = prm.get_double("Friction angle");
-    k.penalty                = prm.get_double("Penalty");
-    k.dt                     = prm.get_double("Time step");
-    k.threads                = prm.get_integer("Threads");
-    k.distance               = prm.get_double("Distance");
-    k.masada_site            = prm.get("Site amplification") == "masada";
-    k.plot                   = prm.get_bool("Plot");
+    parse_block1_geometry_keys(prm, k.geometry, k.materials);
+    k.penalty     = prm.get_double("Penalty");
+    k.dt          = prm.get_double("Time step");
+    k.threads     = prm.get_integer("Threads");
+    k.distance    = prm.get_double("Distance");
+    k.masada_site = prm.get("Site amplification") == "masada";
+    k.plot        = prm.get_bool("Plot");
     return k;
   }
 } // namespace rockdda::coupling

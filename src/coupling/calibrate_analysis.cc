@@ -8,6 +8,7 @@
  * independent and run concurrently, one linear-solver thread each.
  */
 #include <rockdda/coupling/analyses.h>
+#include <rockdda/coupling/block1_parameters.h>
 #include <rockdda/coupling/block1_seismic.h>
 #include <rockdda/coupling/calibrate_analysis.h>
 #include <rockdda/coupling/concurrent_runs.h>
@@ -161,26 +162,7 @@ namespace rockdda::coupling
                     "-",
                     "Runs of the grid at once, 0 to 256 (0: one per core); "
                     "each run's linear solver uses one thread.");
-        io::declare(prm,
-                    "Block length",
-                    num(g.length),
-                    DoubleInterval::positive(),
-                    "m",
-                    "Horizontal length L_B of Block 1's base, > 0 m.");
-        io::declare(prm,
-                    "Block height",
-                    num(g.height),
-                    DoubleInterval::positive(),
-                    "m",
-                    "Height H of Block 1's front (downslope) face, > 0 m; "
-                    "the back face is H - L_B tan(slope) high (area as in "
-                    "thesis Eq. 5.3).");
-        io::declare(prm,
-                    "Slope",
-                    num(g.slope_deg),
-                    DoubleInterval::right_open(0., 45.),
-                    "deg",
-                    "Dip of the bedding plane, 0 <= slope < 45 deg.");
+        declare_block1_geometry_keys(prm);
         io::declare(prm,
                     "Toe length",
                     num(g.toe_length),
@@ -188,13 +170,6 @@ namespace rockdda::coupling
                     "m",
                     "Horizontal length of the bedding plane beyond the "
                     "block's toe, > 0 m (room to slide).");
-        io::declare(prm,
-                    "Friction angle",
-                    num(m.friction_deg),
-                    DoubleInterval::right_open(0., 90.),
-                    "deg",
-                    "Friction angle of the bedding plane, 0 <= phi < 90 "
-                    "deg (thesis: 41 deg).");
         io::declare(prm,
                     "Density",
                     num(m.rock.density),
@@ -227,21 +202,18 @@ namespace rockdda::coupling
                        const std::string        &prm_file) override
       {
         prm.enter_subsection("Calibration");
-        penalties           = positive_list(prm, "Penalties", prm_file, "N/m");
-        time_steps          = positive_list(prm, "Time steps", prm_file, "s");
-        frequencies         = positive_list(prm, "Frequencies", prm_file, "Hz");
-        amplitude           = prm.get_double("Amplitude");
-        duration            = prm.get_double("Duration");
-        record_dt           = prm.get_double("Record time step");
-        analytical_dt       = prm.get_double("Analytical time step");
-        displacement        = prm.get("Loading mode") == "displacement";
-        settle_steps        = prm.get_integer("Settling steps");
-        threads             = prm.get_integer("Threads");
-        geometry.length     = prm.get_double("Block length");
-        geometry.height     = prm.get_double("Block height");
-        geometry.slope_deg  = prm.get_double("Slope");
-        geometry.toe_length = prm.get_double("Toe length");
-        materials.friction_deg = prm.get_double("Friction angle");
+        penalties     = positive_list(prm, "Penalties", prm_file, "N/m");
+        time_steps    = positive_list(prm, "Time steps", prm_file, "s");
+        frequencies   = positive_list(prm, "Frequencies", prm_file, "Hz");
+        amplitude     = prm.get_double("Amplitude");
+        duration      = prm.get_double("Duration");
+        record_dt     = prm.get_double("Record time step");
+        analytical_dt = prm.get_double("Analytical time step");
+        displacement  = prm.get("Loading mode") == "displacement";
+        settle_steps  = prm.get_integer("Settling steps");
+        threads       = prm.get_integer("Threads");
+        parse_block1_geometry_keys(prm, geometry, materials);
+        geometry.toe_length    = prm.get_double("Toe length");
         materials.rock.density = prm.get_double("Density");
         materials.rock.young   = prm.get_double("Young's modulus");
         materials.rock.poisson = prm.get_double("Poisson's ratio");

@@ -23,6 +23,21 @@ namespace rockdda::coupling
   number_list(dealii::ParameterHandler &prm, const std::string &key);
 
   /**
+   * Declare 'Block length', 'Block height', 'Slope' and 'Friction angle'
+   * (Block1Geometry and Block1Materials defaults) in the current
+   * subsection ('calibrate', and declare_block1_keys()).
+   */
+  void
+  declare_block1_geometry_keys(dealii::ParameterHandler &prm);
+
+  /// Read the keys of declare_block1_geometry_keys() into @p geometry and
+  /// @p materials (other members unchanged).
+  void
+  parse_block1_geometry_keys(dealii::ParameterHandler &prm,
+                             Block1Geometry           &geometry,
+                             Block1Materials          &materials);
+
+  /**
    * Declare 'Distance' and 'Site amplification' of the events, 'Block
    * length', 'Block height', 'Slope', 'Friction angle' (Block1Geometry and
    * Block1Materials defaults), 'Penalty', 'Time step', 'Threads' (the
