@@ -420,10 +420,16 @@ namespace rockdda::dda
           hold[c] = 0.;
           if (flips[c] >= static_cast<int>(ctrl.hold_after) || contacts[c].held)
             {
-              const auto &g = contacts[c].geometry;
-              hold[c]
-                = assembler.kinematics()[c].shear_stiffness * ctrl.hold_fraction
-                  * std::min(block_size[g.block_i], block_size[g.block_j]);
+              // An elastic slip or penetration of hold_fraction x the
+              // smaller block's size, and at most 100 force tolerances (1 %
+              // of the lighter block's weight): a light block between stiff
+              // ones (an infill wedge) is not hung on a held contact.
+              const auto &g   = contacts[c].geometry;
+              const auto &kin = assembler.kinematics()[c];
+              hold[c] = std::min(kin.shear_stiffness * ctrl.hold_fraction
+                                   * std::min(block_size[g.block_i],
+                                              block_size[g.block_j]),
+                                 100. * kin.force_tolerance);
             }
         }
     };
