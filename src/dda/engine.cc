@@ -423,13 +423,17 @@ namespace rockdda::dda
               // An elastic slip or penetration of hold_fraction x the
               // smaller block's size, and at most 100 force tolerances (1 %
               // of the lighter block's weight): a light block between stiff
-              // ones (an infill wedge) is not hung on a held contact.
-              const auto &g   = contacts[c].geometry;
-              const auto &kin = assembler.kinematics()[c];
-              hold[c] = std::min(kin.shear_stiffness * ctrl.hold_fraction
-                                   * std::min(block_size[g.block_i],
-                                              block_size[g.block_j]),
-                                 100. * kin.force_tolerance);
+              // ones (an infill wedge) is not hung on a held contact. A
+              // contact that still cycles (2 hold_after changes in this
+              // attempt) gets the slip bound alone, for this attempt only.
+              const auto  &g   = contacts[c].geometry;
+              const auto  &kin = assembler.kinematics()[c];
+              const double slip
+                = kin.shear_stiffness * ctrl.hold_fraction
+                  * std::min(block_size[g.block_i], block_size[g.block_j]);
+              hold[c] = flips[c] >= 2 * static_cast<int>(ctrl.hold_after)
+                                   ? slip
+                                   : std::min(slip, 100. * kin.force_tolerance);
             }
         }
     };
