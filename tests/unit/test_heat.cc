@@ -351,22 +351,41 @@ TEST(Heat, EnergyBalanceClosedDomain)
 
 
 // Per-block mean and linear trend of a linear field are exact.
+namespace
+{
+  /// The steady linear field 10 + 2 x + 3 y degC on the 3 m x 2 m
+  /// rectangle [1, 4] x [-2, 0] (held on its whole boundary, also the
+  /// initial field), FE_Q(1) on 0.5 m cells.
+  double
+  linear(const double x, const double y, const double = 0.)
+  {
+    return 10. + 2. * x + 3. * y;
+  }
+
+  HeatParameters
+  linear_field_scene()
+  {
+    HeatParameters p;
+    p.blocks = {rectangle(1., -2., 4., 0., {"a", "a", "a", "a"})};
+    BoundaryCondition bc;
+    bc.tag     = "a";
+    bc.type    = BoundaryCondition::Type::temperature;
+    bc.value   = [](double x, double y, double) { return linear(x, y); };
+    bc.uniform = false;
+    p.boundary_conditions = {bc};
+    p.initial_field       = [](double x, double y) { return linear(x, y); };
+    p.coarse_cell_size    = 0.5;
+    p.degree              = 1;
+    return p;
+  }
+} // namespace
+
+
+
 TEST(Heat, BlockMomentsOfLinearField)
 {
-  HeatParameters p;
-  p.blocks = {rectangle(1., -2., 4., 0., {"a", "a", "a", "a"})};
-  auto linear
-    = [](double x, double y, double) { return 10. + 2. * x + 3. * y; };
-  BoundaryCondition bc;
-  bc.tag                = "a";
-  bc.type               = BoundaryCondition::Type::temperature;
-  bc.value              = linear;
-  bc.uniform            = false;
-  p.boundary_conditions = {bc};
-  p.initial_field       = [&](double x, double y) { return linear(x, y, 0.); };
-  p.coarse_cell_size    = 0.5;
-  p.degree              = 1;
-  HeatSolver solver(p);
+  const HeatParameters p = linear_field_scene();
+  HeatSolver           solver(p);
   solver.advance_to(10. * day);
   const auto m = solver.block_moments();
   ASSERT_EQ(m.size(), 1u);
@@ -387,21 +406,9 @@ TEST(Heat, BlockMomentsOfLinearField)
 // with the caller's advice.
 TEST(Heat, SampledBlockMomentsNameTheBlock)
 {
-  HeatParameters p;
-  p.blocks = {rectangle(1., -2., 4., 0., {"a", "a", "a", "a"})};
-  auto linear
-    = [](double x, double y, double) { return 10. + 2. * x + 3. * y; };
-  BoundaryCondition bc;
-  bc.tag                = "a";
-  bc.type               = BoundaryCondition::Type::temperature;
-  bc.value              = linear;
-  bc.uniform            = false;
-  p.boundary_conditions = {bc};
-  p.initial_field       = [&](double x, double y) { return linear(x, y, 0.); };
-  p.coarse_cell_size    = 0.5;
-  p.degree              = 1;
-  HeatSolver solver(p);
-  const auto samples = sample_block_moments(solver, p, day, day, 3);
+  const HeatParameters p = linear_field_scene();
+  HeatSolver           solver(p);
+  const auto           samples = sample_block_moments(solver, p, day, day, 3);
   ASSERT_EQ(samples.size(), 3u);
   EXPECT_DOUBLE_EQ(solver.time(), 3. * day);
   for (const auto &row : samples)
