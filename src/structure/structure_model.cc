@@ -1,6 +1,7 @@
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
 #include <rockdda/io/parameters.h>
+#include <rockdda/io/text.h>
 #include <rockdda/structure/structure_model.h>
 
 #include <cmath>
@@ -16,17 +17,6 @@ namespace rockdda::structure
       return "Joint set " + std::to_string(i + 1);
     }
 
-    std::vector<std::string>
-    split(const std::string &text, const char sep)
-    {
-      std::vector<std::string> parts;
-      std::string              part;
-      std::istringstream       in(text);
-      while (std::getline(in, part, sep))
-        parts.push_back(part);
-      return parts;
-    }
-
     bool
     blank(const std::string &s)
     {
@@ -40,11 +30,11 @@ namespace rockdda::structure
   parse_polygon(const std::string &text, const std::string &where)
   {
     Polygon p;
-    for (const std::string &vertex : split(text, ';'))
+    for (const std::string &vertex : io::split_fields(text, ';'))
       {
         if (blank(vertex))
           continue;
-        const auto  xy = split(vertex, ',');
+        const auto  xy = io::split_fields(vertex, ',');
         double      x = 0., y = 0.;
         std::size_t used_x = 0, used_y = 0;
         try
@@ -318,7 +308,8 @@ namespace rockdda::structure
     const std::string where = prm_file + ": key 'Structure/";
     m.domain = parse_polygon(prm.get("Domain"), where + "Domain'");
     int k    = 0;
-    for (const std::string &text : split(prm.get("Excavations"), '|'))
+    for (const std::string &text :
+         io::split_fields(prm.get("Excavations"), '|'))
       {
         if (blank(text))
           continue;
