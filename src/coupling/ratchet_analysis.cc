@@ -238,11 +238,13 @@ namespace rockdda::coupling
                     "(> 0).");
         io::declare(prm,
                     "Max steps per sample",
-                    "2000",
+                    "20000",
                     Integer(1, 1000000),
                     "-",
                     "Static steps allowed per sample before the run stops "
-                    "with a diagnosis.");
+                    "with a diagnosis. A sample usually takes 10-100; one "
+                    "where the infill slides far in small static steps has "
+                    "taken up to 12,000 (amplitude 15 K).");
         io::declare(prm,
                     "Pseudo time step",
                     "0",

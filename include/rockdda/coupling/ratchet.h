@@ -32,7 +32,7 @@ namespace rockdda::coupling
     /// micro-chatter of the infill's contacts, ~1e-7 m per step).
     double equilibrium_tolerance = 1e-8;
     /// Static steps allowed per sample before the run stops (DdaFailure).
-    unsigned int max_steps_per_sample = 2000;
+    unsigned int max_steps_per_sample = 20000;
     /// Static steps that settle the scene under gravity before cycle 1.
     unsigned int settle_steps = 30;
     /// Temperature samples per cycle at which the DDA is brought to
