@@ -24,6 +24,29 @@ namespace rockdda::thermal
 {
   using namespace dealii;
 
+  namespace
+  {
+    /**
+     * After the field and the previous increment of solver @p s (either)
+     * went to the new mesh: their hanging values, the step operators and
+     * loads to be rebuilt, the probes located anew by @p locate, and the
+     * heat the transfer changed (against @p heat_before) booked.
+     */
+    template <typename Solver, typename Locate>
+    void
+    finish_adaptation(Solver &s, const double heat_before, Locate &&locate)
+    {
+      s.hanging.distribute(s.solution);
+      s.hanging.distribute(s.increment_old);
+      s.operators.clear();
+      s.rhs_old_valid = false;
+      for (unsigned int k = 0; k < s.probes.size(); ++k)
+        s.probes[k] = locate(s.probe_points[k]);
+      s.stats.mesh_transfer_heat += s.fixed.capacity * s.solution - heat_before;
+      ++s.stats.n_adaptations;
+    }
+  } // namespace
+
   void
   HeatSolver::Impl::adapt_mesh()
   {
@@ -63,14 +86,9 @@ namespace rockdda::thermal
     transfer.interpolate(in, out);
     solution.swap(out[0]);
     increment_old.swap(out[1]);
-    hanging.distribute(solution);
-    hanging.distribute(increment_old);
-    operators.clear();
-    rhs_old_valid = false;
-    for (unsigned int k = 0; k < probes.size(); ++k)
-      probes[k] = locate_probe(probe_points[k]);
-    stats.mesh_transfer_heat += fixed.capacity * solution - heat_before;
-    ++stats.n_adaptations;
+    finish_adaptation(*this, heat_before, [&](const Point<2> &p) {
+      return locate_probe(p);
+    });
   }
 
 
@@ -123,15 +141,10 @@ namespace rockdda::thermal
       assemble_fixed();
       std::vector<VectorType *> out{&solution, &increment_old};
       transfer.interpolate(out);
-      hanging.distribute(solution);
-      hanging.distribute(increment_old);
       ghosted_valid = false;
-      operators.clear();
-      rhs_old_valid = false;
-      for (unsigned int k = 0; k < probes.size(); ++k)
-        probes[k] = locate(probe_points[k]);
-      stats.mesh_transfer_heat += fixed.capacity * solution - heat_before;
-      ++stats.n_adaptations;
+      finish_adaptation(*this, heat_before, [&](const Point<2> &p) {
+        return locate(p);
+      });
     }
   } // namespace internal
 } // namespace rockdda::thermal
