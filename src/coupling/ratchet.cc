@@ -138,8 +138,7 @@ namespace rockdda::coupling
       if (engine->controls().time_step != pseudo_time_step)
         engine->set_time_step(pseudo_time_step);
     };
-    unsigned int since_cut = 0;
-    double       moved     = 0.;
+    double moved = 0.;
     for (unsigned int k = 0; k < ctrl.max_steps_per_sample; ++k)
       {
         const dda::StepReport r = engine->step();
@@ -154,12 +153,13 @@ namespace rockdda::coupling
               ++record.regularised_samples;
             engine->set_time_step(engine->controls().time_step / 10.);
           }
-        since_cut = r.cuts == 0 ? since_cut + 1 : 0;
-        moved     = since_cut > 0 ? std::max(moved, r.max_displacement) : 0.;
+        // Steps cut on the way count too: the test is on the slip and the
+        // aperture that the ratchet measures.
+        moved = std::max(moved, r.max_displacement);
         recent.push_back({displacement(), aperture()});
         if (recent.size() > window)
           recent.pop_front();
-        if (since_cut >= window)
+        if (k + 1 >= window)
           {
             double spread = 0.;
             for (const std::size_t i : {std::size_t(0), std::size_t(1)})

@@ -56,7 +56,7 @@ namespace rockdda::coupling
     unsigned long steps = 0, cuts = 0;
     /// Samples accepted as stationary although a contact kept switching
     /// between sliding and locked (see RatchetRun), and the largest vertex
-    /// motion per step of that switching (m).
+    /// motion per step in such a sample (m).
     unsigned int stationary_samples = 0;
     double       chatter            = 0.;
     /// Samples that needed a smaller pseudo time step to reach equilibrium
@@ -136,7 +136,7 @@ namespace rockdda::coupling
      * and chatter of @p record. Equilibrium: a step that moves no vertex
      * by more than the tolerance, or (a contact at the friction limit that
      * switches between sliding and locked every few steps, moving one
-     * vertex back and forth) 100 steps without a cut over which the base
+     * vertex back and forth) 100 steps, cut or not, over which the base
      * slip and the crack aperture stay within the tolerance. A sample
      * still not in equilibrium after 300 steps continues with the pseudo
      * time step divided by 10 (a stiffer inertia term, 2 M / dt^2, damps
