@@ -29,7 +29,6 @@ import os
 import shutil
 import statistics
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import study  # noqa: E402  (derive_prm, run_one)
@@ -67,11 +66,8 @@ def main():
     ap.add_argument("--out", default=here)
     ap.add_argument("--jobs", type=int, default=1)
     args = ap.parse_args()
-    base = open(os.path.join(here, "..", "..", "parameter-files", "masada",
-                             "ratchet-block1.prm")).read()
-    folder = tempfile.mkdtemp(prefix="ratchet-long-")
-    rockdda = os.path.join(folder, "rockdda")
-    shutil.copy2(args.rockdda, rockdda)
+    base = open(study.BASE_PRM).read()
+    folder, rockdda = study.scratch(args.rockdda, "ratchet-long-")
     jobs = {}
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         for i, (label, over) in enumerate(SETTINGS):

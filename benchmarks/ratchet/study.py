@@ -71,6 +71,20 @@ REPRODUCTION = os.path.join(HERE, "analytical", "reproduction.csv")
 
 R, T = "Ratchet", "Thermal forcing"
 
+
+def scratch(rockdda, prefix, keep=None):
+    """A run folder (KEEP, or a new temporary one named PREFIX...) holding a
+    copy of ROCKDDA, so that a concurrent rebuild cannot change the binary
+    mid-study: (folder, the copied binary)."""
+    if keep:
+        folder = os.path.abspath(keep)
+        os.makedirs(folder, exist_ok=True)
+    else:
+        folder = tempfile.mkdtemp(prefix=prefix)
+    copy = os.path.join(folder, "rockdda")
+    shutil.copy2(os.path.abspath(rockdda), copy)
+    return folder, copy
+
 # Sensitivity sweeps: (study, label, unit, [(value, overrides)], the sign
 # of the analytical trend (+1 rises with the value, -1 falls, 0 none
 # stated)).
@@ -350,13 +364,7 @@ def main():
     base = base_settings(base_text)
     common = {(R, "Cycles"): args.cycles, (R, "Checkpoint cycles"): 0}
 
-    if args.keep:
-        folder = os.path.abspath(args.keep)
-        os.makedirs(folder, exist_ok=True)
-    else:
-        folder = tempfile.mkdtemp(prefix="ratchet-study-")
-    rockdda = os.path.join(folder, "rockdda")
-    shutil.copy2(os.path.abspath(args.rockdda), rockdda)
+    folder, rockdda = scratch(args.rockdda, "ratchet-study-", args.keep)
     version = subprocess.run([rockdda, "--version"], stdout=subprocess.PIPE,
                              text=True).stdout.strip().splitlines()
     version = ", ".join(version) if version else "?"

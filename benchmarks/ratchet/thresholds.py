@@ -25,7 +25,6 @@ import os
 import shutil
 import statistics
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import study  # noqa: E402
@@ -74,11 +73,8 @@ def main():
     ap.add_argument("--iterations", type=int, default=6)
     ap.add_argument("--out", default=here)
     args = ap.parse_args()
-    base = open(os.path.join(here, "..", "..", "parameter-files", "masada",
-                             "ratchet-block1.prm")).read()
-    folder = tempfile.mkdtemp(prefix="ratchet-thresholds-")
-    rockdda = os.path.join(folder, "rockdda")
-    shutil.copy2(args.rockdda, rockdda)
+    base = open(study.BASE_PRM).read()
+    folder, rockdda = study.scratch(args.rockdda, "ratchet-thresholds-")
     log = lambda s: print(s, flush=True)  # noqa: E731
     log("amplitude threshold (ratchets above it):")
     amp, amp_err, rows_a = bisect(rockdda, folder, base,
