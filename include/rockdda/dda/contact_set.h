@@ -48,7 +48,7 @@ namespace rockdda::dda
     /// force beyond the hold tolerance changes its state: otherwise a
     /// static step that starts from a held state flips it again, and
     /// successive steps cycle between two equilibria (a contact hysteresis
-    /// of p_s x hold_fraction x the block size, Doolin & Sitar 2004).
+    /// of the hold force, Controls::hold_fraction; Doolin & Sitar 2004).
     bool held = false;
     /// Joint material index.
     int joint = 0;

@@ -53,7 +53,11 @@ namespace rockdda::dda
     /// while the force it would take to change (compression, tension, or
     /// shear beyond the strength) is at most p_s x hold_fraction x the
     /// smaller block's size (N/m), i.e. a penetration or elastic slip of
-    /// at most hold_fraction x that size. Holding cannot create energy.
+    /// at most hold_fraction x that size, and at most 100 force tolerances
+    /// (1 % of the lighter block's weight) until the contact has changed
+    /// state 2 hold_after times. In static steps (dynamic 0) a held contact
+    /// stays held in the next step (Contact::held). Holding cannot create
+    /// energy.
     unsigned int hold_after    = 4;
     double       hold_fraction = 1e-7;
     /// A contact that has changed state this many times although held: the
