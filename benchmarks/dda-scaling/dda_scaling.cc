@@ -12,6 +12,8 @@
  */
 #include <rockdda/analytical/newmark.h>
 #include <rockdda/dda/engine.h>
+#include <rockdda/dda/hdf5_output.h>
+#include <rockdda/dda/vtu_output.h>
 
 #include "../../tests/unit/dda_test_scenes.h"
 #include <algorithm>
@@ -19,6 +21,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -343,6 +347,61 @@ namespace
             std::fflush(stdout);
           }
   }
+
+  /// Size and write time of one snapshot (blocks and contacts) of a
+  /// rows x columns wall after @p steps steps, VTU against HDF5: medians of
+  /// @p repeat writes to files in @p folder.
+  void
+  output(const int rows, const int columns, const int steps, const int repeat)
+  {
+    DdaSystem dda(brick_wall(rows, columns), wall_controls(1., "dilu2"));
+    for (int k = 0; k < steps; ++k)
+      dda.step();
+    const auto folder
+      = std::filesystem::temp_directory_path() / "rockdda-output-benchmark";
+    std::filesystem::create_directories(folder);
+    const std::string   vtu_b = (folder / "b.vtu").string();
+    const std::string   vtu_c = (folder / "c.vtu").string();
+    const std::string   h5    = (folder / "s.h5").string();
+    std::vector<double> t_vtu, t_h5;
+    for (int r = 0; r < repeat; ++r)
+      {
+        auto t0 = std::chrono::steady_clock::now();
+        std::ofstream(vtu_b, std::ios::binary) << blocks_vtu(dda);
+        std::ofstream(vtu_c, std::ios::binary) << contacts_vtu(dda);
+        t_vtu.push_back(seconds_since(t0));
+        t0 = std::chrono::steady_clock::now();
+        write_snapshot_hdf5(h5,
+                            dda.time(),
+                            blocks_snapshot(dda),
+                            contacts_snapshot(dda));
+        t_h5.push_back(seconds_since(t0));
+      }
+    const auto median = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      return v[v.size() / 2];
+    };
+    const double mib = 1024. * 1024.;
+    const double size_vtu
+      = (std::filesystem::file_size(vtu_b) + std::filesystem::file_size(vtu_c))
+        / mib;
+    const double size_h5 = std::filesystem::file_size(h5) / mib;
+    std::printf("blocks,contacts,format,MiB,write_s,bytes_per_block\n");
+    const double n = static_cast<double>(dda.system().blocks.size());
+    std::printf("%zu,%zu,vtu-zlib,%.3f,%.4f,%.1f\n",
+                dda.system().blocks.size(),
+                dda.contacts().size(),
+                size_vtu,
+                median(t_vtu),
+                size_vtu * mib / n);
+    std::printf("%zu,%zu,hdf5,%.3f,%.4f,%.1f\n",
+                dda.system().blocks.size(),
+                dda.contacts().size(),
+                size_h5,
+                median(t_h5),
+                size_h5 * mib / n);
+    std::filesystem::remove_all(folder);
+  }
 } // namespace
 
 int
@@ -362,12 +421,18 @@ main(int argc, char **argv)
            argv[5],
            std::atoi(argv[6]),
            argc > 7 ? std::atoi(argv[7]) : 0);
+  else if (what == "output" && argc > 3)
+    output(std::atoi(argv[2]),
+           std::atoi(argv[3]),
+           argc > 4 ? std::atoi(argv[4]) : 2,
+           argc > 5 ? std::atoi(argv[5]) : 5);
   else
     {
       std::fprintf(stderr,
                    "usage: dda_scaling scaling [max_blocks] | accuracy | "
                    "tolerance | single "
-                   "rows columns dynamic solver steps [settling_steps]\n");
+                   "rows columns dynamic solver steps [settling_steps] | "
+                   "output rows columns [steps] [repeat]\n");
       return 2;
     }
   return 0;

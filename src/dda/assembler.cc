@@ -241,24 +241,25 @@ namespace rockdda::dda
     pairs.reserve(contacts.size());
     std::vector<std::pair<std::uint64_t, int>> faces;
     std::vector<double>                        overlap(contacts.size());
-    // Kinematics and face overlaps per contact (independent: in halves).
+    // Kinematics and face overlaps per contact (independent: in chunks).
     std::vector<std::uint64_t> face_key(contacts.size());
-    for_each_half(params.run_halves,
-                  contacts.size(),
-                  [&](int, const std::size_t lo, const std::size_t hi) {
-                    for (std::size_t c = lo; c < hi; ++c)
-                      {
-                        const auto &g     = contacts[c].geometry;
-                        contact_blocks[c] = {g.block_i, g.block_j};
-                        contact_kinematics[c]
-                          = contact_kinematics_of(system,
-                                                  g,
-                                                  contacts[c].xi_ref);
-                        const auto [o, key] = face_overlap(system, g);
-                        overlap[c]          = o;
-                        face_key[c]         = key;
-                      }
-                  });
+    for_each_chunk(params.run_chunks,
+                   contacts.size(),
+                   256,
+                   [&](const std::size_t lo, const std::size_t hi) {
+                     for (std::size_t c = lo; c < hi; ++c)
+                       {
+                         const auto &g     = contacts[c].geometry;
+                         contact_blocks[c] = {g.block_i, g.block_j};
+                         contact_kinematics[c]
+                           = contact_kinematics_of(system,
+                                                   g,
+                                                   contacts[c].xi_ref);
+                         const auto [o, key] = face_overlap(system, g);
+                         overlap[c]          = o;
+                         face_key[c]         = key;
+                       }
+                   });
     for (std::size_t c = 0; c < contacts.size(); ++c)
       {
         const auto &g = contacts[c].geometry;

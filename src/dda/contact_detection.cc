@@ -516,28 +516,38 @@ namespace rockdda::dda
           corners.push_back(corner(polygons[b], k));
         boxes.push_back(polygons[b].bounding_box());
       }
-    // The pairs in two halves (in order), each with its own output.
-    const auto                    pairs = candidate_pairs(polygons, grow);
-    std::vector<bool>             consumed[2][2];
-    std::vector<ContactCandidate> part[2];
-    part[0].reserve(3 * pairs.size());
-    part[1].reserve(3 * pairs.size() / 2);
-    for_each_half(options.run_halves,
-                  pairs.size(),
-                  [&](const int h, const std::size_t lo, const std::size_t hi) {
-                    for (std::size_t k = lo; k < hi; ++k)
-                      PairDetector(polygons,
-                                   corners,
-                                   offset,
-                                   boxes,
-                                   options,
-                                   pairs[k].first,
-                                   pairs[k].second,
-                                   consumed[h],
-                                   part[h])
-                        .run();
-                  });
-    part[0].insert(part[0].end(), part[1].begin(), part[1].end());
-    return std::move(part[0]);
+    // The pairs in chunks (in order), each with its own output and
+    // scratch, joined in order: the same list on any number of threads.
+    const auto        pairs = candidate_pairs(polygons, grow);
+    const std::size_t grain = 128;
+    std::vector<std::vector<ContactCandidate>> part((pairs.size() + grain - 1)
+                                                    / grain);
+    for_each_chunk(options.run_chunks,
+                   pairs.size(),
+                   grain,
+                   [&](const std::size_t lo, const std::size_t hi) {
+                     std::vector<bool> consumed[2];
+                     auto             &out = part[lo / grain];
+                     out.reserve(3 * (hi - lo));
+                     for (std::size_t k = lo; k < hi; ++k)
+                       PairDetector(polygons,
+                                    corners,
+                                    offset,
+                                    boxes,
+                                    options,
+                                    pairs[k].first,
+                                    pairs[k].second,
+                                    consumed,
+                                    out)
+                         .run();
+                   });
+    std::size_t total = 0;
+    for (const auto &p : part)
+      total += p.size();
+    std::vector<ContactCandidate> all;
+    all.reserve(total);
+    for (const auto &p : part)
+      all.insert(all.end(), p.begin(), p.end());
+    return all;
   }
 } // namespace rockdda::dda

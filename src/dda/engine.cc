@@ -261,7 +261,7 @@ namespace rockdda::dda
     for (const auto &b : scene.blocks)
       polys.push_back(b.polygon);
     DetectionOptions &detection = detection_options;
-    detection.run_halves        = halves();
+    detection.run_chunks        = chunks();
     detection.reach.resize(polys.size());
     detection.vertex_reach.resize(polys.size());
     // A clamped block moves only with the ground (displacement mode).
@@ -385,7 +385,7 @@ namespace rockdda::dda
         if (fp.moves_with_ground && uv != 0.)
           par.fixed_targets[f] += uv * scene.seismic.vertical;
       }
-    par.run_halves = halves();
+    par.run_chunks = chunks();
     par.clamped    = &clamped_block;
     assembler.prepare_step(scene, contacts, par, matrix);
     solver.new_pattern(matrix);
@@ -455,30 +455,31 @@ namespace rockdda::dda
           }
       const double mean_force = n_closed > 0 ? force_sum / n_closed : 0.;
       std::vector<StateCheck> checks(contacts.size());
-      for_each_half(halves(),
-                    contacts.size(),
-                    [&](int, const std::size_t lo, const std::size_t hi) {
-                      for (std::size_t c = lo; c < hi; ++c)
-                        {
-                          const int                ci = static_cast<int>(c);
-                          ContactKinematics        chatter;
-                          const ContactKinematics *k
-                            = &assembler.kinematics()[c];
-                          if (factor[c] != 1. || hold[c] != 0.)
-                            {
-                              chatter = *k;
-                              chatter.force_tolerance *= factor[c];
-                              chatter.hold_tolerance = hold[c];
-                              k                      = &chatter;
-                            }
-                          checks[c]
-                            = check_state(contacts[c],
-                                          *k,
-                                          assembler.gap(ci, x),
-                                          assembler.shear_displacement(ci, x),
-                                          scene.joints[contacts[c].joint]);
-                        }
-                    });
+      for_each_chunk(chunks(),
+                     contacts.size(),
+                     256,
+                     [&](const std::size_t lo, const std::size_t hi) {
+                       for (std::size_t c = lo; c < hi; ++c)
+                         {
+                           const int                ci = static_cast<int>(c);
+                           ContactKinematics        chatter;
+                           const ContactKinematics *k
+                             = &assembler.kinematics()[c];
+                           if (factor[c] != 1. || hold[c] != 0.)
+                             {
+                               chatter = *k;
+                               chatter.force_tolerance *= factor[c];
+                               chatter.hold_tolerance = hold[c];
+                               k                      = &chatter;
+                             }
+                           checks[c]
+                             = check_state(contacts[c],
+                                           *k,
+                                           assembler.gap(ci, x),
+                                           assembler.shear_displacement(ci, x),
+                                           scene.joints[contacts[c].joint]);
+                         }
+                     });
       check_face_groups(contacts, x, hold, checks);
       for (std::size_t c = 0; c < contacts.size(); ++c)
         {
@@ -759,10 +760,14 @@ namespace rockdda::dda
 
 
 
-  HalvesRunner
-  DdaSystem::halves()
+  ChunkRunner
+  DdaSystem::chunks()
   {
-    return [this](const std::function<void(int)> &f) { solver.run_halves(f); };
+    return [this](const std::size_t                                    n,
+                  const std::size_t                                    grain,
+                  const std::function<void(std::size_t, std::size_t)> &f) {
+      solver.for_chunks(n, grain, f);
+    };
   }
 
 

@@ -8,7 +8,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
-#include "thread_pair.h"
+#include "task_team.h"
 #include <algorithm>
 #include <cmath>
 #include <thread>
@@ -407,10 +407,10 @@ namespace rockdda::dda
     /// Run f(0), f(1): on two threads when renumbered.
     template <typename F>
     void
-    run(internal::ThreadPair &team, F &&f)
+    run(internal::TaskTeam &team, F &&f)
     {
       if (renumbered)
-        team.run(f);
+        team.run_pair(f);
       else
         {
           f(0);
@@ -448,7 +448,7 @@ namespace rockdda::dda
 
     /// Pivots P_i = K_ii - sum_{j<i} K_ij P_j^-1 K_ji.
     bool
-    setup(const BlockSparseMatrix &K_in, internal::ThreadPair &team)
+    setup(const BlockSparseMatrix &K_in, internal::TaskTeam &team)
     {
       gather(K_in);
       const BlockSparseMatrix &K     = *M;
@@ -583,7 +583,7 @@ namespace rockdda::dda
     bool
     cg(const Eigen::VectorXd &f_in,
        Eigen::VectorXd       &x_out,
-       internal::ThreadPair  &team,
+       internal::TaskTeam    &team,
        const double           tolerance,
        const int              max_iterations,
        int                   &iterations)
@@ -689,7 +689,7 @@ namespace rockdda::dda
   unsigned int
   LinearSolver::n_threads() const
   {
-    return team ? team->n_threads() : 1;
+    return team_of_run().n_threads();
   }
 
 
@@ -702,19 +702,24 @@ namespace rockdda::dda
 
 
 
-  void
-  LinearSolver::run_halves(const std::function<void(int)> &f)
+  internal::TaskTeam &
+  LinearSolver::team_of_run() const
   {
-    if (team)
-      {
-        auto g = [&f](const int part) { f(part); };
-        team->run(g);
-      }
-    else
-      {
-        f(0);
-        f(1);
-      }
+    if (!team)
+      team = std::make_unique<internal::TaskTeam>(
+        static_cast<unsigned int>(std::max(options.threads, 0)));
+    return *team;
+  }
+
+
+
+  void
+  LinearSolver::for_chunks(
+    const std::size_t                                    n,
+    const std::size_t                                    grain,
+    const std::function<void(std::size_t, std::size_t)> &f)
+  {
+    team_of_run().for_chunks(n, grain, f);
   }
 
 
@@ -738,14 +743,6 @@ namespace rockdda::dda
         if (!dilu)
           dilu = std::make_unique<Dilu>();
         dilu->new_pattern(K, options.subdomain_limit);
-        if (!team && dilu->renumbered)
-          {
-            const int threads
-              = options.threads > 0
-                  ? options.threads
-                  : (std::thread::hardware_concurrency() >= 2 ? 2 : 1);
-            team = std::make_unique<internal::ThreadPair>(threads >= 2);
-          }
       }
   }
 
@@ -790,17 +787,15 @@ namespace rockdda::dda
           }
         return jacobi_cg(K, f, x);
       }
-    if (!team)
-      team = std::make_unique<internal::ThreadPair>(false);
     if (!same_matrix || !factorised)
       {
-        factorised = dilu->setup(K, *team);
+        factorised = dilu->setup(K, team_of_run());
         if (!factorised)
           return false;
       }
     return dilu->cg(f,
                     x,
-                    *team,
+                    team_of_run(),
                     tolerance > 0. ? tolerance : options.tolerance,
                     iteration_limit(K.n_blocks()),
                     iterations);

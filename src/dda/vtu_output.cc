@@ -217,74 +217,30 @@ namespace rockdda::dda
     }
 
     /// Cell data of 3 components (x, y, 0) from 2D values.
-    std::vector<double>
-    planar_vectors(const std::vector<geometry::Point> &v)
-    {
-      std::vector<double> out;
-      out.reserve(3 * v.size());
-      for (const auto &p : v)
-        out.insert(out.end(), {p.x(), p.y(), 0.});
-      return out;
-    }
   } // namespace
 
 
 
   std::string
-  blocks_vtu(const DdaSystem &dda)
+  vtu(const Snapshot &snapshot)
   {
-    const auto                  &scene  = dda.system();
-    const auto                  &blocks = scene.blocks;
-    const std::size_t            n      = blocks.size();
-    const geometry::Point        o      = scene.origin;
-    std::vector<double>          xyz;
-    std::vector<std::int64_t>    offsets;
-    std::vector<std::int32_t>    id(n), material(n);
-    std::vector<geometry::Point> displacement(n), velocity(n);
-    std::vector<double>          rotation(n), stress;
-    stress.reserve(6 * n);
-    for (std::size_t i = 0; i < n; ++i)
-      {
-        const Block &b = blocks[i];
-        // Global coordinates (origin + local).
-        for (const auto &v : b.polygon.vertices)
-          xyz.insert(xyz.end(), {o.x() + v.x(), o.y() + v.y(), 0.});
-        offsets.push_back(static_cast<std::int64_t>(xyz.size() / 3));
-        id[i] = b.id;
-        const int user_material
-          = b.material >= 0
-                && b.material < static_cast<int>(scene.materials.size())
-                && scene.materials[b.material].id >= 0
-              ? scene.materials[b.material].id
-              : b.material;
-        material[i]     = user_material;
-        displacement[i] = dda.centroid_displacement(static_cast<int>(i));
-        velocity[i]     = geometry::Point(b.velocity[0], b.velocity[1]);
-        rotation[i]     = b.rotation;
-        stress.insert(stress.end(),
-                      {b.stress[0], b.stress[1], 0., b.stress[2], 0., 0.});
-      }
     std::ostringstream s;
-    header(s,
-           "rockdda dda blocks (one polygon cell per block; points in m).\n"
-           "Cell data: block_id (block file id), material (block file "
-           "material id),\n"
-           "displacement (m) and velocity (m/s) of the centroid, rotation "
-           "(rad),\n"
-           "stress (Pa, tension positive; symmetric tensor XX YY ZZ XY YZ "
-           "XZ,\n"
-           "the out-of-plane components written as 0).\n",
-           xyz.size() / 3,
-           n);
-    geometry(s, xyz, offsets, 7); // VTK_POLYGON
-    s << "<CellData Scalars=\"material\" Vectors=\"displacement\" "
-         "Tensors=\"stress\">\n";
-    data_array(s, "block_id", 1, id);
-    data_array(s, "material", 1, material);
-    data_array(s, "displacement", 3, planar_vectors(displacement));
-    data_array(s, "velocity", 3, planar_vectors(velocity));
-    data_array(s, "rotation", 1, rotation);
-    data_array(s, "stress", 6, stress, {"XX", "YY", "ZZ", "XY", "YZ", "XZ"});
+    header(s, snapshot.description, snapshot.n_points(), snapshot.n_cells());
+    geometry(s,
+             snapshot.xyz,
+             snapshot.offsets,
+             snapshot.lines ? 3 : 7); // VTK_LINE, VTK_POLYGON
+    s << "<CellData Scalars=\"" << snapshot.scalars << "\"";
+    if (!snapshot.vectors.empty())
+      s << " Vectors=\"" << snapshot.vectors << "\"";
+    if (!snapshot.tensors.empty())
+      s << " Tensors=\"" << snapshot.tensors << "\"";
+    s << ">\n";
+    for (const auto &f : snapshot.fields)
+      if (f.integer.empty())
+        data_array(s, f.name, f.components, f.real, f.component_names);
+      else
+        data_array(s, f.name, f.components, f.integer, f.component_names);
     s << "</CellData>\n";
     footer(s);
     return s.str();
@@ -293,82 +249,17 @@ namespace rockdda::dda
 
 
   std::string
+  blocks_vtu(const DdaSystem &dda)
+  {
+    return vtu(blocks_snapshot(dda));
+  }
+
+
+
+  std::string
   contacts_vtu(const DdaSystem &dda)
   {
-    const auto                  &contacts = dda.contacts();
-    const auto                  &scene    = dda.system();
-    const auto                  &blocks   = scene.blocks;
-    const geometry::Point        o        = scene.origin;
-    const std::size_t            n        = contacts.size();
-    std::vector<double>          xyz, gap(n), slip(n), fn(n), fs(n);
-    std::vector<std::int64_t>    offsets(n);
-    std::vector<std::int32_t>    state(n), vertex_block(n), edge_block(n);
-    std::vector<geometry::Point> normal(n);
-    for (std::size_t c = 0; c < n; ++c)
-      {
-        // The contact's vertex and edge in the current geometry (the
-        // contact records hold the detection at the start of the step).
-        const auto           &g  = contacts[c].geometry;
-        const auto           &vi = blocks[g.block_i].polygon.vertices;
-        const auto           &vj = blocks[g.block_j].polygon.vertices;
-        const geometry::Point P  = vi[g.vertex];
-        const geometry::Point Q0 = vj[g.edge];
-        const geometry::Point E  = vj[(g.edge + 1) % vj.size()] - Q0;
-        const double          l  = E.norm();
-        const geometry::Point t  = E / l;
-        const geometry::Point nn(t.y(), -t.x()); // out of block j
-        const double          xi = std::clamp(t.dot(P - Q0) / l, 0., 1.);
-        const geometry::Point P0 = Q0 + xi * E;
-        xyz.insert(xyz.end(),
-                   {o.x() + P.x(),
-                    o.y() + P.y(),
-                    0.,
-                    o.x() + P0.x(),
-                    o.y() + P0.y(),
-                    0.});
-        offsets[c]      = static_cast<std::int64_t>(2 * (c + 1));
-        state[c]        = static_cast<std::int32_t>(contacts[c].state);
-        vertex_block[c] = blocks[g.block_i].id;
-        edge_block[c]   = blocks[g.block_j].id;
-        gap[c]          = nn.dot(P - Q0);
-        slip[c]         = contacts[c].state == ContactState::open
-                            ? 0.
-                            : t.dot(P - (Q0 + contacts[c].xi_ref * E));
-        fn[c]           = contacts[c].normal_force;
-        fs[c]           = contacts[c].shear_force;
-        normal[c]       = nn;
-      }
-    std::ostringstream s;
-    header(s,
-           "rockdda dda contacts (one line cell per contact, from the "
-           "vertex to its\n"
-           "projection on the edge; points in m). Cell data:\n"
-           "state: 0 open, 1 sliding, 2 locked;\n"
-           "vertex_block, edge_block: block file ids of the block whose "
-           "vertex\n"
-           "touches and of the block whose edge is touched;\n"
-           "normal_gap (m, negative = penetration);\n"
-           "shear_slip (m, along the edge from the shear reference: "
-           "locked, the\n"
-           "elastic shear displacement; sliding, the slip of the last "
-           "step; open, 0);\n"
-           "normal_force (N/m, compression positive), "
-           "shear_force (N/m), normal (outward unit normal of the edge).\n",
-           2 * n,
-           n);
-    geometry(s, xyz, offsets, 3); // VTK_LINE
-    s << "<CellData Scalars=\"state\" Vectors=\"normal\">\n";
-    data_array(s, "state", 1, state);
-    data_array(s, "vertex_block", 1, vertex_block);
-    data_array(s, "edge_block", 1, edge_block);
-    data_array(s, "normal_gap", 1, gap);
-    data_array(s, "shear_slip", 1, slip);
-    data_array(s, "normal_force", 1, fn);
-    data_array(s, "shear_force", 1, fs);
-    data_array(s, "normal", 3, planar_vectors(normal));
-    s << "</CellData>\n";
-    footer(s);
-    return s.str();
+    return vtu(contacts_snapshot(dda));
   }
 
 

@@ -101,22 +101,37 @@ namespace rockdda::io
   OutputDirectory::write(const std::string &name,
                          const std::string &content) const
   {
+    write_with(name, [&content](const std::string &tmp) {
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      out << content;
+      out.flush();
+      if (!out)
+        throw std::runtime_error("cannot write " + tmp);
+    });
+  }
+
+
+
+  void
+  OutputDirectory::write_with(
+    const std::string                              &name,
+    const std::function<void(const std::string &)> &writer) const
+  {
     if (!enabled)
       return;
     own(name);
     const std::string target = file(name);
     const std::string tmp
       = target + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-    {
-      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      out << content;
-      out.flush();
-      if (!out)
-        {
-          std::remove(tmp.c_str());
-          throw std::runtime_error("cannot write " + tmp);
-        }
-    }
+    try
+      {
+        writer(tmp);
+      }
+    catch (...)
+      {
+        std::remove(tmp.c_str());
+        throw;
+      }
     std::error_code ec;
     std::filesystem::rename(tmp, target, ec);
     if (ec)

@@ -64,6 +64,19 @@ execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "statistics.csv of the resumed run differs from the uninterrupted run")
 endif()
+# Snapshot series (VTU's PVD or HDF5's XDMF indices): the resumed run
+# continues the series, so its indices equal the uninterrupted run's.
+foreach(index blocks.pvd contacts.pvd blocks.xdmf contacts.xdmf)
+  if(EXISTS ${OUT}/full/${index})
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
+        ${OUT}/full/${index} ${OUT}/resume/${index}
+      RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "${index} of the resumed run differs from the uninterrupted run")
+    endif()
+    message("${index} of the resumed run identical")
+  endif()
+endforeach()
 file(STRINGS ${OUT}/full/summary.csv full_rows)
 file(STRINGS ${OUT}/resume/summary.csv resume_rows)
 # Wall times differ; the resumed run factorises its operators once more;

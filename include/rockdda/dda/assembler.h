@@ -34,8 +34,9 @@ namespace rockdda::dda
     /// Target positions of the fixed points at the end of the step (m).
     std::vector<geometry::Point> fixed_targets;
     ContactLaw                   law;
-    /// Runs the contact kinematics in two halves (see HalvesRunner).
-    HalvesRunner run_halves;
+    /// Runs the contact kinematics in chunks, possibly on threads
+    /// (ChunkRunner).
+    ChunkRunner run_chunks;
     /// Which blocks their fixed points clamp (clamped_blocks()); nullptr:
     /// none, every fixed point is a penalty spring.
     const std::vector<char> *clamped = nullptr;

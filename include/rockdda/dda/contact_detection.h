@@ -33,30 +33,34 @@ namespace rockdda::dda
   };
 
   /**
-   * Runs a function of the half (0, 1) for both halves, possibly on two
-   * threads (LinearSolver::run_halves); empty: one after the other.
+   * Runs @p f(lo, hi) for the chunks [k g, min(n, (k + 1) g)) of the index
+   * range [0, n), g = grain, possibly concurrently (the engine's threads,
+   * LinearSolver::for_chunks). The chunks depend only on n and g, so a
+   * loop whose chunks write disjoint data gives the same result on any
+   * number of threads.
    */
-  using HalvesRunner = std::function<void(const std::function<void(int)> &)>;
+  using ChunkRunner = std::function<
+    void(std::size_t                                                n,
+         std::size_t                                                grain,
+         const std::function<void(std::size_t lo, std::size_t hi)> &f)>;
 
   /**
-   * Call @p f(h, lo, hi) for the halves h = 0, 1 of the index range
-   * [0, n): [0, n/2) and [n/2, n), through @p runner (or one after the
-   * other if it is empty). The two calls must write disjoint data.
+   * Run @p f(lo, hi) over the chunks of [0, n) of @p grain items through
+   * @p runner, or one after the other (in order) if it is empty.
    */
   inline void
-  for_each_half(const HalvesRunner &runner,
-                const std::size_t   n,
-                const std::function<void(int, std::size_t, std::size_t)> &f)
+  for_each_chunk(const ChunkRunner                                   &runner,
+                 const std::size_t                                    n,
+                 const std::size_t                                    grain,
+                 const std::function<void(std::size_t, std::size_t)> &f)
   {
-    const std::function<void(int)> half
-      = [&](const int h) { f(h, h == 0 ? 0 : n / 2, h == 0 ? n / 2 : n); };
     if (runner)
-      runner(half);
-    else
       {
-        half(0);
-        half(1);
+        runner(n, grain, f);
+        return;
       }
+    for (std::size_t lo = 0; lo < n; lo += grain)
+      f(lo, std::min(n, lo + grain));
   }
 
   /**
@@ -83,8 +87,8 @@ namespace rockdda::dda
     /// passes if n . a >= -sin(entrance_angle) |a| (rad). Larger than the
     /// relative rotation of two blocks in one step.
     double entrance_angle = 0.2;
-    /// Runs the block pairs in two halves (see HalvesRunner).
-    HalvesRunner run_halves;
+    /// Runs the block pairs in chunks, possibly on threads (ChunkRunner).
+    ChunkRunner run_chunks;
     /// Two vertices closer than coincidence_fraction * vertex_distance()
     /// form a vertex-vertex contact.
     double coincidence_fraction = 0.2;

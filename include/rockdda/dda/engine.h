@@ -336,10 +336,10 @@ namespace rockdda::dda
              std::string                &why);
     void
     update(const Eigen::VectorXd &d, const double step);
-    /// Runs work in two halves on the linear solver's threads (built per
-    /// use, so that it always refers to this object).
-    HalvesRunner
-    halves();
+    /// Runs work in chunks on the linear solver's threads (built per use,
+    /// so that it always refers to this object).
+    ChunkRunner
+    chunks();
     /// Step length alpha in (0, 1] along x_hat - x_k that minimises the
     /// convex energy of the step for the current contact states and
     /// strengths, with the state check's force tolerances times

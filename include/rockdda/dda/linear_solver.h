@@ -92,8 +92,10 @@ namespace rockdda::dda
     int max_iterations = 0;
     /// Automatic choice: direct up to this many blocks.
     int automatic_limit = 60;
-    /// Threads of the D-ILU CG: 1 or 2; 0 = 2 if the machine has at least
-    /// two cores. The result does not depend on it.
+    /// Threads of the run (TBB): contact detection, kinematics and state
+    /// checks in chunks, and the two subdomains of the D-ILU sweeps (which
+    /// use at most two); 0 = one per core. The result does not depend on
+    /// it.
     int threads = 0;
     /// From this many blocks on, the D-ILU orders the blocks as two
     /// subdomains and their separator (last), so that the two subdomains
@@ -103,7 +105,7 @@ namespace rockdda::dda
 
   namespace internal
   {
-    class ThreadPair;
+    class TaskTeam;
   }
 
   /**
@@ -151,7 +153,7 @@ namespace rockdda::dda
       return iterations;
     }
 
-    /// Threads the iterative solver runs on (1 or 2).
+    /// Threads of the run (SolverOptions::threads resolved).
     unsigned int
     n_threads() const;
 
@@ -161,13 +163,14 @@ namespace rockdda::dda
     separator_size() const;
 
     /**
-     * Run @p f(0) and @p f(1) on the solver's two threads when it has them
-     * (iterative solver with the subdomain ordering and Threads >= 2),
-     * else one after the other. The two calls must write disjoint data;
-     * results are then the same on one and two threads.
+     * Run @p f(lo, hi) over the chunks of [0, n) of @p grain items on the
+     * run's threads (ChunkRunner). The chunks must write disjoint data;
+     * results are then the same on any number of threads.
      */
     void
-    run_halves(const std::function<void(int)> &f);
+    for_chunks(const std::size_t                                    n,
+               const std::size_t                                    grain,
+               const std::function<void(std::size_t, std::size_t)> &f);
 
   private:
     struct Direct;
@@ -177,17 +180,20 @@ namespace rockdda::dda
     jacobi_cg(const BlockSparseMatrix &K,
               const Eigen::VectorXd   &f,
               Eigen::VectorXd         &x);
+    /// The run's threads (made on first use).
+    internal::TaskTeam &
+    team_of_run() const;
     /// Iteration limit for @p n blocks.
     int
     iteration_limit(const int n) const;
 
-    SolverOptions                         options;
-    SolverType                            current    = SolverType::direct;
-    int                                   iterations = 0;
-    bool                                  factorised = false;
-    std::unique_ptr<Direct>               direct;
-    std::unique_ptr<Dilu>                 dilu;
-    std::unique_ptr<internal::ThreadPair> team;
+    SolverOptions                               options;
+    SolverType                                  current    = SolverType::direct;
+    int                                         iterations = 0;
+    bool                                        factorised = false;
+    std::unique_ptr<Direct>                     direct;
+    std::unique_ptr<Dilu>                       dilu;
+    mutable std::unique_ptr<internal::TaskTeam> team;
     /// Inverse diagonal blocks (block-Jacobi).
     std::vector<Matrix6> inverse_diag;
     Eigen::VectorXd      r, z, p, q;

@@ -15,6 +15,7 @@
 #define ROCKDDA_DDA_VTU_OUTPUT_H
 
 #include <rockdda/dda/engine.h>
+#include <rockdda/dda/snapshot.h>
 
 #include <string>
 #include <utility>
@@ -22,6 +23,10 @@
 
 namespace rockdda::dda
 {
+  /// A snapshot as one VTK XML unstructured-grid file.
+  std::string
+  vtu(const Snapshot &snapshot);
+
   /**
    * Blocks as polygons (points in global coordinates, m). Cell data:
    * - `block_id` (Int32): the block's id from the block file;

@@ -6,6 +6,7 @@
 #ifndef ROCKDDA_IO_OUTPUT_H
 #define ROCKDDA_IO_OUTPUT_H
 
+#include <functional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -48,6 +49,12 @@ namespace rockdda::io
     /// Atomically replace file @p name with @p content.
     void
     write(const std::string &name, const std::string &content) const;
+    /// Atomically replace file @p name with what @p writer writes to the
+    /// temporary path it is given (for files written by libraries, e.g.
+    /// HDF5). If @p writer throws, the temporary file is removed.
+    void
+    write_with(const std::string                              &name,
+               const std::function<void(const std::string &)> &writer) const;
 
     /**
      * Record in the manifest that this run writes file @p pattern (a name

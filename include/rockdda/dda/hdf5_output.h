@@ -1,0 +1,89 @@
+/**
+ * @file
+ * DDA snapshots in HDF5 with XDMF indices, for scenes too large for VTU:
+ * binary arrays instead of base64 XML, and one index per series that
+ * ParaView opens as one time series (XDMF reader).
+ *
+ * Each snapshot is one file `snapshot-NNNNN.h5` (written atomically) with
+ * the groups `/blocks` and `/contacts`, each holding
+ * - `points` (float64, P x 3, m; global coordinates, z = 0),
+ * - `topology` (int64): blocks, XDMF mixed polygons, per cell the type 3,
+ *   its number of points and their indices; contacts, C x 2 point indices,
+ * - `offsets` (int64, one per cell: end of its points, as in VTU),
+ * - one dataset per cell field of Snapshot (int32 or float64, N or N x k),
+ * and the root attribute `time` (s). The XDMF indices `blocks.xdmf` and
+ * `contacts.xdmf` list the snapshots as temporal collections; a 6-component
+ * field (stress) is an XDMF "Matrix" attribute in the order XX YY ZZ XY YZ
+ * XZ.
+ */
+#ifndef ROCKDDA_DDA_HDF5_OUTPUT_H
+#define ROCKDDA_DDA_HDF5_OUTPUT_H
+
+#include <rockdda/dda/snapshot.h>
+#include <rockdda/io/output.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rockdda::dda
+{
+  /// Write @p blocks and @p contacts at @p time into the HDF5 file @p path.
+  void
+  write_snapshot_hdf5(const std::string &path,
+                      const double       time,
+                      const Snapshot    &blocks,
+                      const Snapshot    &contacts);
+
+  /// Read group @p group ("blocks" or "contacts") of a snapshot file
+  /// written by write_snapshot_hdf5() (description and default fields are
+  /// not stored); throws std::runtime_error naming the file.
+  Snapshot
+  read_snapshot_hdf5(const std::string &path, const std::string &group);
+
+  /// The time (s) stored in a snapshot file.
+  double
+  read_snapshot_time(const std::string &path);
+
+  /**
+   * A series of HDF5 snapshots and its two XDMF indices in an output
+   * folder. Each write() adds one file and rewrites both indices.
+   */
+  class Hdf5Series
+  {
+  public:
+    explicit Hdf5Series(const io::OutputDirectory &output);
+
+    /// Write the next snapshot; returns its file name.
+    std::string
+    write(const double time, const Snapshot &blocks, const Snapshot &contacts);
+
+    /// Continue a series written earlier (a resumed run): (time, file name)
+    /// of each snapshot; the sizes are read from the files.
+    void
+    restore(const std::vector<std::pair<double, std::string>> &files);
+
+    /// (time, file name) of each snapshot written.
+    const std::vector<std::pair<double, std::string>> &
+    files() const
+    {
+      return entries;
+    }
+
+  private:
+    /// The XDMF <Grid> of each snapshot, for blocks and contacts.
+    void
+    add_grids(const double       time,
+              const std::string &file,
+              const Snapshot    &blocks,
+              const Snapshot    &contacts);
+    void
+    write_indices() const;
+
+    const io::OutputDirectory                  &output;
+    std::vector<std::pair<double, std::string>> entries;
+    std::vector<std::string>                    block_grids, contact_grids;
+  };
+} // namespace rockdda::dda
+
+#endif

@@ -1,0 +1,58 @@
+/**
+ * @file
+ * Internal to the dda subsystem: the threads of a DDA run, a TBB task
+ * arena of a fixed size (Intel oneTBB, which deal.II brings).
+ */
+#ifndef ROCKDDA_DDA_TASK_TEAM_H
+#define ROCKDDA_DDA_TASK_TEAM_H
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+
+namespace rockdda::dda::internal
+{
+  /**
+   * A fixed number of threads for the DDA's parallel phases: contact
+   * detection, contact kinematics, state checks (chunks of an index range)
+   * and the two subdomains of the D-ILU sweeps (a pair). Work is split in
+   * the same way for every thread count and each piece writes its own
+   * data, so results do not depend on the number of threads.
+   */
+  class TaskTeam
+  {
+  public:
+    /// @p n_threads threads (0: one per core); with one, no arena.
+    explicit TaskTeam(const unsigned int n_threads);
+    ~TaskTeam();
+    TaskTeam(const TaskTeam &) = delete;
+    TaskTeam &
+    operator=(const TaskTeam &)
+      = delete;
+
+    /// Number of threads.
+    unsigned int
+    n_threads() const
+    {
+      return threads;
+    }
+
+    /// Run f(0) and f(1) (concurrently with two threads or more).
+    void
+    run_pair(const std::function<void(int)> &f);
+
+    /// Run f(lo, hi) for the chunks [k g, min(n, (k + 1) g)) of [0, n),
+    /// g = @p grain, concurrently with two threads or more.
+    void
+    for_chunks(const std::size_t                                    n,
+               const std::size_t                                    grain,
+               const std::function<void(std::size_t, std::size_t)> &f);
+
+  private:
+    struct Arena;
+    unsigned int           threads = 1;
+    std::unique_ptr<Arena> arena;
+  };
+} // namespace rockdda::dda::internal
+
+#endif
