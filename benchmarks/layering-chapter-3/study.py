@@ -1,0 +1,478 @@
+#!/usr/bin/python3
+"""Layering study of thesis Chapter 3.4-3.5 (issue 16, items 1 and 2).
+
+usage: study.py ROCKDDA [--end-time T] [--jobs J] [--models NAME ...]
+                [--work FOLDER] [--timeout S] [--retry-failed] [--out DIR]
+
+Runs the 16 models of thesis Table 3-1 (parameter-files/layering: FMML and
+DL01-DL15, and with --models also FMML-wide, the boundary check) through
+'cut' (blocks.dda), scene.py (measurement points 1-5) and 'dda' with the
+controls of Table 3-2 (parameter-files/layering/table-3-2.prm), J models at
+a time (default 2, each on one solver thread), and writes into DIR (default:
+this folder):
+
+  models.csv        one row per model: status (done / failed / stopped),
+                    the engine's diagnosis of a failed run, blocks, steps,
+                    cuts, wall time, wall time per step and per block-step,
+                    final vertical displacement and horizontal stress at
+                    points 1-5, the loosened-zone height / B
+  timeseries.csv    vertical displacement and horizontal stress at points
+                    1-5 against time (every 0.05 s; thesis Fig. 3-7C/D)
+  results.md        the tables
+  fig-3-7.png       FMML: displacement and horizontal compressive stress
+                    of points 1-5 against time
+  fig-3-9.png       final displacement of points 3, 4, 5 against b/L for
+                    each L, FMML for reference
+  deformed-*.png    the deformed roof zone of FMML, DL02, DL07 (Fig. 3-8)
+
+Each model runs in WORK/NAME (default WORK = ./runs beside ROCKDDA's build
+folder) from a copy of ROCKDDA made once (WORK/rockdda), with checkpoints
+every 0.1 s: running the study again skips the finished models and resumes
+the others from their checkpoints (bit for bit, so a killed study produces
+the same tables); a larger --end-time extends finished models. SIGINT /
+SIGTERM stop the running models with a checkpoint. A model that fails (the
+engine's diagnosis in its log.txt, e.g. the time step cut below its
+minimum) is marked failed with the diagnosis and the rest goes on; it is
+rerun only with --retry-failed. --timeout stops a model after S s of wall
+time (checkpoint written; status 'stopped', resumable).
+
+Exit status 0 when every model reached the end time, 1 otherwise.
+"""
+import argparse
+import concurrent.futures
+import csv
+import math
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SOURCE = os.path.normpath(os.path.join(HERE, "..", ".."))
+LAYERING = os.path.join(SOURCE, "parameter-files", "layering")
+sys.path.insert(0, LAYERING)
+sys.path.insert(0, os.path.join(SOURCE, "scripts"))
+import scene  # noqa: E402
+import read_vtu  # noqa: E402
+
+B = 10.0            # opening width (m)
+ROOF_Y = 16.0       # roof level (m)
+LOOSE_THRESHOLDS = (0.05, 0.1, 0.2)   # downward displacement (m)
+STOP = threading.Event()
+RUNNING = {}
+RUNNING_LOCK = threading.Lock()
+
+
+def model_list():
+    """[(name, L, b)] of Table 3-1 (FMML: L = b = None)."""
+    out = [("FMML", None, None)]
+    k = 1
+    for length in (5, 10, 15):
+        for i in range(1, 6):
+            out.append(("DL%02d" % k, length, length // 5 * i))
+            k += 1
+    return out
+
+
+def set_key(text, key, value):
+    """TEXT with 'set KEY = ...' replaced by VALUE (the key must exist)."""
+    lines = text.split("\n")
+    for i, line in enumerate(lines):
+        w = line.split("=", 1)
+        if len(w) == 2 and w[0].split() == ["set"] + key.split():
+            lines[i] = w[0] + "= " + value
+            return "\n".join(lines)
+    raise SystemExit("study.py: no key '%s'" % key)
+
+
+def read_csv(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def summary(path):
+    """{key: value string} of a summary.csv (key,value,unit rows)."""
+    out = {}
+    if os.path.exists(path):
+        with open(path) as f:
+            for row in csv.reader(f):
+                if len(row) >= 2:
+                    out[row[0]] = row[1]
+    return out
+
+
+def run(cmd, log, timeout=None):
+    """Runs CMD (stdout/stderr to LOG) in its own process group; returns
+    (exit code, 'stopped' if stopped by STOP or the timeout)."""
+    with open(log, "a") as out:
+        p = subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT,
+                             start_new_session=True)
+        with RUNNING_LOCK:
+            RUNNING[p.pid] = p
+        start = time.time()
+        stopped = None
+        try:
+            while p.poll() is None:
+                if STOP.is_set() or (timeout and time.time() - start > timeout):
+                    stopped = "stopped"
+                    p.send_signal(signal.SIGTERM)
+                    try:
+                        p.wait(120)
+                    except subprocess.TimeoutExpired:
+                        p.kill()
+                    break
+                time.sleep(0.2)
+        finally:
+            with RUNNING_LOCK:
+                RUNNING.pop(p.pid, None)
+        return p.wait(), stopped
+
+
+def diagnosis(folder):
+    """The engine's reason a run failed (log.txt 'DDA stopped: ...' or the
+    driver's error line), else ''."""
+    for name in ("log.txt", "driver.log"):
+        path = os.path.join(folder, name)
+        if os.path.exists(path):
+            for line in open(path, errors="replace"):
+                for tag in ("DDA stopped: ", "rockdda: error: "):
+                    if tag in line:
+                        return line.split(tag, 1)[1].strip()
+    return ""
+
+
+def run_model(rockdda, work, name, end_time, timeout, retry_failed, jobs):
+    """Cut, measurement points and DDA of one model, resumed if possible.
+    Returns a dict with its status."""
+    folder = os.path.join(work, name)
+    os.makedirs(folder, exist_ok=True)
+    failed_marker = os.path.join(folder, "FAILED")
+    if os.path.exists(failed_marker) and not retry_failed:
+        return {"status": "failed", "diagnosis": open(failed_marker).read()
+                .strip()}
+    if os.path.exists(failed_marker):
+        os.remove(failed_marker)
+    # 1. cut (once).
+    blocks = os.path.join(folder, "cut", "blocks.dda")
+    if not os.path.exists(blocks):
+        text = open(os.path.join(LAYERING, name + ".prm")).read()
+        text = set_key(text, "Output directory", os.path.join(folder, "cut"))
+        prm = os.path.join(folder, "cut.prm")
+        with open(prm, "w") as f:
+            f.write(text)
+        rc, _ = run([rockdda, "--quiet", prm],
+                    os.path.join(folder, "driver.log"))
+        if rc != 0:
+            d = diagnosis(os.path.join(folder, "cut")) or "cut failed"
+            with open(failed_marker, "w") as f:
+                f.write(d + "\n")
+            return {"status": "failed", "diagnosis": d}
+    # 2. measurement points.
+    scene_file = os.path.join(folder, "scene.dda")
+    if not os.path.exists(scene_file):
+        width = 100.0 if name.endswith("-wide") else 60.0
+        pts = scene.points(scene.read_blocks(blocks), width)
+        text = open(blocks).read().rstrip("\n")
+        text += "\n# measurement points 1-5 (scene.py)\n"
+        text += "".join("measure %d %.6f %.6f\n" % p for p in pts)
+        with open(scene_file + ".tmp", "w") as f:
+            f.write(text)
+        os.replace(scene_file + ".tmp", scene_file)
+    # 3. DDA, resumed from the checkpoint when there is one.
+    out = os.path.join(folder, "dda")
+    s = summary(os.path.join(out, "summary.csv"))
+    if s.get("completed") == "1" and \
+            float(s.get("final_time", 0)) >= end_time - 1e-9:
+        return {"status": "done"}
+    resume = os.path.exists(os.path.join(out, "checkpoint.bin"))
+    text = open(os.path.join(LAYERING, "table-3-2.prm")).read()
+    text = set_key(text, "Output directory", out)
+    text = set_key(text, "Block file", scene_file)
+    text = set_key(text, "End time", repr(end_time))
+    text = set_key(text, "Resume", "true" if resume else "false")
+    text += "\nsubsection DDA\n  set Threads = %d\nend\n" % (
+        1 if jobs > 1 else 0)
+    prm = os.path.join(folder, "dda.prm")
+    with open(prm, "w") as f:
+        f.write(text)
+    rc, stopped = run([rockdda, "--quiet", prm],
+                      os.path.join(folder, "driver.log"), timeout)
+    s = summary(os.path.join(out, "summary.csv"))
+    if stopped or s.get("completed") == "0":
+        return {"status": "stopped"}
+    if rc != 0:
+        d = diagnosis(out) or diagnosis(folder) or "exit code %d" % rc
+        with open(failed_marker, "w") as f:
+            f.write(d + "\n")
+        return {"status": "failed", "diagnosis": d}
+    return {"status": "done"}
+
+
+def loosened_zone(folder, width):
+    """Height (m) above the roof of the highest block over the opening whose
+    centroid moved down by more than each threshold (last VTU snapshot),
+    for LOOSE_THRESHOLDS; None without a snapshot."""
+    out = os.path.join(folder, "dda")
+    vtus = sorted(f for f in os.listdir(out)
+                  if f.startswith("blocks-") and f.endswith(".vtu")) \
+        if os.path.isdir(out) else []
+    if not vtus:
+        return None
+    a = read_vtu.read(os.path.join(out, vtus[-1]))
+    ids = a["block_id"].values
+    disp = a["displacement"].tuples()
+    original = scene.read_blocks(os.path.join(folder, "cut", "blocks.dda"))
+    x0, x1 = width / 2 - B / 2, width / 2 + B / 2
+    heights = []
+    for t in LOOSE_THRESHOLDS:
+        h = 0.0
+        for i, d in zip(ids, disp):
+            poly = original[int(i)]
+            xs = [p[0] for p in poly]
+            ys = [p[1] for p in poly]
+            cx = sum(xs) / len(xs)
+            if x0 < cx < x1 and min(ys) >= ROOF_Y - 1e-6 and -d[1] > t:
+                h = max(h, max(ys) - ROOF_Y)
+        heights.append(h)
+    return heights
+
+
+def collect(work, names, end_time):
+    """Rows of models.csv and timeseries.csv."""
+    rows, series = [], []
+    table = {n: (length, b) for n, length, b in model_list()}
+    for name in names:
+        folder = os.path.join(work, name)
+        width = 100.0 if name.endswith("-wide") else 60.0
+        out = os.path.join(folder, "dda")
+        s = summary(os.path.join(out, "summary.csv"))
+        length, b = table.get(name, (None, None))
+        row = {"model": name, "L_m": length or "", "b_m": b or "",
+               "b_over_L": "%.1f" % (b / length) if length else ""}
+        fail = os.path.join(folder, "FAILED")
+        if os.path.exists(fail):
+            row["status"] = "failed"
+            row["diagnosis"] = open(fail).read().strip()
+        elif s.get("completed") == "1" and \
+                float(s.get("final_time", 0)) >= end_time - 1e-9:
+            row["status"] = "done"
+        else:
+            row["status"] = "stopped"
+        stats = os.path.join(out, "statistics.csv")
+        data = [r for r in read_csv(stats)
+                if float(r["time"]) <= end_time + 1e-9] \
+            if os.path.exists(stats) else []
+        row["final_time_s"] = data[-1]["time"] if data else ""
+        blocks_file = os.path.join(folder, "cut", "blocks.dda")
+        if os.path.exists(blocks_file):
+            row["blocks"] = len(scene.read_blocks(blocks_file))
+        for k in ("steps", "time_step_cuts", "wall_time",
+                  "open_close_iterations_per_step"):
+            row[k] = s.get(k, "")
+        if s.get("wall_time") and s.get("steps") and row.get("blocks"):
+            w, n = float(s["wall_time"]), float(s["steps"])
+            row["ms_per_step"] = "%.2f" % (1e3 * w / n)
+        if data:
+            last = data[-1]
+            for p in range(1, 6):
+                row["uy%d_m" % p] = last["mp%d_uy" % p]
+                row["sx%d_Pa" % p] = last["mp%d_sigma_x" % p]
+            next_t = 0.0
+            for r in data:
+                t = float(r["time"])
+                if t + 1e-9 >= next_t:
+                    for p in range(1, 6):
+                        series.append({"model": name, "time_s": r["time"],
+                                       "point": p,
+                                       "uy_m": r["mp%d_uy" % p],
+                                       "sigma_x_Pa": r["mp%d_sigma_x" % p]})
+                    next_t += 0.05
+        h = loosened_zone(folder, width)
+        if h is not None:
+            for t, v in zip(LOOSE_THRESHOLDS, h):
+                row["loose_%gm_over_B" % t] = "%.3f" % (v / B)
+        rows.append(row)
+    return rows, series
+
+
+def write_csv(path, rows, fields=None):
+    if fields is None:
+        fields = []
+        for r in rows:
+            for k in r:
+                if k not in fields:
+                    fields.append(k)
+    with open(path + ".tmp", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
+        w.writeheader()
+        for r in rows:
+            w.writerow(r)
+    os.replace(path + ".tmp", path)
+
+
+def fmt(v, scale=1.0, digits=3):
+    try:
+        return "%.*g" % (digits, float(v) * scale)
+    except (TypeError, ValueError):
+        return "-"
+
+
+def markdown(rows, end_time):
+    out = ["Layering study (thesis Table 3-1 models, Table 3-2 controls), "
+           "end time %g s. uy: vertical displacement (mm, up positive) at "
+           "points 1-5; sx: horizontal stress (kPa, compression negative); "
+           "loosened zone: height over B of the highest block over the "
+           "opening that moved down more than 0.05 / 0.1 / 0.2 m." % end_time,
+           "",
+           "| model | L (m) | b/L | status | blocks | steps | cuts | wall (s) "
+           "| ms/step | uy1 | uy2 | uy3 | uy4 | uy5 | sx1 | sx2 | sx3 | sx4 "
+           "| sx5 | loose/B (0.05 / 0.1 / 0.2 m) |",
+           "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:"
+           "|---:|---:|---:|---:|---:|---:|---|"]
+    for r in rows:
+        cells = [r["model"], str(r.get("L_m", "")) or "-",
+                 r.get("b_over_L") or "-", r["status"],
+                 str(r.get("blocks", "-")), fmt(r.get("steps"), 1, 6),
+                 fmt(r.get("time_step_cuts"), 1, 6),
+                 fmt(r.get("wall_time"), 1, 4), r.get("ms_per_step", "-")]
+        cells += [fmt(r.get("uy%d_m" % p), 1e3) for p in range(1, 6)]
+        cells += [fmt(r.get("sx%d_Pa" % p), 1e-3) for p in range(1, 6)]
+        cells.append(" / ".join(r.get("loose_%gm_over_B" % t, "-")
+                                for t in LOOSE_THRESHOLDS))
+        out.append("| " + " | ".join(cells) + " |")
+    fails = [r for r in rows if r["status"] == "failed"]
+    if fails:
+        out += ["", "Failed models and the engine's diagnosis:", ""]
+        out += ["- %s: %s" % (r["model"], r.get("diagnosis", "")) for r in fails]
+    return "\n".join(out) + "\n"
+
+
+def plots(outdir, rows, series, work):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    # Fig. 3-7 C/D: FMML time series.
+    fm = [s for s in series if s["model"] == "FMML"]
+    if fm:
+        fig, ax = plt.subplots(1, 2, figsize=(11, 4))
+        for p in range(1, 6):
+            t = [float(s["time_s"]) for s in fm if s["point"] == p]
+            ax[0].plot(t, [1e3 * float(s["uy_m"]) for s in fm
+                           if s["point"] == p], label="point %d" % p)
+            ax[1].plot(t, [-1e-3 * float(s["sigma_x_Pa"]) for s in fm
+                           if s["point"] == p], label="point %d" % p)
+        ax[0].set(xlabel="time (s)", ylabel="vertical displacement (mm)",
+                  title="FMML (cf. thesis Fig. 3-7C)")
+        ax[1].set(xlabel="time (s)",
+                  ylabel="horizontal compressive stress (kPa)",
+                  title="FMML (cf. thesis Fig. 3-7D)")
+        ax[0].legend()
+        fig.tight_layout()
+        fig.savefig(os.path.join(outdir, "fig-3-7.png"), dpi=110)
+        plt.close(fig)
+    # Fig. 3-9: final displacement against b/L.
+    fig, ax = plt.subplots(1, 3, figsize=(13, 4), sharey=True)
+    ref = {r["model"]: r for r in rows}
+    for k, p in enumerate((3, 4, 5)):
+        for length, style in ((5, "o-"), (10, "s-"), (15, "^-")):
+            pts = [(float(r["b_over_L"]), 1e3 * float(r["uy%d_m" % p]))
+                   for r in rows if r.get("L_m") == length and
+                   r.get("uy%d_m" % p) not in (None, "")]
+            if pts:
+                ax[k].plot(*zip(*pts), style, label="DL, L = %d m" % length)
+        f = ref.get("FMML")
+        if f and f.get("uy%d_m" % p):
+            ax[k].axhline(1e3 * float(f["uy%d_m" % p]), color="k", ls="--",
+                          label="FMML")
+        ax[k].set(xlabel="b / L", title="point %d" % p)
+    ax[0].set_ylabel("final vertical displacement (mm)")
+    ax[0].legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(outdir, "fig-3-9.png"), dpi=110)
+    plt.close(fig)
+    # Fig. 3-7B / 3-8: deformed roof zone, coloured by vertical displacement.
+    from matplotlib.collections import PolyCollection
+    for name in ("FMML", "DL02", "DL07"):
+        out = os.path.join(work, name, "dda")
+        if not os.path.isdir(out):
+            continue
+        vtus = sorted(f for f in os.listdir(out)
+                      if f.startswith("blocks-") and f.endswith(".vtu"))
+        if not vtus:
+            continue
+        a = read_vtu.read(os.path.join(out, vtus[-1]))
+        polys = read_vtu.polygons(a)
+        uy = [d[1] for d in a["displacement"].tuples()]
+        fig, ax = plt.subplots(figsize=(8, 5.5))
+        pc = PolyCollection(polys, array=[1e3 * v for v in uy], cmap="viridis",
+                            edgecolors="k", linewidths=0.2)
+        pc.set_clim(-200, 0)
+        ax.add_collection(pc)
+        ax.set(xlim=(15, 45), ylim=(4, 40), aspect="equal",
+               title="%s at t = %s s (vertical displacement, mm)"
+               % (name, fmt(ref.get(name, {}).get("final_time_s"), 1, 4)))
+        for p, y in enumerate(scene.POINTS_Y, 1):
+            ax.plot(30.1, y, "r+")
+            ax.annotate(str(p), (30.4, y), color="r")
+        fig.colorbar(pc, ax=ax)
+        fig.tight_layout()
+        fig.savefig(os.path.join(outdir, "deformed-%s.png" % name), dpi=110)
+        plt.close(fig)
+
+
+def main():
+    p = argparse.ArgumentParser(description="layering study (issue 16)")
+    p.add_argument("rockdda")
+    p.add_argument("--end-time", type=float, default=5.0)
+    p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--models", nargs="*")
+    p.add_argument("--work")
+    p.add_argument("--timeout", type=float)
+    p.add_argument("--retry-failed", action="store_true")
+    p.add_argument("--out", default=HERE)
+    a = p.parse_args()
+    names = a.models or [n for n, _, _ in model_list()]
+    work = os.path.abspath(a.work or os.path.join(
+        os.path.dirname(os.path.abspath(a.rockdda)), "layering-chapter-3"))
+    os.makedirs(work, exist_ok=True)
+    binary = os.path.join(work, "rockdda")
+    if not os.path.exists(binary):
+        shutil.copy2(a.rockdda, binary + ".tmp")
+        os.replace(binary + ".tmp", binary)
+
+    def stop(signum, frame):
+        STOP.set()
+    signal.signal(signal.SIGINT, stop)
+    signal.signal(signal.SIGTERM, stop)
+
+    status = {}
+    with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
+        futures = {pool.submit(run_model, binary, work, n, a.end_time,
+                               a.timeout, a.retry_failed, a.jobs): n
+                   for n in names}
+        for f in concurrent.futures.as_completed(futures):
+            n = futures[f]
+            try:
+                status[n] = f.result()
+            except Exception as e:  # a broken model must not stop the rest
+                status[n] = {"status": "failed", "diagnosis": repr(e)}
+            print("%s: %s %s" % (n, status[n]["status"],
+                                 status[n].get("diagnosis", "")), flush=True)
+    rows, series = collect(work, names, a.end_time)
+    os.makedirs(a.out, exist_ok=True)
+    write_csv(os.path.join(a.out, "models.csv"), rows)
+    write_csv(os.path.join(a.out, "timeseries.csv"), series,
+              ["model", "time_s", "point", "uy_m", "sigma_x_Pa"])
+    md = os.path.join(a.out, "results.md")
+    with open(md + ".tmp", "w") as f:
+        f.write(markdown(rows, a.end_time))
+    os.replace(md + ".tmp", md)
+    plots(a.out, rows, series, work)
+    return 0 if all(r["status"] == "done" for r in rows) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
