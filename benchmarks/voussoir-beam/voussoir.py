@@ -30,22 +30,31 @@ which for a rigid beam (E -> infinity, n = 3/4, Z = T / 2) is 4 Z / S =
 2 T / S: independent of the unit weight and of a uniform surcharge (both
 scale V and H alike).
 
+With joints (Diederichs & Kaiser's jointed beam, here explicitly): each of
+J vertical joints closes by H / k_j under the thrust H (k_j: normal
+stiffness per m, e.g. the DDA penalty), which adds J H / k_j to dL.
+
 usage: voussoir.py [--span S] [--thickness T] [--unit-weight G] [--modulus E]
+                   [--joints J --joint-stiffness K]
 """
 import argparse
 import math
 
 
-def solve_n(span, thickness, unit_weight, modulus, n):
+def solve_n(span, thickness, unit_weight, modulus, n, joints=0,
+            joint_stiffness=math.inf):
     """(f_m, Z, Z0) at load-depth ratio n, or None if the arch snaps
-    through (no real Z)."""
+    through (no real Z). JOINTS vertical joints (abutments included) that
+    each close by H / JOINT_STIFFNESS (N/m per m) under the thrust H add
+    to the arch's shortening."""
     z0 = thickness * (1.0 - 2.0 * n / 3.0)
     length = span + 8.0 * z0 * z0 / (3.0 * span)
     z = z0
     for _ in range(500):
         fm = unit_weight * span * span / (4.0 * n * z)
         fav = fm * (2.0 / 3.0 + n) / 2.0
-        dl = fav * length / modulus
+        thrust = fm * n * thickness / 2.0
+        dl = fav * length / modulus + joints * thrust / joint_stiffness
         z2 = z0 * z0 - 3.0 * span * dl / 8.0
         if z2 <= 0.0:
             return None
@@ -58,14 +67,16 @@ def solve_n(span, thickness, unit_weight, modulus, n):
     return fm, z, z0
 
 
-def voussoir(span, thickness, unit_weight, modulus, samples=20000):
+def voussoir(span, thickness, unit_weight, modulus, samples=20000, joints=0,
+             joint_stiffness=math.inf):
     """The equilibrium of the beam: dict with n, f_m (Pa), Z, deflection (m),
     thrust H (N/m), abutment shear V (N/m) and phi_req (deg); None if it
     snaps through for every n."""
     best = None
     for i in range(1, samples):
         n = i / samples
-        s = solve_n(span, thickness, unit_weight, modulus, n)
+        s = solve_n(span, thickness, unit_weight, modulus, n, joints,
+                    joint_stiffness)
         if s is None:
             continue
         fm, z, z0 = s
@@ -88,8 +99,14 @@ def main():
     p.add_argument("--unit-weight", type=float, default=2300 * 9.80665,
                    help="N/m^3")
     p.add_argument("--modulus", type=float, default=15.3e9, help="Pa")
+    p.add_argument("--joints", type=int, default=0,
+                   help="number of vertical joints incl. the abutments")
+    p.add_argument("--joint-stiffness", type=float, default=math.inf,
+                   help="normal stiffness of a joint, N/m per m (e.g. the "
+                   "DDA contact penalty)")
     a = p.parse_args()
-    r = voussoir(a.span, a.thickness, a.unit_weight, a.modulus)
+    r = voussoir(a.span, a.thickness, a.unit_weight, a.modulus,
+                 joints=a.joints, joint_stiffness=a.joint_stiffness)
     if r is None:
         print("snap-through: no equilibrium")
         return
