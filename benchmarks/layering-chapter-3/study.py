@@ -3,6 +3,7 @@
 
 usage: study.py ROCKDDA [--end-time T] [--jobs J] [--models NAME ...]
                 [--work FOLDER] [--timeout S] [--retry-failed] [--out DIR]
+                [--collect-only]
 
 Runs the 16 models of thesis Table 3-1 (parameter-files/layering: FMML and
 DL01-DL15, and with --models also FMML-wide, the boundary check) through
@@ -44,6 +45,7 @@ import csv
 import fcntl
 import math
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -151,6 +153,8 @@ def run_model(rockdda, work, name, end_time, timeout, retry_failed, jobs):
     folder skips it). Returns a dict with its status."""
     folder = os.path.join(work, name)
     os.makedirs(folder, exist_ok=True)
+    if STOP.is_set():
+        return {"status": "stopped", "diagnosis": "not started (stopped)"}
     with open(os.path.join(folder, "lock"), "w") as lock:
         try:
             fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -228,7 +232,20 @@ def run_model_locked(rockdda, folder, name, end_time, timeout, retry_failed,
     return {"status": "done"}
 
 
-def loosened_zone(folder, width):
+def snapshot(folder, end_time):
+    """The path of the last blocks VTU snapshot at or before END_TIME
+    (blocks.pvd), or None."""
+    pvd = os.path.join(folder, "dda", "blocks.pvd")
+    if not os.path.exists(pvd):
+        return None
+    best = None
+    for m in re.finditer(r'timestep="([^"]+)" file="([^"]+)"', open(pvd).read()):
+        if float(m.group(1)) <= end_time + 1e-9:
+            best = os.path.join(folder, "dda", m.group(2))
+    return best
+
+
+def loosened_zone(folder, width, end_time):
     """Height (m) above the roof of the highest block over the opening that
     moved down by more than each of LOOSE_THRESHOLDS beyond the far field
     (last VTU snapshot); None without a snapshot. The far field of a block
@@ -236,13 +253,10 @@ def loosened_zone(folder, width):
     within 0.5 m in y) more than 2 B from the opening's centre line: the
     soft contacts (penalty 0.1 GN/m) let the whole column settle by several
     cm, which is not loosening."""
-    out = os.path.join(folder, "dda")
-    vtus = sorted(f for f in os.listdir(out)
-                  if f.startswith("blocks-") and f.endswith(".vtu")) \
-        if os.path.isdir(out) else []
-    if not vtus:
+    vtu = snapshot(folder, end_time)
+    if vtu is None:
         return None
-    a = read_vtu.read(os.path.join(out, vtus[-1]))
+    a = read_vtu.read(vtu)
     ids = a["block_id"].values
     disp = [d[1] for d in a["displacement"].tuples()]
     original = scene.read_blocks(os.path.join(folder, "cut", "blocks.dda"))
@@ -329,7 +343,7 @@ def collect(work, names, end_time):
                                        "uy_m": r["mp%d_uy_m" % p],
                                        "sigma_x_Pa": r["mp%d_sigma_x_Pa" % p]})
                     next_t += 0.05
-        h = loosened_zone(folder, width)
+        h = loosened_zone(folder, width, end_time)
         if h is not None:
             for t, v in zip(LOOSE_THRESHOLDS, h):
                 row["loose_%gm_over_B" % t] = "%.3f" % (v / B)
@@ -390,20 +404,25 @@ def markdown(rows, end_time):
     return "\n".join(out) + "\n"
 
 
-def plots(outdir, rows, series, work):
+def plots(outdir, rows, series, work, end_time):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     # Fig. 3-7 C/D: FMML time series.
     fm = [s for s in series if s["model"] == "FMML"]
     if fm:
-        fig, ax = plt.subplots(1, 2, figsize=(11, 4))
+        fig, ax = plt.subplots(1, 3, figsize=(15, 4))
         for p in range(1, 6):
             t = [float(s["time_s"]) for s in fm if s["point"] == p]
-            ax[0].plot(t, [1e3 * float(s["uy_m"]) for s in fm
-                           if s["point"] == p], label="point %d" % p)
+            uy = [1e3 * float(s["uy_m"]) for s in fm if s["point"] == p]
+            ax[0].plot(t, uy, label="point %d" % p)
+            if p >= 3:
+                ax[2].plot(t, uy, label="point %d" % p, color="C%d" % (p - 1))
             ax[1].plot(t, [-1e-3 * float(s["sigma_x_Pa"]) for s in fm
                            if s["point"] == p], label="point %d" % p)
+        ax[2].set(xlabel="time (s)", ylabel="vertical displacement (mm)",
+                  title="FMML, points 3-5 (zoom)")
+        ax[2].legend()
         ax[0].set(xlabel="time (s)", ylabel="vertical displacement (mm)",
                   title="FMML (cf. thesis Fig. 3-7C)")
         ax[1].set(xlabel="time (s)",
@@ -436,14 +455,10 @@ def plots(outdir, rows, series, work):
     # Fig. 3-7B / 3-8: deformed roof zone, coloured by vertical displacement.
     from matplotlib.collections import PolyCollection
     for name in ("FMML", "DL02", "DL07"):
-        out = os.path.join(work, name, "dda")
-        if not os.path.isdir(out):
+        vtu = snapshot(os.path.join(work, name), end_time)
+        if vtu is None:
             continue
-        vtus = sorted(f for f in os.listdir(out)
-                      if f.startswith("blocks-") and f.endswith(".vtu"))
-        if not vtus:
-            continue
-        a = read_vtu.read(os.path.join(out, vtus[-1]))
+        a = read_vtu.read(vtu)
         polys = read_vtu.polygons(a)
         uy = [d[1] for d in a["displacement"].tuples()]
         fig, ax = plt.subplots(figsize=(8, 5.5))
@@ -473,6 +488,8 @@ def main():
     p.add_argument("--timeout", type=float)
     p.add_argument("--retry-failed", action="store_true")
     p.add_argument("--out", default=HERE)
+    p.add_argument("--collect-only", action="store_true",
+                   help="only write the tables and plots from WORK")
     a = p.parse_args()
     names = a.models or [n for n, _, _ in model_list()]
     work = os.path.abspath(a.work or os.path.join(
@@ -490,9 +507,13 @@ def main():
 
     status = {}
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
+        if a.collect_only:
+            names_to_run = []
+        else:
+            names_to_run = names
         futures = {pool.submit(run_model, binary, work, n, a.end_time,
                                a.timeout, a.retry_failed, a.jobs): n
-                   for n in names}
+                   for n in names_to_run}
         for f in concurrent.futures.as_completed(futures):
             n = futures[f]
             try:
@@ -510,7 +531,7 @@ def main():
     with open(md + ".tmp", "w") as f:
         f.write(markdown(rows, a.end_time))
     os.replace(md + ".tmp", md)
-    plots(a.out, rows, series, work)
+    plots(a.out, rows, series, work, a.end_time)
     return 0 if all(r["status"] == "done" for r in rows) else 1
 
 

@@ -8,7 +8,8 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 build=$(cd "${1:-$here/../../build}" && pwd)
-[ -n "${ROCKDDA_SKIP_BUILD:-}" ] || cmake --build "$build" --target rockdda
+# Builds under the shared build lock of this machine (two cores, several users).
+[ -n "${ROCKDDA_SKIP_BUILD:-}" ] || flock /tmp/rockdda-build.lock cmake --build "$build" --target rockdda
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cp "$build/rockdda" "$work/rockdda"
@@ -18,11 +19,13 @@ study() { /usr/bin/python3 "$here/study.py" "$work/rockdda" --out "$here" \
 study --tag=-default
 study --tag=-dt1e-3 --time-step 0.001
 study --tag=-dt2.5e-4 --time-step 0.00025
+study --tag=-dt1.25e-4 --time-step 0.000125
 study --tag=-penalty1e9 --penalty 1e9
 study --tag=-penalty1e11 --penalty 1e11
 study --tag=-penalty1e8 --penalty 1e8
 study --tag=-static --dynamic 0 --time-step 0.01 --end-time 30
 study --tag=-static-dt5e-3 --dynamic 0 --time-step 0.005 --end-time 60
+study --tag=-static-dt2.5e-3 --dynamic 0 --time-step 0.0025 --end-time 120
 study --tag=-static-penalty1e11 --dynamic 0 --time-step 0.01 --end-time 30 --penalty 1e11
 study --tag=-spacing0.5 --joint-spacing 0.5
 study --tag=-spacing1 --joint-spacing 1

@@ -10,7 +10,7 @@ The bed of Hatzor & Benary (1998, Tel Beer-Sheva): span 7 m, 0.5 m thick,
 vertical joints every 0.25 m (28 blocks, beam.py), between fixed
 abutments, released under gravity. A run is 'collapsed' when the block
 left of midspan has fallen by more than the bed thickness (0.5 m) or
-still drops by more than 1 cm in the last second of the run (no
+still drops by more than 1 cm in the last third of the run (no
 equilibrium), or the run fails; 'stable' otherwise (the bed has stopped:
 its sag, in runs-*.csv, may be several cm after a slip at the abutments
 that re-arches it). The bisection keeps a stable friction angle above and a collapsed one below
@@ -32,7 +32,7 @@ import beam  # noqa: E402
 import voussoir  # noqa: E402
 
 THICKNESS = 0.5
-MOVING = 0.01   # m: a midspan still dropping this much in the last second
+MOVING = 0.01   # m: a midspan still dropping this much in the last third
 
 
 def run(rockdda, folder, phi, a):
@@ -71,9 +71,10 @@ def run(rockdda, folder, phi, a):
     if not rows:
         return ("collapsed", float("nan"), float("nan"), "", "", "", diag)
     uy, uy2 = float(rows[-1]["mp1_uy_m"]), float(rows[-1]["mp2_uy_m"])
-    # The midspan's drop over the last second of the run.
+    # The midspan's drop over the last third of the run.
     t_end = float(rows[-1]["time_s"])
-    before = [r for r in rows if float(r["time_s"]) <= t_end - 1.0 + 1e-9]
+    before = [r for r in rows
+              if float(r["time_s"]) <= 2.0 * t_end / 3.0 + 1e-9]
     drop = float(before[-1]["mp1_uy_m"]) - uy if before else float("inf")
     if diag or uy < -THICKNESS or drop > MOVING:
         c = "collapsed"
