@@ -447,7 +447,9 @@ def plots(outdir, rows, series, work, end_time):
             ax[k].axhline(1e3 * float(f["uy%d_m" % p]), color="k", ls="--",
                           label="FMML")
         ax[k].set(xlabel="b / L", title="point %d" % p)
-    ax[0].set_ylabel("final vertical displacement (mm)")
+    ax[0].set_ylabel("final vertical displacement (mm, symlog)")
+    for x in ax:
+        x.set_yscale("symlog", linthresh=100)
     ax[0].legend()
     fig.tight_layout()
     fig.savefig(os.path.join(outdir, "fig-3-9.png"), dpi=110)
