@@ -44,39 +44,45 @@ namespace rockdda::thermal::internal
       return v;
     }
 
+    /// The non-empty fields of @p text between the @p separator, each
+    /// converted by @p convert.
+    template <typename T, typename Convert>
+    std::vector<T>
+    list(const std::string &text, const char separator, Convert &&convert)
+    {
+      std::vector<T> result;
+      for (const auto &field : io::split_fields(text, separator))
+        if (!field.empty())
+          result.push_back(convert(field));
+      return result;
+    }
+
     /// "x, y; x, y; ..." -> points.
     std::vector<Point2>
     points(const std::string &text,
            const std::string &prm_file,
            const std::string &key)
     {
-      std::vector<Point2> result;
-      for (const auto &p : io::split_fields(text, ';'))
-        {
-          if (p.empty())
-            continue;
-          const auto xy = io::split_fields(p, ',');
-          if (xy.size() != 2)
-            throw InputError(prm_file + ": key '" + key + "': '" + p
-                             + "' is not a point 'x, y' (m)");
-          result.push_back(Point2{
-            {number(xy[0], prm_file, key), number(xy[1], prm_file, key)}});
-        }
-      return result;
+      return list<Point2>(text, ';', [&](const std::string &p) {
+        const auto xy = io::split_fields(p, ',');
+        if (xy.size() != 2)
+          throw InputError(prm_file + ": key '" + key + "': '" + p
+                           + "' is not a point 'x, y' (m)");
+        return Point2{
+          {number(xy[0], prm_file, key), number(xy[1], prm_file, key)}};
+      });
     }
 
+    /// "a, b, ..." -> numbers.
     std::vector<double>
     numbers(const std::string &text,
             const std::string &prm_file,
             const std::string &key)
     {
-      std::vector<double> result;
-      for (const auto &v : io::split_fields(text, ','))
-        if (!v.empty())
-          result.push_back(number(v, prm_file, key));
-      return result;
+      return list<double>(text, ',', [&](const std::string &v) {
+        return number(v, prm_file, key);
+      });
     }
-
   } // namespace
 
 

@@ -14,8 +14,7 @@
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/sundials/arkode.h>
 
-#include "heat_solver_distributed.h"
-#include "heat_solver_serial.h"
+#include "heat_system.h"
 #include <algorithm>
 #include <arkode/arkode_arkstep.h>
 #include <cmath>
@@ -293,12 +292,12 @@ namespace rockdda::thermal
     }
 
     template void
-    arkode_advance(HeatSolver::Impl &,
+    arkode_advance(HeatSystem<LinearAlgebra::Serial> &,
                    const double,
                    const IndexSet &,
                    const MPI_Comm);
     template void
-    arkode_advance(DistributedHeat::Impl &,
+    arkode_advance(HeatSystem<LinearAlgebra::Trilinos> &,
                    const double,
                    const IndexSet &,
                    const MPI_Comm);

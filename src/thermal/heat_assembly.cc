@@ -178,15 +178,12 @@ namespace rockdda::thermal::internal
 
   template <typename VectorType>
   void
-  assemble_fixed_integrals(const HeatParameters       &prm,
-                           const Mapping<2>           &mapping,
-                           const DoFHandler<2>        &dof_handler,
-                           const AffineConstraints<>  &hanging,
+  assemble_fixed_integrals(const AssemblyScope        &scope,
                            const IndexSet             &owned,
-                           const MPI_Comm              comm,
                            FixedIntegrals<VectorType> &fixed,
                            const CellMatrixSink       &matrices)
   {
+    const auto &[prm, mapping, dof_handler, hanging, comm] = scope;
     const FiniteElement<2> &fe = dof_handler.get_fe();
     CellIntegrators         integrators(mapping,
                                 fe,
@@ -330,30 +327,19 @@ namespace rockdda::thermal::internal
 
 
   template <typename VectorType>
-  void
-  assemble_loads(const HeatParameters             &prm,
-                 const Mapping<2>                 &mapping,
-                 const DoFHandler<2>              &dof_handler,
-                 const AffineConstraints<>        &hanging,
-                 const FixedIntegrals<VectorType> &fixed,
-                 const MPI_Comm                    comm,
-                 const double                      t,
-                 VectorType                       &f,
-                 double                           &boundary_rate,
-                 double                           &source_rate)
+  LoadRates
+  FixedIntegrals<VectorType>::loads(const AssemblyScope &scope,
+                                    const double         t,
+                                    VectorType          &f) const
   {
-    f             = 0.;
-    boundary_rate = 0.;
-    source_rate   = 0.;
-    add_uniform_loads(prm,
-                      fixed.uniform_bc,
-                      fixed.uniform_vectors,
-                      fixed.uniform_rates,
-                      t,
-                      f,
-                      boundary_rate);
-    if (!fixed.nonuniform)
-      return;
+    const auto &[prm, mapping, dof_handler, hanging, comm] = scope;
+
+    LoadRates rates;
+    f = 0.;
+    add_uniform_loads(
+      prm, uniform_bc, uniform_vectors, uniform_rates, t, f, rates.boundary);
+    if (!nonuniform)
+      return rates;
 
     CellIntegrators    integrators(mapping, dof_handler.get_fe());
     const unsigned int dpc = dof_handler.get_fe().n_dofs_per_cell();
@@ -378,8 +364,9 @@ namespace rockdda::thermal::internal
             }
         }
     f.compress(VectorOperation::add);
-    boundary_rate += Utilities::MPI::sum(local_boundary, comm);
-    source_rate += Utilities::MPI::sum(local_source, comm);
+    rates.boundary += Utilities::MPI::sum(local_boundary, comm);
+    rates.source += Utilities::MPI::sum(local_source, comm);
+    return rates;
   }
 
 
@@ -439,28 +426,17 @@ namespace rockdda::thermal::internal
 
 
 
-#define ROCKDDA_HEAT_ASSEMBLY_INSTANTIATE(VectorType)                          \
-  template void assemble_fixed_integrals<VectorType>(                          \
-    const HeatParameters &,                                                    \
-    const Mapping<2> &,                                                        \
-    const DoFHandler<2> &,                                                     \
-    const AffineConstraints<> &,                                               \
-    const IndexSet &,                                                          \
-    const MPI_Comm,                                                            \
-    FixedIntegrals<VectorType> &,                                              \
-    const CellMatrixSink &);                                                   \
-  template void assemble_loads<VectorType>(const HeatParameters &,             \
-                                           const Mapping<2> &,                 \
-                                           const DoFHandler<2> &,              \
-                                           const AffineConstraints<> &,        \
-                                           const FixedIntegrals<VectorType> &, \
-                                           const MPI_Comm,                     \
-                                           const double,                       \
-                                           VectorType &,                       \
-                                           double &,                           \
-                                           double &);                          \
-  template void DirichletDofs::set_values<VectorType>(const HeatParameters &,  \
-                                                      const double,            \
+#define ROCKDDA_HEAT_ASSEMBLY_INSTANTIATE(VectorType)                         \
+  template void assemble_fixed_integrals<VectorType>(                         \
+    const AssemblyScope &,                                                    \
+    const IndexSet &,                                                         \
+    FixedIntegrals<VectorType> &,                                             \
+    const CellMatrixSink &);                                                  \
+  template LoadRates FixedIntegrals<VectorType>::loads(const AssemblyScope &, \
+                                                       const double,          \
+                                                       VectorType &) const;   \
+  template void DirichletDofs::set_values<VectorType>(const HeatParameters &, \
+                                                      const double,           \
                                                       VectorType &) const;
 
   ROCKDDA_HEAT_ASSEMBLY_INSTANTIATE(Vector<double>)

@@ -35,6 +35,26 @@
 
 namespace rockdda::thermal::internal
 {
+  /// What the assembly loops run over: the parameters, the mapping and
+  /// dofs of the mesh, its hanging-node constraints and the communicator
+  /// of the vectors.
+  struct AssemblyScope
+  {
+    const HeatParameters              &prm;
+    const dealii::Mapping<2>          &mapping;
+    const dealii::DoFHandler<2>       &dof_handler;
+    const dealii::AffineConstraints<> &hanging;
+    const MPI_Comm                     comm;
+  };
+
+  /// The heat rates of a load, W/m: of the boundary data (without -w.T)
+  /// and of the source.
+  struct LoadRates
+  {
+    double boundary = 0.;
+    double source   = 0.;
+  };
+
   /// The integrals that do not change between time steps (only with the
   /// mesh), in the solver's vector type.
   template <typename VectorType>
@@ -54,6 +74,12 @@ namespace rockdda::thermal::internal
     std::vector<VectorType> block_phi, block_xphi, block_yphi;
     /// Per block: int 1, x, y, x^2, xy, y^2 dA.
     std::vector<std::array<double, 6>> block_geometry;
+
+    /// The condensed load vector at time @p t into @p f (compressed), and
+    /// its heat rates summed over the ranks of the communicator of
+    /// @p scope.
+    LoadRates
+    loads(const AssemblyScope &scope, const double t, VectorType &f) const;
   };
 
   /// Called with the cell, its dof indices, cell mass and stiffness.
@@ -98,38 +124,16 @@ namespace rockdda::thermal::internal
                 dealii::FullMatrix<double>                        &cell_stiff);
 
   /**
-   * Assemble @p fixed over the locally owned cells (@p owned dofs, vectors
-   * on @p comm), condensing the hanging nodes; with @p matrices, also
-   * call it with each cell's mass and stiffness matrices.
+   * Assemble @p fixed over the locally owned cells of @p scope (@p owned
+   * dofs), condensing the hanging nodes; with @p matrices, also call it
+   * with each cell's mass and stiffness matrices.
    */
   template <typename VectorType>
   void
-  assemble_fixed_integrals(const HeatParameters              &prm,
-                           const dealii::Mapping<2>          &mapping,
-                           const dealii::DoFHandler<2>       &dof_handler,
-                           const dealii::AffineConstraints<> &hanging,
-                           const dealii::IndexSet            &owned,
-                           const MPI_Comm                     comm,
-                           FixedIntegrals<VectorType>        &fixed,
+  assemble_fixed_integrals(const AssemblyScope        &scope,
+                           const dealii::IndexSet     &owned,
+                           FixedIntegrals<VectorType> &fixed,
                            const CellMatrixSink &matrices = CellMatrixSink());
-
-  /**
-   * The condensed load vector at time @p t into @p f (compressed), with the
-   * boundary-data part of the heat rate (without -w.T) and the source rate
-   * (W/m, summed over the ranks of @p comm).
-   */
-  template <typename VectorType>
-  void
-  assemble_loads(const HeatParameters              &prm,
-                 const dealii::Mapping<2>          &mapping,
-                 const dealii::DoFHandler<2>       &dof_handler,
-                 const dealii::AffineConstraints<> &hanging,
-                 const FixedIntegrals<VectorType>  &fixed,
-                 const MPI_Comm                     comm,
-                 const double                       t,
-                 VectorType                        &f,
-                 double                            &boundary_rate,
-                 double                            &source_rate);
 
   /// The locally owned Dirichlet dofs (not hanging), their support points
   /// and conditions; the first temperature tag wins at shared corners.

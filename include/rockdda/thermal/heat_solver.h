@@ -22,7 +22,7 @@ namespace rockdda::thermal
 {
   namespace internal
   {
-    class DistributedHeat;
+    class HeatSystemBase;
   }
 
   /// A 2D point or vector (m).
@@ -306,9 +306,8 @@ namespace rockdda::thermal
     timing_summary() const;
 
   private:
-    class Impl;
-    std::unique_ptr<Impl>                      impl;
-    std::unique_ptr<internal::DistributedHeat> distributed;
+    /// The solver over the serial or the Trilinos linear-algebra types.
+    std::unique_ptr<internal::HeatSystemBase> impl;
   };
 
   /// Amplitude, phase and mean of a sinusoid fitted to samples.
