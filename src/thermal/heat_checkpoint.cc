@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 namespace rockdda::thermal::internal
 {
@@ -59,13 +60,19 @@ namespace rockdda::thermal::internal
     void
     take_balance(StepState &s, const StepState &saved)
     {
-      s.time              = saved.time;
-      s.boundary_heat     = saved.boundary_heat;
-      s.source_heat       = saved.source_heat;
-      s.last_step_flipped = saved.last_step_flipped;
-      s.steps_taken       = saved.steps_taken;
-      s.stats             = saved.stats;
-      s.rhs_old_valid     = false;
+      std::tie(s.time,
+               s.boundary_heat,
+               s.source_heat,
+               s.last_step_flipped,
+               s.steps_taken,
+               s.stats)
+        = std::tie(saved.time,
+                   saved.boundary_heat,
+                   saved.source_heat,
+                   saved.last_step_flipped,
+                   saved.steps_taken,
+                   saved.stats);
+      s.rhs_old_valid = false;
     }
 
     /// A reader of the checkpoint @p bytes of the file @p source, past its
