@@ -9,6 +9,7 @@
 #include <Eigen/SparseCore>
 
 #include "task_team.h"
+#include "thread_pair.h"
 #include <algorithm>
 #include <cmath>
 #include <thread>
@@ -407,10 +408,10 @@ namespace rockdda::dda
     /// Run f(0), f(1): on two threads when renumbered.
     template <typename F>
     void
-    run(internal::TaskTeam &team, F &&f)
+    run(internal::ThreadPair &team, F &&f)
     {
       if (renumbered)
-        team.run_pair(f);
+        team.run(f);
       else
         {
           f(0);
@@ -448,7 +449,7 @@ namespace rockdda::dda
 
     /// Pivots P_i = K_ii - sum_{j<i} K_ij P_j^-1 K_ji.
     bool
-    setup(const BlockSparseMatrix &K_in, internal::TaskTeam &team)
+    setup(const BlockSparseMatrix &K_in, internal::ThreadPair &team)
     {
       gather(K_in);
       const BlockSparseMatrix &K     = *M;
@@ -583,7 +584,7 @@ namespace rockdda::dda
     bool
     cg(const Eigen::VectorXd &f_in,
        Eigen::VectorXd       &x_out,
-       internal::TaskTeam    &team,
+       internal::ThreadPair  &team,
        const double           tolerance,
        const int              max_iterations,
        int                   &iterations)
@@ -713,6 +714,16 @@ namespace rockdda::dda
 
 
 
+  internal::ThreadPair &
+  LinearSolver::pair_of_run()
+  {
+    if (!pair)
+      pair = std::make_unique<internal::ThreadPair>(n_threads() >= 2);
+    return *pair;
+  }
+
+
+
   void
   LinearSolver::for_chunks(
     const std::size_t                                    n,
@@ -789,16 +800,20 @@ namespace rockdda::dda
       }
     if (!same_matrix || !factorised)
       {
-        factorised = dilu->setup(K, team_of_run());
+        factorised = dilu->setup(K, pair_of_run());
         if (!factorised)
           return false;
       }
-    return dilu->cg(f,
-                    x,
-                    team_of_run(),
-                    tolerance > 0. ? tolerance : options.tolerance,
-                    iteration_limit(K.n_blocks()),
-                    iterations);
+    const bool ok = dilu->cg(f,
+                             x,
+                             pair_of_run(),
+                             tolerance > 0. ? tolerance : options.tolerance,
+                             iteration_limit(K.n_blocks()),
+                             iterations);
+    // Between solves the engine's other phases run on TBB: the pair's
+    // worker sleeps instead of spinning on a core they need.
+    pair_of_run().rest();
+    return ok;
   }
 
 

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 #include <thread>
@@ -36,21 +35,6 @@ namespace rockdda::dda::internal
 
 
   TaskTeam::~TaskTeam() = default;
-
-
-
-  void
-  TaskTeam::run_pair(const std::function<void(int)> &f)
-  {
-    if (!arena)
-      {
-        f(0);
-        f(1);
-        return;
-      }
-    arena->arena.execute(
-      [&]() { tbb::parallel_invoke([&]() { f(0); }, [&]() { f(1); }); });
-  }
 
 
 

@@ -13,11 +13,11 @@
 namespace rockdda::dda::internal
 {
   /**
-   * A fixed number of threads for the DDA's parallel phases: contact
-   * detection, contact kinematics, state checks (chunks of an index range)
-   * and the two subdomains of the D-ILU sweeps (a pair). Work is split in
-   * the same way for every thread count and each piece writes its own
-   * data, so results do not depend on the number of threads.
+   * A fixed number of threads for the DDA's parallel loops: contact
+   * detection, contact kinematics and state checks, in chunks of an index
+   * range. Work is split in the same way for every thread count and each
+   * chunk writes its own data, so results do not depend on the number of
+   * threads. (The D-ILU sweeps use ThreadPair: see thread_pair.h.)
    */
   class TaskTeam
   {
@@ -36,10 +36,6 @@ namespace rockdda::dda::internal
     {
       return threads;
     }
-
-    /// Run f(0) and f(1) (concurrently with two threads or more).
-    void
-    run_pair(const std::function<void(int)> &f);
 
     /// Run f(lo, hi) for the chunks [k g, min(n, (k + 1) g)) of [0, n),
     /// g = @p grain, concurrently with two threads or more.

@@ -92,10 +92,10 @@ namespace rockdda::dda
     int max_iterations = 0;
     /// Automatic choice: direct up to this many blocks.
     int automatic_limit = 60;
-    /// Threads of the run (TBB): contact detection, kinematics and state
-    /// checks in chunks, and the two subdomains of the D-ILU sweeps (which
-    /// use at most two); 0 = one per core. The result does not depend on
-    /// it.
+    /// Threads of the run: contact detection, kinematics and state checks
+    /// in chunks on a TBB task arena, and the two subdomains of the D-ILU
+    /// sweeps on a spinning pair of threads (internal::ThreadPair; two if
+    /// this is >= 2); 0 = one per core. The result does not depend on it.
     int threads = 0;
     /// From this many blocks on, the D-ILU orders the blocks as two
     /// subdomains and their separator (last), so that the two subdomains
@@ -106,7 +106,8 @@ namespace rockdda::dda
   namespace internal
   {
     class TaskTeam;
-  }
+    class ThreadPair;
+  } // namespace internal
 
   /**
    * Solves K x = f for the block matrix. new_pattern() is called when the
@@ -183,6 +184,9 @@ namespace rockdda::dda
     /// The run's threads (made on first use).
     internal::TaskTeam &
     team_of_run() const;
+    /// The D-ILU's pair of threads (made on first use).
+    internal::ThreadPair &
+    pair_of_run();
     /// Iteration limit for @p n blocks.
     int
     iteration_limit(const int n) const;
@@ -194,6 +198,7 @@ namespace rockdda::dda
     std::unique_ptr<Direct>                     direct;
     std::unique_ptr<Dilu>                       dilu;
     mutable std::unique_ptr<internal::TaskTeam> team;
+    std::unique_ptr<internal::ThreadPair>       pair;
     /// Inverse diagonal blocks (block-Jacobi).
     std::vector<Matrix6> inverse_diag;
     Eigen::VectorXd      r, z, p, q;
