@@ -58,6 +58,7 @@ SOURCE = os.path.normpath(os.path.join(HERE, "..", ".."))
 LAYERING = os.path.join(SOURCE, "parameter-files", "layering")
 sys.path.insert(0, LAYERING)
 sys.path.insert(0, os.path.join(SOURCE, "scripts"))
+import make_models  # noqa: E402
 import scene  # noqa: E402
 import read_vtu  # noqa: E402
 
@@ -70,14 +71,9 @@ RUNNING_LOCK = threading.Lock()
 
 
 def model_list():
-    """[(name, L, b)] of Table 3-1 (FMML: L = b = None)."""
-    out = [("FMML", None, None)]
-    k = 1
-    for length in (5, 10, 15):
-        for i in range(1, 6):
-            out.append(("DL%02d" % k, length, length // 5 * i))
-            k += 1
-    return out
+    """[(name, L, b)] of Table 3-1 (FMML: L = b = 0), as make_models.py
+    writes them."""
+    return make_models.models()
 
 
 def set_key(text, key, value):

@@ -112,23 +112,28 @@ namespace rockdda::dda::test_scenes
   /// Running-bond brick wall of @p rows x @p columns bricks of 2 m x 1 m
   /// (odd rows start and end with a half brick, so the ends are straight)
   /// on a fixed base (block 0); rho 2700 kg/m^3, E 10 GPa, nu 0.25,
-  /// friction @p phi (deg), no cohesion.
+  /// friction @p phi (deg), no cohesion; everything moved by @p shift (m).
   inline BlockSystem
-  running_bond_wall(const int rows, const int columns, const double phi = 35.)
+  running_bond_wall(const int    rows,
+                    const int    columns,
+                    const double phi   = 35.,
+                    const Point &shift = Point::Zero())
   {
-    BlockSystem s    = one_material_scene(2700., 1e10, 0.25, phi);
-    const int   base = add_block(s, rectangle(-2., -1., 2. * columns + 5., 1.));
-    fix_block(s, base);
+    BlockSystem s     = one_material_scene(2700., 1e10, 0.25, phi);
+    const auto  brick = [&](double x, double y, double w) {
+      return add_block(s, translated(rectangle(x, y, w, 1.), shift));
+    };
+    fix_block(s, brick(-2., -1., 2. * columns + 5.));
     for (int r = 0; r < rows; ++r)
       if (r % 2 == 0)
         for (int c = 0; c < columns; ++c)
-          add_block(s, rectangle(2. * c, r * 1., 2., 1.));
+          brick(2. * c, r * 1., 2.);
       else
         {
-          add_block(s, rectangle(0., r * 1., 1., 1.));
+          brick(0., r * 1., 1.);
           for (int c = 0; c < columns - 1; ++c)
-            add_block(s, rectangle(2. * c + 1., r * 1., 2., 1.));
-          add_block(s, rectangle(2. * columns - 1., r * 1., 1., 1.));
+            brick(2. * c + 1., r * 1., 2.);
+          brick(2. * columns - 1., r * 1., 1.);
         }
     return s;
   }

@@ -941,13 +941,8 @@ TEST(DdaSolvers, ResultsDoNotDependOnTheThreadCount)
   // the number of items, and the D-ILU's two subdomains (ordering forced
   // from 10 blocks on) are the same for every thread count, so the block
   // positions must agree bit for bit, not merely to a tolerance.
-  BlockSystem s    = one_material_scene(2700., 1e10, 0.25, 35.);
-  const int   base = add_block(s, rectangle(-2., -1., 20., 1.));
-  fix_block(s, base);
-  for (int r = 0; r < 6; ++r)
-    for (int c = 0; c < 8; ++c)
-      add_block(s, rectangle(2. * c + (r % 2), r * 1., 2., 1.));
-  s.gravity = Point(4., -g_earth);
+  BlockSystem s = running_bond_wall(6, 8);
+  s.gravity     = Point(4., -g_earth);
   auto run  = [&](const int threads) {
     Controls c               = controls(1e-3, 1., 1e11);
     c.solver.type            = SolverType::iterative;

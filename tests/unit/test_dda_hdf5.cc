@@ -68,15 +68,7 @@ namespace
   moving_wall()
   {
     // Far from the origin (UTM-like), as users' scenes are.
-    const Point utm(7.1e5, 3.5e6);
-    BlockSystem s = one_material_scene(2700., 1e10, 0.25, 30.);
-    const int   base
-      = add_block(s, translated(rectangle(-2., -1., 14., 1.), utm));
-    fix_block(s, base);
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 5; ++c)
-        add_block(s,
-                  translated(rectangle(2. * c + (r % 2), r * 1., 2., 1.), utm));
+    BlockSystem s = running_bond_wall(4, 5, 30., Point(7.1e5, 3.5e6));
     s.gravity = Point(3., -g_earth);
     return s;
   }
