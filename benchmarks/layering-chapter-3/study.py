@@ -451,30 +451,78 @@ def plots(outdir, rows, series, work, end_time):
     fig.savefig(os.path.join(outdir, "fig-3-9.png"), dpi=110)
     plt.close(fig)
     # Fig. 3-7B / 3-8: deformed roof zone, coloured by vertical displacement.
-    from matplotlib.collections import PolyCollection
     for name in ("FMML", "DL02", "DL07"):
         vtu = snapshot(os.path.join(work, name), end_time)
         if vtu is None:
             continue
-        a = read_vtu.read(vtu)
-        polys = read_vtu.polygons(a)
-        uy = [d[1] for d in a["displacement"].tuples()]
-        fig, ax = plt.subplots(figsize=(8, 5.5))
-        pc = PolyCollection(polys, array=[1e3 * v for v in uy], cmap="viridis",
-                            edgecolors="k", linewidths=0.2)
-        pc.set_clim(-200, 0)
-        ax.add_collection(pc)
-        ax.set(xlim=(15, 45), ylim=(4, 40), aspect="equal",
-               title="%s at t = %s s (vertical displacement, mm)"
-               % (name, fmt(ref.get(name, {}).get("final_time_s"), 1, 4)))
-        for p, y in enumerate(scene.POINTS_Y, 1):
-            ax.plot(30.1, y, "r+")
-            ax.annotate(str(p), (30.4, y), color="r")
-        fig.colorbar(pc, ax=ax)
-        fig.tight_layout()
-        fig.savefig(os.path.join(outdir, "deformed-%s.png" % name), dpi=110)
-        plt.close(fig)
+        deformed_plot(vtu, "%s at t = %s s (vertical displacement, mm)"
+                      % (name, fmt(ref.get(name, {}).get("final_time_s"), 1,
+                                   4)),
+                      os.path.join(outdir, "deformed-%s.png" % name))
 
+
+def thin_moved_blocks(polys, displacement, width=0.15, moved=0.05):
+    """Indices of the blocks thinner than WIDTH (m; area / diameter, the
+    width of a sliver) that moved more than MOVED (m). At the scale of the
+    deformed plots (~16 pixels per metre) such a sliver is one or two
+    pixels wide and its black edges merge into a line: a chain of toppled
+    slivers then looks like blocks crossing each other (DL07, issue 16)."""
+    out = []
+    for i, p in enumerate(polys):
+        a = 0.5 * abs(sum(p[k][0] * p[(k + 1) % len(p)][1]
+                          - p[(k + 1) % len(p)][0] * p[k][1]
+                          for k in range(len(p))))
+        d = max(math.dist(u, v) for u in p for v in p)
+        if a / d < width and math.hypot(*displacement[i][:2]) > moved:
+            out.append(i)
+    return out
+
+
+def deformed_plot(vtu, title, path, xlim=(15, 45), ylim=(4, 40)):
+    """The blocks of the snapshot VTU coloured by their vertical
+    displacement; when thin blocks moved (slivers), an inset enlarges them
+    so that their real shapes (congruent, not crossing) can be seen."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import PolyCollection
+    a = read_vtu.read(vtu)
+    polys = read_vtu.polygons(a)
+    disp = a["displacement"].tuples()
+    uy = [1e3 * d[1] for d in disp]
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+
+    def draw(axes, lw):
+        pc = PolyCollection(polys, array=uy, cmap="viridis",
+                            edgecolors="k", linewidths=lw)
+        pc.set_clim(-200, 0)
+        axes.add_collection(pc)
+        return pc
+    pc = draw(ax, 0.2)
+    ax.set(xlim=xlim, ylim=ylim, aspect="equal", title=title)
+    for p, y in enumerate(scene.POINTS_Y, 1):
+        ax.plot(30.1, y, "r+")
+        ax.annotate(str(p), (30.4, y), color="r")
+    thin = [i for i in thin_moved_blocks(polys, disp)
+            if xlim[0] < polys[i][0][0] < xlim[1]
+            and ylim[0] < polys[i][0][1] < ylim[1]]
+    if thin:
+        xs = [v[0] for i in thin for v in polys[i]]
+        ys = [v[1] for i in thin for v in polys[i]]
+        half = 0.5 * max(max(xs) - min(xs), max(ys) - min(ys)) + 0.3
+        cx, cy = 0.5 * (min(xs) + max(xs)), 0.5 * (min(ys) + max(ys))
+        ins = ax.inset_axes([0.01, 0.01, 0.45, 0.45])
+        draw(ins, 0.3)
+        ins.set(xlim=(cx - half, cx + half), ylim=(cy - half, cy + half),
+                aspect="equal", xticks=[], yticks=[])
+        ins.text(0.03, 0.97, "%d thin blocks (< 15 cm)\nenlarged" % len(thin),
+                 transform=ins.transAxes, va="top", fontsize=7,
+                 bbox=dict(fc="w", ec="none", alpha=0.8))
+        ax.indicate_inset_zoom(ins, edgecolor="r")
+    fig.colorbar(pc, ax=ax)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
 
 def main():
     p = argparse.ArgumentParser(description="layering study (issue 16)")
