@@ -943,7 +943,7 @@ TEST(DdaSolvers, ResultsDoNotDependOnTheThreadCount)
   // positions must agree bit for bit, not merely to a tolerance.
   BlockSystem s = running_bond_wall(6, 8);
   s.gravity     = Point(4., -g_earth);
-  auto run  = [&](const int threads) {
+  auto run      = [&](const int threads) {
     Controls c               = controls(1e-3, 1., 1e11);
     c.solver.type            = SolverType::iterative;
     c.solver.subdomain_limit = 10;

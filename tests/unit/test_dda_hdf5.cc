@@ -69,7 +69,7 @@ namespace
   {
     // Far from the origin (UTM-like), as users' scenes are.
     BlockSystem s = running_bond_wall(4, 5, 30., Point(7.1e5, 3.5e6));
-    s.gravity = Point(3., -g_earth);
+    s.gravity     = Point(3., -g_earth);
     return s;
   }
 } // namespace
