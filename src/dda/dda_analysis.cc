@@ -849,7 +849,10 @@ namespace rockdda::dda
         if (ls.separator_size() > 0)
           solver_text += ", two subdomains and a separator of "
                          + std::to_string(ls.separator_size()) + " blocks, "
-                         + std::to_string(ls.n_threads()) + " thread(s)";
+                         + std::to_string(std::min(2u, ls.n_threads()))
+                         + " thread(s) for its sweeps, "
+                         + std::to_string(ls.n_threads())
+                         + " for detection and state checks";
         context.log.line("linear solver (last step): " + solver_text);
         context.log.line(std::string(interrupted != 0 ? "DDA stopped early: "
                                                       : "DDA finished: ")

@@ -12,7 +12,6 @@
 #include "thread_pair.h"
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 namespace rockdda::dda
 {
@@ -717,8 +716,10 @@ namespace rockdda::dda
   internal::ThreadPair &
   LinearSolver::pair_of_run()
   {
+    // A worker thread only where the sweeps use it (the subdomain order).
     if (!pair)
-      pair = std::make_unique<internal::ThreadPair>(n_threads() >= 2);
+      pair = std::make_unique<internal::ThreadPair>(n_threads() >= 2 && dilu
+                                                    && dilu->renumbered);
     return *pair;
   }
 
