@@ -3,16 +3,20 @@
  * Thermoelastic checks of the DDA eigenstrain load (issue 13): a free block
  * heated uniformly expands by alpha dT L without stress; a block confined
  * between fixed walls develops the plane-stress or plane-strain thermal
- * stress. (A subdivided beam with a linear temperature profile does not
- * bend in first-order DDA: every sub-block keeps its faces parallel, so a
- * row of bonded sub-blocks cannot curve; see doc/theory/coupling.md.)
+ * stress; a free beam cut into bonded triangles, with a temperature that
+ * varies linearly across it, bends by the closed-form curvature alpha grad T
+ * (second order in the triangle size) and equals the constant-strain
+ * triangle (CST) finite-element solution of the same triangulation.
  */
 #include <rockdda/dda/block_matrices.h>
 #include <rockdda/dda/engine.h>
 
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
 #include <gtest/gtest.h>
 
 #include "dda_test_scenes.h"
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -59,6 +63,130 @@ namespace
     dda.set_eigenstrains(e);
     for (unsigned int k = 0; k < steps; ++k)
       dda.step();
+  }
+
+  /// Triangles of an nx x ny grid of a beam L x h: each cell is cut along
+  /// alternating diagonals (a pattern with 4 and 8 triangles at the nodes).
+  std::vector<std::array<Point, 3>>
+  triangulated_beam(const double L, const double h, const int nx, const int ny)
+  {
+    std::vector<std::array<Point, 3>> t;
+    const double                      dx = L / nx, dy = h / ny;
+    for (int i = 0; i < nx; ++i)
+      for (int j = 0; j < ny; ++j)
+        {
+          const Point a(i * dx, j * dy), b((i + 1) * dx, j * dy),
+            c((i + 1) * dx, (j + 1) * dy), d(i * dx, (j + 1) * dy);
+          if ((i + j) % 2 == 0)
+            {
+              t.push_back({{a, b, c}});
+              t.push_back({{a, c, d}});
+            }
+          else
+            {
+              t.push_back({{a, b, d}});
+              t.push_back({{b, c, d}});
+            }
+        }
+    return t;
+  }
+
+  /// Curvature -v'' of the least-squares parabola v(x) through the
+  /// deflections @p v at the abscissae @p x.
+  double
+  fitted_curvature(const std::vector<double> &x, const std::vector<double> &v)
+  {
+    Eigen::MatrixXd a(x.size(), 3);
+    Eigen::VectorXd r(x.size());
+    for (std::size_t k = 0; k < x.size(); ++k)
+      {
+        a.row(k) << 1., x[k], x[k] * x[k];
+        r[k] = v[k];
+      }
+    return -2. * a.colPivHouseholderQr().solve(r)[2];
+  }
+
+  /**
+   * The constant-strain-triangle (CST) finite-element solution of the same
+   * free beam (plane stress, eigenstrain of each triangle at its centroid,
+   * three displacement components fixed against rigid motion): the
+   * curvature of its mid-line.
+   */
+  double
+  cst_curvature(const std::vector<std::array<Point, 3>> &triangles,
+                const double                             h,
+                const double                             gradient)
+  {
+    // Nodes by position (the grid's vertices are exact binary fractions).
+    std::vector<Point> nodes;
+    auto               node = [&nodes](const Point &p) {
+      for (std::size_t k = 0; k < nodes.size(); ++k)
+        if ((nodes[k] - p).norm() < 1e-12)
+          return static_cast<int>(k);
+      nodes.push_back(p);
+      return static_cast<int>(nodes.size() - 1);
+    };
+    const double    c = young / (1. - nu * nu);
+    Eigen::Matrix3d elastic;
+    elastic << c, c * nu, 0., c * nu, c, 0., 0., 0., c * (1. - nu) / 2.;
+    std::vector<Eigen::Triplet<double>> k;
+    std::vector<std::array<int, 3>>     ids;
+    for (const auto &t : triangles)
+      ids.push_back({{node(t[0]), node(t[1]), node(t[2])}});
+    const int       n = 2 * static_cast<int>(nodes.size());
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+    for (std::size_t e = 0; e < triangles.size(); ++e)
+      {
+        const auto  &p    = triangles[e];
+        const double area = 0.5
+                            * ((p[1] - p[0]).x() * (p[2] - p[0]).y()
+                               - (p[1] - p[0]).y() * (p[2] - p[0]).x());
+        Eigen::Matrix<double, 3, 6> b = Eigen::Matrix<double, 3, 6>::Zero();
+        for (int m = 0; m < 3; ++m)
+          {
+            const Point &q = p[(m + 1) % 3], &r = p[(m + 2) % 3];
+            const double by = q.y() - r.y(), bx = r.x() - q.x();
+            b(0, 2 * m)     = by / (2. * area);
+            b(1, 2 * m + 1) = bx / (2. * area);
+            b(2, 2 * m)     = bx / (2. * area);
+            b(2, 2 * m + 1) = by / (2. * area);
+          }
+        const double          yc = (p[0].y() + p[1].y() + p[2].y()) / 3.;
+        const Eigen::Vector3d eps
+          = alpha * gradient * (yc - 0.5 * h) * Eigen::Vector3d(1., 1., 0.);
+        const Eigen::Matrix<double, 6, 6> ke
+          = area * b.transpose() * elastic * b;
+        const Eigen::Matrix<double, 6, 1> fe
+          = area * b.transpose() * elastic * eps;
+        for (int r = 0; r < 6; ++r)
+          {
+            const int gr = 2 * ids[e][r / 2] + r % 2;
+            f[gr] += fe[r];
+            for (int s = 0; s < 6; ++s)
+              k.emplace_back(gr, 2 * ids[e][s / 2] + s % 2, ke(r, s));
+          }
+      }
+    // Rigid motion: fix the node at (0, 0) and the vertical motion of the
+    // node at the right end of the bottom face (a large diagonal term).
+    int right = 0;
+    for (std::size_t m = 0; m < nodes.size(); ++m)
+      if (nodes[m].y() == 0. && nodes[m].x() > nodes[right].x())
+        right = static_cast<int>(m);
+    const int origin = node(Point(0., 0.));
+    for (const int d : {2 * origin, 2 * origin + 1, 2 * right + 1})
+      k.emplace_back(d, d, 1e6 * young);
+    Eigen::SparseMatrix<double> km(n, n);
+    km.setFromTriplets(k.begin(), k.end());
+    const Eigen::VectorXd u
+      = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>(km).solve(f);
+    std::vector<double> x, v;
+    for (std::size_t m = 0; m < nodes.size(); ++m)
+      if (std::abs(nodes[m].y() - 0.5 * h) < 1e-12)
+        {
+          x.push_back(nodes[m].x());
+          v.push_back(u[2 * m + 1]);
+        }
+    return fitted_curvature(x, v);
   }
 } // namespace
 
@@ -133,4 +261,72 @@ TEST(DdaThermal, ConfinedBlockDevelopsThermalStress)
       EXPECT_LE(e.balance(), 2. * (1. + nu) * alpha * dT * e.scale());
       EXPECT_GT(e.strain, 0.);
     }
+}
+
+
+
+// A free beam (L x h = 4 m x 1 m, plane stress, weightless) cut into bonded
+// triangles (square cells of h / n, halved along alternating diagonals),
+// with a temperature varying linearly across it (gradient g; each triangle
+// takes the eigenstrain of its centroid), bends by kappa = alpha g (a
+// linear temperature in a free beam is stress-free: Timoshenko & Goodier,
+// Theory of Elasticity, thermal stress in beams). A first-order block carries
+// one uniform strain, so a triangle is exactly a CST element and bonded
+// triangles (vertex-to-edge springs at the shared nodes) are a CST mesh in the
+// penalty limit: the DDA curvature must equal the CST finite-element curvature
+// of the same mesh up to the penalty compliance (E / p = 1e-2 of a node's
+// relative motion; measured 6e-6 to 3e-5 relative, asserted 1e-3), and converge
+// to alpha g at second order in h / n (the CST mesh converges at O(h^2) in this
+// stress-free problem: measured errors 15.5 %, 4.3 %, 1.1 % for n = 4, 8, 16).
+// The issue asks for 2 % at the finest. (Rectangular sub-blocks cannot do this:
+// opposite faces of a first-order block stay parallel, so a grid of rectangles
+// only bends by the penalty's compliance, kappa / (alpha g) = 0.007 at p = 1000
+// E for n = 8: doc/theory/coupling.md.)
+TEST(DdaThermal, TriangulatedBeamBendsByAlphaGradT)
+{
+  const double L = 4., h = 1., gradient = 10. / h; // 10 K across the beam
+  const double kappa = alpha * gradient;
+  std::vector<double> error;
+  for (const int n : {4, 8, 16})
+    {
+      const auto  triangles = triangulated_beam(L, h, 4 * n, n);
+      BlockSystem s         = weightless_scene(false);
+      s.joints[0].cohesion  = 1e12; // bonded: never opens or slides
+      s.joints[0].tensile   = 1e12;
+      for (const auto &t : triangles)
+        add_block(s, polygon({t[0], t[1], t[2]}));
+      DdaSystem                    dda(s, quasi_static(100. * young));
+      std::vector<Eigen::Vector3d> e;
+      for (const auto &t : triangles)
+        e.push_back(thermal_eigenstrain(
+          s.materials[0],
+          alpha * gradient
+            * ((t[0].y() + t[1].y() + t[2].y()) / 3. - 0.5 * h)));
+      dda.set_eigenstrains(e);
+      // Static steps until the beam is at rest (the deflection is
+      // kappa L^2 / 8 = 1.6e-4 m; at rest the steps move < 1e-4 of it).
+      for (int k = 0; k < 30; ++k)
+        if (dda.step().max_displacement < 1e-4 * kappa * L * L / 8.)
+          break;
+      std::vector<double> x, v;
+      for (std::size_t b = 0; b < s.blocks.size(); ++b)
+        for (std::size_t m = 0; m < 3; ++m)
+          {
+            const Point &p0 = s.blocks[b].polygon.vertices[m];
+            if (std::abs(p0.y() - 0.5 * h) < 1e-12)
+              {
+                x.push_back(p0.x());
+                v.push_back(dda.system().blocks[b].polygon.vertices[m].y()
+                            - p0.y());
+              }
+          }
+      const double dda_kappa = fitted_curvature(x, v);
+      const double cst_kappa = cst_curvature(triangles, h, gradient);
+      EXPECT_NEAR(dda_kappa, cst_kappa, 1e-3 * cst_kappa) << "n = " << n;
+      error.push_back(std::abs(dda_kappa / kappa - 1.));
+    }
+  EXPECT_LT(error.back(), 0.02);
+  // Second order: each halving of the triangles divides the error by > 3.
+  EXPECT_GT(error[0] / error[1], 3.);
+  EXPECT_GT(error[1] / error[2], 3.);
 }

@@ -13,18 +13,38 @@
 #include <fstream>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace rockdda::test_files
 {
-  /// A fresh, empty temporary folder for one test (unique per process).
+  /// The scratch folders of this process, removed when the test program
+  /// exits (a test that fails keeps its folder only until then).
+  struct ScratchFolders
+  {
+    std::vector<std::filesystem::path> paths;
+
+    ~ScratchFolders()
+    {
+      for (const auto &p : paths)
+        {
+          std::error_code ignored;
+          std::filesystem::remove_all(p, ignored);
+        }
+    }
+  };
+
+  /// A fresh, empty temporary folder for one test (unique per process),
+  /// removed at exit.
   inline std::filesystem::path
   scratch(const std::string &name)
   {
+    static ScratchFolders       folders;
     const std::filesystem::path p
       = std::filesystem::temp_directory_path()
         / ("rockdda-test-" + name + "-" + std::to_string(::getpid()));
     std::filesystem::remove_all(p);
     std::filesystem::create_directories(p);
+    folders.paths.push_back(p);
     return p;
   }
 
