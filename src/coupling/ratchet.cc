@@ -9,9 +9,25 @@
 #include <array>
 #include <cmath>
 #include <deque>
+#include <limits>
 
 namespace rockdda::coupling
 {
+  namespace
+  {
+    /// Highest y of a polygon (m).
+    double
+    top(const geometry::Polygon &p)
+    {
+      double y = -std::numeric_limits<double>::infinity();
+      for (const auto &v : p.vertices)
+        y = std::max(y, v[1]);
+      return y;
+    }
+  } // namespace
+
+
+
   RatchetRun::RatchetRun(const RatchetScene             &scene_,
                          const PeriodicBlockTemperature &temperature_,
                          const SeasonalForcing          &forcing_,
@@ -48,6 +64,7 @@ namespace rockdda::coupling
                          : quasi_static_time_step(scene, c.law.normal_penalty);
     c.time_step      = pseudo_time_step;
     engine           = std::make_unique<dda::DdaSystem>(scene.blocks, c);
+    heat_map         = scene.heat_map;
     double height    = 0.;
     for (const int b : scene.block_slices)
       {
@@ -58,10 +75,15 @@ namespace rockdda::coupling
     tolerance = ctrl.equilibrium_tolerance * height;
     // Settle under gravity at the temperatures of phase 0.
     engine->set_eigenstrains(thermal_eigenstrains(
-      engine->system(), scene.heat_map, temperature, forcing, alpha, 0.));
+      engine->system(), heat_map, temperature, forcing, alpha, 0.));
     engine->settle(ctrl.settle_steps);
     aperture0     = raw_aperture();
     base_corners0 = vertex(scene.heel) + vertex(scene.toe);
+    if (scene.infill >= 0)
+      {
+        fragments     = {scene.infill};
+        fragment_tops = {scene.infill_top - engine->system().origin[1]};
+      }
   }
 
 
@@ -93,6 +115,57 @@ namespace rockdda::coupling
                           * block.polygon.area());
       }
     return std::sqrt(2. * mass / (1e-9 * penalty));
+  }
+
+
+
+  double
+  RatchetRun::face_x(const std::pair<int, int> &a,
+                     const std::pair<int, int> &b,
+                     const double               y) const
+  {
+    const geometry::Point &p = vertex(a), &q = vertex(b);
+    return p[0] + (y - p[1]) / (q[1] - p[1]) * (q[0] - p[0]);
+  }
+
+
+
+  void
+  RatchetRun::supply(const double time)
+  {
+    if (!(scene.supply_distance > 0.) || fragments.empty())
+      return;
+    const auto &system = engine->system();
+    if (fragment_tops.back() - top(system.blocks[fragments.back()].polygon)
+        < scene.supply_distance)
+      return;
+    // The infill's initial heights in engine coordinates (the engine works
+    // relative to its origin).
+    const double                 ya = scene.infill_top - system.origin[1];
+    const double                 yz = scene.infill_bottom - system.origin[1];
+    std::vector<geometry::Point> v;
+    for (const double y : {yz, ya})
+      {
+        const double left  = face_x(scene.cliff_foot, scene.cliff_top, y);
+        const double right = face_x(scene.heel, scene.back_top, y);
+        const double gap   = 1e-3 * (right - left);
+        v.emplace_back(left + gap, y);
+        v.emplace_back(right - gap, y);
+      }
+    dda::Block b       = system.blocks[scene.infill];
+    b.id               = static_cast<int>(system.blocks.size());
+    b.polygon.vertices = {v[0], v[1], v[3], v[2]};
+    for (auto &p : b.polygon.vertices)
+      p += system.origin;
+    // At the air's temperature, as the infill (BlockHeatMap index -1).
+    b.eigenstrain
+      = dda::thermal_eigenstrain(system.materials[b.material],
+                                 alpha * (forcing.air(time) - forcing.mean));
+    const int i = engine->add_block(b);
+    heat_map.index.push_back(-1);
+    heat_map.pieces.emplace_back();
+    fragments.push_back(i);
+    fragment_tops.push_back(ya);
   }
 
 
@@ -132,7 +205,7 @@ namespace rockdda::coupling
   RatchetRun::equilibrate(const double time, CycleRecord &record)
   {
     engine->set_eigenstrains(thermal_eigenstrains(
-      engine->system(), scene.heat_map, temperature, forcing, alpha, time));
+      engine->system(), heat_map, temperature, forcing, alpha, time));
     double last = 0.;
     // The window of the stationarity test: slip and aperture per step.
     constexpr unsigned int            window = 100;
@@ -219,9 +292,8 @@ namespace rockdda::coupling
             s.air       = forcing.air(time);
             double mean = 0.;
             for (const int b : scene.block_slices)
-              mean
-                += engine->system().blocks[b].polygon.area()
-                   * scene.heat_map.temperature(b, temperature, forcing, time);
+              mean += engine->system().blocks[b].polygon.area()
+                      * heat_map.temperature(b, temperature, forcing, time);
             s.block_mean   = mean / block_area;
             s.displacement = displacement();
             s.aperture     = aperture();
@@ -235,6 +307,8 @@ namespace rockdda::coupling
     r.aperture        = aperture();
     if (scene.infill >= 0)
       r.infill_descent = -engine->centroid_displacement(scene.infill)[1];
+    supply(n_cycles * forcing.period);
+    r.fragments = static_cast<unsigned int>(fragments.size());
     for (const auto &c : engine->contacts())
       {
         if (c.state == dda::ContactState::open)
@@ -259,6 +333,12 @@ namespace rockdda::coupling
     w.put(last_displacement);
     w.put(base_corners0[0]);
     w.put(base_corners0[1]);
+    w.put<std::uint32_t>(static_cast<std::uint32_t>(fragments.size()));
+    for (std::size_t k = 0; k < fragments.size(); ++k)
+      {
+        w.put<std::int32_t>(fragments[k]);
+        w.put(fragment_tops[k]);
+      }
     w.put_string(engine->checkpoint());
     return w.bytes;
   }
@@ -271,12 +351,31 @@ namespace rockdda::coupling
     io::BinaryReader r(bytes, source);
     if (r.get_string() != "rockdda ratchet")
       throw InputError(source + ": not a rockdda ratchet checkpoint");
-    const auto   cycles = r.get<std::uint32_t>();
-    const double a0     = r.get<double>();
-    const double last   = r.get<double>();
-    const double cx     = r.get<double>();
-    const double cy     = r.get<double>();
+    const auto          cycles = r.get<std::uint32_t>();
+    const double        a0     = r.get<double>();
+    const double        last   = r.get<double>();
+    const double        cx     = r.get<double>();
+    const double        cy     = r.get<double>();
+    const auto          n      = r.get<std::uint32_t>();
+    std::vector<int>    f;
+    std::vector<double> tops;
+    for (std::uint32_t k = 0; k < n && k < 1000000; ++k)
+      {
+        f.push_back(r.get<std::int32_t>());
+        tops.push_back(r.get<double>());
+      }
     engine->restore(r.get_string(), source);
+    const std::size_t n_blocks = engine->system().blocks.size();
+    for (const int b : f)
+      if (b < 0 || static_cast<std::size_t>(b) >= n_blocks)
+        throw InputError(source + ": the checkpoint is damaged (fragment "
+                         + std::to_string(b) + ")");
+    // The supplied fragments take the air's temperature, as the infill.
+    heat_map = scene.heat_map;
+    heat_map.index.resize(n_blocks, -1);
+    heat_map.pieces.resize(n_blocks);
+    fragments         = std::move(f);
+    fragment_tops     = std::move(tops);
     n_cycles          = cycles;
     aperture0         = a0;
     last_displacement = last;

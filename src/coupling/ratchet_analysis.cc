@@ -143,6 +143,17 @@ namespace rockdda::coupling
                     "against the cliff and drops until it wedges; wider "
                     "than the crack is an error.");
         io::declare(prm,
+                    "Infill supply distance",
+                    "0",
+                    Double(0.),
+                    "m",
+                    "Supply of detritus for long runs: when the newest "
+                    "infill fragment's top has descended this far below "
+                    "the infill's initial top, a new fragment of the "
+                    "infill's height is placed there, spanning the crack as "
+                    "it is then (checked at the end of each cycle). 0 = no "
+                    "supply; otherwise at least 'Infill height'.");
+        io::declare(prm,
                     "Refinement depth",
                     "1",
                     positive,
@@ -410,6 +421,7 @@ namespace rockdda::coupling
         geometry.infill_top_depth   = prm.get_double("Infill top depth");
         geometry.infill_height      = prm.get_double("Infill height");
         geometry.infill_width       = prm.get_double("Infill width");
+        geometry.supply_distance    = prm.get_double("Infill supply distance");
         refinement_factor           = prm.get_double("Refinement depth");
         geometry.slices             = prm.get_integer("Slices");
         materials.rock.density      = prm.get_double("Density");
@@ -493,7 +505,8 @@ namespace rockdda::coupling
                {"cuts", "-"},
                {"stationary_samples", "-"},
                {"chatter", "m"},
-               {"regularised_samples", "-"}})
+               {"regularised_samples", "-"},
+               {"fragments", "-"}})
           table.add_column(name, unit);
         io::Table loop;
         for (const auto &[name, unit] :
@@ -551,7 +564,8 @@ namespace rockdda::coupling
                            static_cast<double>(r.cuts),
                            static_cast<double>(r.stationary_samples),
                            r.chatter,
-                           static_cast<double>(r.regularised_samples)});
+                           static_cast<double>(r.regularised_samples),
+                           static_cast<double>(r.fragments)});
             if (record_loop)
               for (const auto &s : samples)
                 loop.add_row({static_cast<double>(r.cycle),
@@ -704,6 +718,7 @@ namespace rockdda::coupling
                                geometry.crack_top_width,
                                geometry.crack_bottom_width,
                                geometry.infill ? 1. : 0.,
+                               geometry.supply_distance,
                                geometry.refinement_depth,
                                static_cast<double>(geometry.slices),
                                alpha,

@@ -270,6 +270,11 @@ namespace rockdda::coupling
         const int                i
           = add_block(s, v, {bonded, first ? crack : bonded, bonded, bonded});
         scene.cliff_slices.push_back(i);
+        if (first)
+          {
+            scene.cliff_foot = {i, 1};
+            scene.cliff_top  = {i, 2};
+          }
         if (last)
           {
             fix(s, i, v);
@@ -325,14 +330,23 @@ namespace rockdda::coupling
                            + std::to_string(g.infill_width)
                            + " m: the infill would taper to nothing above "
                              "its bottom; make it wider or shorter");
-        const int i       = add_block(s,
+        const int i         = add_block(s,
                                 {Point(0., yz),
-                                       Point(back(yz) - shift, yz),
-                                       Point(back(ya) - shift, ya),
-                                       Point(0., ya)},
+                                         Point(back(yz) - shift, yz),
+                                         Point(back(ya) - shift, ya),
+                                         Point(0., ya)},
                                 {crack, crack, crack, crack});
-        s.blocks[i].joint = crack;
-        scene.infill      = i;
+        s.blocks[i].joint   = crack;
+        scene.infill        = i;
+        scene.infill_top    = ya;
+        scene.infill_bottom = yz;
+        require_in_range(g.supply_distance == 0.
+                           || g.supply_distance >= g.infill_height,
+                         "Ratchet/Infill supply distance",
+                         g.supply_distance,
+                         "0 (no supply) or >= the infill height ("
+                           + std::to_string(g.infill_height) + " m)");
+        scene.supply_distance = g.supply_distance;
         scene.heat_map.index.push_back(-1);
       }
 

@@ -40,6 +40,101 @@ namespace rockdda::dda
         }
       return best;
     }
+    /**
+     * Check one block of @p system (vertices, area, materials, edge joints)
+     * and prepare it: a clockwise polygon is reversed (with a warning), the
+     * initial centroid set.
+     */
+    void
+    prepare_block(const BlockSystem        &system,
+                  Block                    &b,
+                  std::vector<std::string> &warnings)
+    {
+      const int         n_mat = static_cast<int>(system.materials.size());
+      const std::string name  = block_name(b);
+      auto             &v     = b.polygon.vertices;
+      if (v.size() < 3)
+        throw InputError(name + ": a block needs at least 3 vertices, it has "
+                         + std::to_string(v.size()));
+      for (const auto &p : v)
+        if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
+          throw InputError(name + ": a vertex coordinate is not finite");
+      if (b.material < 0 || b.material >= n_mat)
+        throw InputError(name + ": has no material (material index "
+                         + std::to_string(b.material) + "; "
+                         + std::to_string(n_mat) + " materials defined)");
+      const BlockMaterial &m = system.materials[b.material];
+      if (!(m.density > 0.) || !std::isfinite(m.density))
+        throw InputError(name + ": its material has density "
+                         + io::format_number(m.density)
+                         + " kg/m^3; valid: density > 0");
+      if (!(m.young > 0.) || !std::isfinite(m.young))
+        throw InputError(name + ": its material has Young's modulus "
+                         + io::format_number(m.young) + " Pa; valid: E > 0");
+      if (!(m.poisson >= 0. && m.poisson < 0.5))
+        throw InputError(name + ": its material has Poisson's ratio "
+                         + io::format_number(m.poisson)
+                         + "; valid: 0 <= nu < 0.5");
+      if (b.joint < 0 || b.joint >= static_cast<int>(system.joints.size()))
+        throw InputError(name + ": has no joint material (index "
+                         + std::to_string(b.joint) + ")");
+      if (b.polygon.self_intersects())
+        throw InputError(name + ": the polygon is self-intersecting");
+      const Eigen::Vector4d box  = b.polygon.bounding_box();
+      const double          size = std::max(box[2] - box[0], box[3] - box[1]);
+      const double          area = b.polygon.signed_area();
+      if (!(std::abs(area) > 1e-12 * size * size))
+        throw InputError(name + ": zero area (degenerate polygon)");
+      if (!b.edge_joints.empty()
+          && b.edge_joints.size() != b.polygon.vertices.size())
+        throw InputError(name + ": has " + std::to_string(b.edge_joints.size())
+                         + " edge joint materials for "
+                         + std::to_string(b.polygon.vertices.size())
+                         + " edges");
+      for (const int j : b.edge_joints)
+        if (j < 0 || j >= static_cast<int>(system.joints.size()))
+          throw InputError(name + ": an edge has no joint material (index "
+                           + std::to_string(j) + ")");
+      if (area < 0.)
+        {
+          // Reversed, edge k (v_k -> v_k+1) becomes edge n-2-k (mod n).
+          if (!b.edge_joints.empty())
+            {
+              const int        n = static_cast<int>(b.edge_joints.size());
+              std::vector<int> e(n);
+              for (int k = 0; k < n; ++k)
+                e[((n - 2 - k) % n + n) % n] = b.edge_joints[k];
+              b.edge_joints = e;
+            }
+          std::reverse(v.begin(), v.end());
+          warnings.push_back(name
+                             + ": vertices were clockwise; reversed to "
+                               "counter-clockwise");
+        }
+      b.initial_centroid = block_moments(b.polygon).centroid;
+    }
+
+    /// Throws InputError if a vertex or the centroid of block @p a lies
+    /// deeper than @p tolerance inside block @p c.
+    void
+    check_overlap(const BlockSystem &system,
+                  const int          a,
+                  const int          c,
+                  const double       tolerance)
+    {
+      const auto                  &poly   = system.blocks[c].polygon;
+      std::vector<geometry::Point> probes = system.blocks[a].polygon.vertices;
+      probes.push_back(system.blocks[a].initial_centroid);
+      for (const auto &p : probes)
+        if (poly.contains(p) && distance_to_boundary(poly, p) > tolerance)
+          throw InputError(
+            block_name(system.blocks[a]) + " overlaps "
+            + block_name(system.blocks[c]) + " at t = 0 (point ("
+            + io::format_number(system.origin.x() + p.x(), 8) + ", "
+            + io::format_number(system.origin.y() + p.y(), 8) + ") m lies "
+            + io::format_number(distance_to_boundary(poly, p), 4)
+            + " m inside it)");
+    }
   } // namespace
 
 
@@ -49,71 +144,8 @@ namespace rockdda::dda
                        std::vector<std::string> &warnings,
                        const double              overlap_fraction)
   {
-    const int n_mat = static_cast<int>(system.materials.size());
     for (auto &b : system.blocks)
-      {
-        const std::string name = block_name(b);
-        auto             &v    = b.polygon.vertices;
-        if (v.size() < 3)
-          throw InputError(name + ": a block needs at least 3 vertices, it has "
-                           + std::to_string(v.size()));
-        for (const auto &p : v)
-          if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
-            throw InputError(name + ": a vertex coordinate is not finite");
-        if (b.material < 0 || b.material >= n_mat)
-          throw InputError(name + ": has no material (material index "
-                           + std::to_string(b.material) + "; "
-                           + std::to_string(n_mat) + " materials defined)");
-        const BlockMaterial &m = system.materials[b.material];
-        if (!(m.density > 0.) || !std::isfinite(m.density))
-          throw InputError(name + ": its material has density "
-                           + io::format_number(m.density)
-                           + " kg/m^3; valid: density > 0");
-        if (!(m.young > 0.) || !std::isfinite(m.young))
-          throw InputError(name + ": its material has Young's modulus "
-                           + io::format_number(m.young) + " Pa; valid: E > 0");
-        if (!(m.poisson >= 0. && m.poisson < 0.5))
-          throw InputError(name + ": its material has Poisson's ratio "
-                           + io::format_number(m.poisson)
-                           + "; valid: 0 <= nu < 0.5");
-        if (b.joint < 0 || b.joint >= static_cast<int>(system.joints.size()))
-          throw InputError(name + ": has no joint material (index "
-                           + std::to_string(b.joint) + ")");
-        if (b.polygon.self_intersects())
-          throw InputError(name + ": the polygon is self-intersecting");
-        const Eigen::Vector4d box  = b.polygon.bounding_box();
-        const double          size = std::max(box[2] - box[0], box[3] - box[1]);
-        const double          area = b.polygon.signed_area();
-        if (!(std::abs(area) > 1e-12 * size * size))
-          throw InputError(name + ": zero area (degenerate polygon)");
-        if (!b.edge_joints.empty()
-            && b.edge_joints.size() != b.polygon.vertices.size())
-          throw InputError(
-            name + ": has " + std::to_string(b.edge_joints.size())
-            + " edge joint materials for "
-            + std::to_string(b.polygon.vertices.size()) + " edges");
-        for (const int j : b.edge_joints)
-          if (j < 0 || j >= static_cast<int>(system.joints.size()))
-            throw InputError(name + ": an edge has no joint material (index "
-                             + std::to_string(j) + ")");
-        if (area < 0.)
-          {
-            // Reversed, edge k (v_k -> v_k+1) becomes edge n-2-k (mod n).
-            if (!b.edge_joints.empty())
-              {
-                const int        n = static_cast<int>(b.edge_joints.size());
-                std::vector<int> e(n);
-                for (int k = 0; k < n; ++k)
-                  e[((n - 2 - k) % n + n) % n] = b.edge_joints[k];
-                b.edge_joints = e;
-              }
-            std::reverse(v.begin(), v.end());
-            warnings.push_back(name
-                               + ": vertices were clockwise; reversed to "
-                                 "counter-clockwise");
-          }
-        b.initial_centroid = block_moments(b.polygon).centroid;
-      }
+      prepare_block(system, b, warnings);
     for (const auto &j : system.joints)
       if (!(j.friction_deg >= 0. && j.friction_deg < 90.) || !(j.cohesion >= 0.)
           || !(j.tensile >= 0.))
@@ -135,24 +167,12 @@ namespace rockdda::dda
         sizes.push_back(block_size(p));
       }
     for (const auto &[i, j] : candidate_pairs(polys, 0.))
-      for (int pass = 0; pass < 2; ++pass)
-        {
-          const int    a = pass == 0 ? i : j, c = pass == 0 ? j : i;
-          const double overlap_tolerance
-            = overlap_fraction * std::min(sizes[i], sizes[j]);
-          std::vector<geometry::Point> probes = polys[a].vertices;
-          probes.push_back(system.blocks[a].initial_centroid);
-          for (const auto &p : probes)
-            if (polys[c].contains(p)
-                && distance_to_boundary(polys[c], p) > overlap_tolerance)
-              throw InputError(
-                block_name(system.blocks[a]) + " overlaps "
-                + block_name(system.blocks[c]) + " at t = 0 (point ("
-                + io::format_number(system.origin.x() + p.x(), 8) + ", "
-                + io::format_number(system.origin.y() + p.y(), 8) + ") m lies "
-                + io::format_number(distance_to_boundary(polys[c], p), 4)
-                + " m inside it)");
-        }
+      {
+        const double tolerance
+          = overlap_fraction * std::min(sizes[i], sizes[j]);
+        check_overlap(system, i, j, tolerance);
+        check_overlap(system, j, i, tolerance);
+      }
 
     const int n_blocks    = static_cast<int>(system.blocks.size());
     auto      check_block = [&](const int b, const std::string &what) {
@@ -188,6 +208,37 @@ namespace rockdda::dda
       {
         check_inside(m.block, m.point, "a measurement point");
         m.initial = m.point;
+      }
+  }
+
+
+
+  void
+  validate_added_block(const BlockSystem        &system,
+                       Block                    &block,
+                       std::vector<std::string> &warnings,
+                       const double              overlap_fraction)
+  {
+    prepare_block(system, block, warnings);
+    // The overlap test against the blocks as they are: a one-block scene
+    // beside each candidate (only the new block's pairs are checked; the
+    // others may touch within their contact springs' penetration).
+    BlockSystem pair;
+    pair.origin       = system.origin;
+    pair.blocks       = {block, block};
+    const double size = block_size(block.polygon);
+    const auto   box  = block.polygon.bounding_box();
+    for (const auto &other : system.blocks)
+      {
+        const auto o = other.polygon.bounding_box();
+        if (o[0] > box[2] || o[2] < box[0] || o[1] > box[3] || o[3] < box[1])
+          continue;
+        pair.blocks[1]                  = other;
+        pair.blocks[1].initial_centroid = block_moments(other.polygon).centroid;
+        const double tolerance
+          = overlap_fraction * std::min(size, block_size(other.polygon));
+        check_overlap(pair, 0, 1, tolerance);
+        check_overlap(pair, 1, 0, tolerance);
       }
   }
 

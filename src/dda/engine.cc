@@ -139,9 +139,7 @@ namespace rockdda::dda
     for (const auto &b : scene.blocks)
       {
         block_size.push_back(dda::block_size(b.polygon));
-        allowed_step.push_back(
-          std::min(ctrl.max_displacement_ratio * domain,
-                   ctrl.max_displacement_block_ratio * block_size.back()));
+        allowed_step.push_back(allowed_displacement_for(block_size.back()));
       }
     if (scene.seismic.mode != SeismicInput::Mode::none)
       ground = GroundMotionIntegral(scene.seismic.record, scene.seismic.g);
@@ -149,7 +147,8 @@ namespace rockdda::dda
         && !scene.seismic.vertical_record.acceleration.empty())
       ground_vertical
         = GroundMotionIntegral(scene.seismic.vertical_record, scene.seismic.g);
-    clamped_block = clamped_blocks(scene);
+    clamped_block  = clamped_blocks(scene);
+    n_scene_blocks = scene.blocks.size();
     add_plausibility_warnings();
     // The vertical ground velocity bounds the block speeds too.
     speed_bound += ground_vertical.peak_velocity();
@@ -923,6 +922,40 @@ namespace rockdda::dda
                            + " is not finite");
         scene.blocks[b].eigenstrain = eigenstrains[b];
       }
+  }
+
+
+
+  double
+  DdaSystem::allowed_displacement_for(const double size) const
+  {
+    return std::min(ctrl.max_displacement_ratio * domain,
+                    ctrl.max_displacement_block_ratio * size);
+  }
+
+
+
+  int
+  DdaSystem::add_block(Block block)
+  {
+    for (auto &p : block.polygon.vertices)
+      p -= scene.origin;
+    block.velocity.setZero();
+    block.stress.setZero();
+    block.strain.setZero();
+    block.applied_eigenstrain = block.eigenstrain; // stress-free as placed
+    block.rotation            = 0.;
+    validate_added_block(scene, block, warning_list, 1e-6);
+    scene.blocks.push_back(std::move(block));
+    const auto &b = scene.blocks.back();
+    block_size.push_back(dda::block_size(b.polygon));
+    allowed_step.push_back(allowed_displacement_for(block_size.back()));
+    clamped_block.push_back(0);
+    if (last_solution.size() > 0)
+      last_solution.conservativeResizeLike(
+        Eigen::VectorXd::Zero(6 * scene.blocks.size()));
+    accepted_balance = std::numeric_limits<double>::quiet_NaN();
+    return static_cast<int>(scene.blocks.size()) - 1;
   }
 
 

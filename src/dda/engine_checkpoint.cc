@@ -17,7 +17,7 @@ namespace rockdda::dda
   namespace
   {
     constexpr char          magic[]        = "rockdda DDA checkpoint";
-    constexpr std::uint32_t format_version = 4;
+    constexpr std::uint32_t format_version = 5;
     using io::BinaryReader;
     using io::BinaryWriter;
 
@@ -77,8 +77,21 @@ namespace rockdda::dda
     w.put_string(magic);
     w.put(format_version);
     w.put<std::uint64_t>(scene.blocks.size());
-    for (const auto &b : scene.blocks)
+    w.put<std::uint64_t>(n_scene_blocks);
+    for (std::size_t k = 0; k < scene.blocks.size(); ++k)
       {
+        const Block &b = scene.blocks[k];
+        if (k >= n_scene_blocks)
+          {
+            // An added block: its definition and its size at insertion.
+            w.put<std::int32_t>(b.id);
+            w.put<std::int32_t>(b.material);
+            w.put<std::int32_t>(b.joint);
+            w.put<std::uint64_t>(b.edge_joints.size());
+            for (const int j : b.edge_joints)
+              w.put<std::int32_t>(j);
+            w.put(block_size[k]);
+          }
         w.put<std::uint64_t>(b.polygon.vertices.size());
         for (const auto &v : b.polygon.vertices)
           put_point(w, v);
@@ -151,15 +164,54 @@ namespace rockdda::dda
                        + "; this build reads format "
                        + std::to_string(format_version));
     // Read into a copy: the engine is untouched if the file is rejected.
-    BlockSystem s = scene;
-    expect_count(r, s.blocks.size(), "blocks", source);
+    BlockSystem s       = scene;
+    const auto  n_total = r.get<std::uint64_t>();
+    expect_count(r, n_scene_blocks, "blocks in the scene", source);
+    // Blocks added after the checkpoint's own (add_block) cannot be undone.
+    if (n_total < s.blocks.size() || n_total > bytes.size() / 64)
+      throw InputError(source + ": the checkpoint has "
+                       + std::to_string(n_total) + " blocks; this run has "
+                       + std::to_string(s.blocks.size()));
+    s.blocks.resize(n_total);
+    std::vector<double> sizes(block_size.begin(),
+                              block_size.begin() + n_scene_blocks);
     for (std::size_t k = 0; k < s.blocks.size(); ++k)
       {
         Block &b = s.blocks[k];
-        expect_count(r,
-                     b.polygon.vertices.size(),
-                     "vertices in block " + std::to_string(b.id),
-                     source);
+        if (k >= n_scene_blocks)
+          {
+            b.id         = r.get<std::int32_t>();
+            b.material   = r.get<std::int32_t>();
+            b.joint      = r.get<std::int32_t>();
+            const auto n = r.get<std::uint64_t>();
+            if (n > 1000000 || b.material < 0
+                || b.material >= static_cast<int>(s.materials.size())
+                || b.joint < 0 || b.joint >= static_cast<int>(s.joints.size()))
+              throw InputError(source
+                               + ": the checkpoint is damaged (added block "
+                               + std::to_string(b.id) + ")");
+            b.edge_joints.resize(n);
+            for (auto &j : b.edge_joints)
+              {
+                j = r.get<std::int32_t>();
+                if (j < 0 || j >= static_cast<int>(s.joints.size()))
+                  throw InputError(source
+                                   + ": the checkpoint is damaged (added block "
+                                   + std::to_string(b.id) + ")");
+              }
+            sizes.push_back(r.get<double>());
+            const auto n_vertices = r.get<std::uint64_t>();
+            if (n_vertices < 3 || n_vertices > 1000000)
+              throw InputError(source
+                               + ": the checkpoint is damaged (added block "
+                               + std::to_string(b.id) + ")");
+            b.polygon.vertices.resize(n_vertices);
+          }
+        else
+          expect_count(r,
+                       b.polygon.vertices.size(),
+                       "vertices in block " + std::to_string(b.id),
+                       source);
         for (auto &v : b.polygon.vertices)
           v = get_point(r);
         get_vector<6>(r, b.velocity);
@@ -250,7 +302,12 @@ namespace rockdda::dda
                        + std::to_string(time)
                        + " s, dt = " + std::to_string(step) + " s)");
 
-    scene            = std::move(s);
+    scene      = std::move(s);
+    block_size = std::move(sizes);
+    allowed_step.resize(block_size.size());
+    for (std::size_t k = n_scene_blocks; k < block_size.size(); ++k)
+      allowed_step[k] = allowed_displacement_for(block_size[k]);
+    clamped_block.resize(block_size.size(), 0);
     current_contacts = std::move(contacts);
     contact_set.store(current_contacts);
     t                   = time;

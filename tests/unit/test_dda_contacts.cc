@@ -916,6 +916,63 @@ TEST(DdaContactsIssue10, SliverStopsOnBase)
   check_energy(watch, 0.01 * mgh, mgh, "sliver");
 }
 
+// A block added between steps (DdaSystem::add_block: a fragment that falls
+// into a crack) starts at rest where it is placed: it falls freely,
+// -1/2 g t^2 from its placement within 1e-6 (as DdaSingleBlock.FreeFall),
+// lands on the fixed base and stops on it (its lowest vertex goes below
+// the base's top by at most the impact compression v sqrt(m / p) =
+// 4.4 sqrt(2700 / 1e11) = 7e-4 m: asserted 1e-3 m), and the energy
+// ledger gains nothing beyond 1 % of m g h (its potential energy counts
+// from the placement). A block placed into another is rejected naming it.
+TEST(DdaContactsIssue10, AddedBlockFallsFreelyAndLands)
+{
+  BlockSystem s    = one_material_scene(2700., 1e10, 0.25, 30.);
+  const int   base = add_block(s, rectangle(-5., -1., 10., 1.));
+  add_block(s, rectangle(-4., 0., 1., 1.));
+  fix_block(s, base);
+  DdaSystem dda(s, controls(1e-3, 1., 1e11));
+  dda.run_until(0.05);
+  Block fragment;
+  fragment.id       = 7;
+  fragment.material = 0;
+  fragment.polygon  = rectangle(1., 1., 1., 1.); // 1 m above the base
+  const int    b    = dda.add_block(fragment);
+  const double t0   = dda.time();
+  EnergyWatch  watch(dda);
+  dda.run_until(t0 + 0.3);
+  EXPECT_NEAR(dda.centroid_displacement(b).y() / (-0.5 * g_earth * 0.09),
+              1.,
+              1e-6);
+  EXPECT_NEAR(dda.centroid_displacement(b).x(), 0., 1e-12);
+  double lowest = 1e300;
+  run_watched(dda, t0 + 1., watch, [&]() {
+    for (int k = 0; k < 4; ++k)
+      lowest = std::min(lowest, global_vertex(dda, b, k).y());
+  });
+  EXPECT_GT(lowest, -1e-3);
+  EXPECT_NEAR(dda.centroid_displacement(b).y(), -1., 1e-3);
+  EXPECT_LT(max_point_speed(dda, b), 0.01);
+  const double mgh = block_mass(s, 1) * g_earth * 1.;
+  check_energy(watch, 0.01 * mgh, mgh, "added block");
+
+  fragment.id      = 8;
+  fragment.polygon = rectangle(3., -0.5, 1., 1.); // half inside the base
+  try
+    {
+      dda.add_block(fragment);
+      ADD_FAILURE() << "an overlapping block was accepted";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("block 8 overlaps"),
+                std::string::npos)
+        << e.what();
+    }
+  EXPECT_EQ(dda.system().blocks.size(), 3u);
+}
+
+
+
 TEST(DdaContactsIssue10, PointsOutsideTheirBlockAreRejected)
 {
   // A measurement point and a load point 10 m outside their block (id 7)

@@ -3,7 +3,8 @@
  * The coupled thermo-mechanical ratchet (issue 13): the scene rejects bad
  * input naming the key; the clean-crack control of Block 1 shakes down (no
  * drift); a run restored from a checkpoint ends identical to an
- * uninterrupted one.
+ * uninterrupted one; the infill falls when the crack opens, and the supply
+ * rule places new fragments.
  */
 #include <rockdda/coupling/ratchet.h>
 #include <rockdda/io/error.h>
@@ -71,6 +72,12 @@ TEST(RatchetCoupled, BadInputNamesTheKey)
     RatchetGeometry g;
     g.infill_height = 20.; // reaches below the bedding plane
     expect_error_naming([&]() { make_ratchet_scene(g, m); }, "Infill height");
+  }
+  {
+    RatchetGeometry g;
+    g.supply_distance = 1.; // the infill is 2 m high: they would overlap
+    expect_error_naming([&]() { make_ratchet_scene(g, m); },
+                        "Infill supply distance");
   }
   {
     RatchetGeometry g;
@@ -225,4 +232,66 @@ TEST(RatchetCoupled, InfillFallsWhenTheCrackOpens)
     descent = run.run_cycle().infill_descent;
   // Measured: 0.30 m; with the uncapped hold 0.003 m.
   EXPECT_GT(descent, 0.1);
+}
+
+
+
+// Supply of detritus (thesis 5.4 assumes a continuous supply): an infill
+// narrower than the crack drops until it wedges (about 4 m below its
+// initial top, where the crack narrows to its width); once the newest
+// fragment has descended by the supply distance, a new one is placed at
+// the initial position, spanning the crack less a clearance of 1e-3 of its
+// width on each side. It must sit above the old one, only move down (the
+// crack's faces and friction cannot lift it), and a run restored from a
+// checkpoint taken with it ends bit for bit where an uninterrupted run
+// ends.
+TEST(RatchetCoupled, SupplyPlacesANewFragment)
+{
+  RatchetMaterials m;
+  SeasonalForcing  f;
+  RatchetGeometry  g;
+  g.infill_height                = 1.;
+  g.infill_width                 = 0.08;
+  g.supply_distance              = 1.;
+  const RatchetScene       scene = make_ratchet_scene(g, m);
+  PeriodicBlockTemperature T(scene.heat_blocks, f, cheap_heat());
+  RatchetRun               run(scene, T, f, 8e-6, RatchetControls());
+  const int  n0      = static_cast<int>(run.dda().system().blocks.size());
+  const auto y_range = [&run](const int b) {
+    double lo = 1e300, hi = -1e300;
+    for (const auto &v : run.dda().system().blocks[b].polygon.vertices)
+      {
+        lo = std::min(lo, v[1]);
+        hi = std::max(hi, v[1]);
+      }
+    return std::pair<double, double>(lo, hi);
+  };
+  CycleRecord r = run.run_cycle();
+  ASSERT_EQ(r.fragments, 2u);
+  ASSERT_EQ(static_cast<int>(run.dda().system().blocks.size()), n0 + 1);
+  EXPECT_GT(r.infill_descent, g.supply_distance);
+  // Placed at the infill's initial heights (engine coordinates).
+  const double origin = run.dda().system().origin[1];
+  EXPECT_NEAR(y_range(n0).first, scene.infill_bottom - origin, 1e-9);
+  EXPECT_NEAR(y_range(n0).second, scene.infill_top - origin, 1e-9);
+  const std::string bytes = run.checkpoint();
+  double            drop  = 0.;
+  for (int k = 0; k < 2; ++k)
+    {
+      r = run.run_cycle();
+      // Above the old fragment (its bottom not below the old one's top
+      // by more than a contact penetration, 1e-6 of its height).
+      EXPECT_GT(y_range(n0).first,
+                y_range(scene.infill).second - 1e-6 * g.infill_height);
+      const double d = -run.dda().centroid_displacement(n0)[1];
+      EXPECT_GE(d, drop - 1e-9);
+      drop = d;
+    }
+  EXPECT_EQ(r.fragments, 2u);
+  RatchetRun second(scene, T, f, 8e-6, RatchetControls());
+  second.restore(bytes, "test");
+  second.run_cycle();
+  second.run_cycle();
+  EXPECT_EQ(second.displacement(), run.displacement());
+  EXPECT_EQ(-second.dda().centroid_displacement(n0)[1], drop);
 }

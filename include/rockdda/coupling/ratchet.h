@@ -62,6 +62,9 @@ namespace rockdda::coupling
     /// Samples that needed a smaller pseudo time step to reach equilibrium
     /// (see RatchetRun::equilibrate).
     unsigned int regularised_samples = 0;
+    /// Infill fragments in the crack at the end of the cycle (the first
+    /// and those supplied; RatchetGeometry::supply_distance).
+    unsigned int fragments = 0;
   };
 
   /// One temperature sample within a cycle (the loop of thesis Fig. 5-6).
@@ -147,6 +150,20 @@ namespace rockdda::coupling
     equilibrate(const double time, CycleRecord &record);
     double
     raw_aperture() const;
+    /**
+     * The supply rule: if the newest fragment's top has descended by the
+     * scene's supply distance, place a new fragment of the infill's height
+     * at the infill's initial position, spanning the crack as it is now
+     * less a clearance of 1e-3 of its width on each side (it drops and
+     * wedges), stress-free at the air temperature of @p time.
+     */
+    void
+    supply(const double time);
+    /// x of the straight face through vertices @p a and @p b at height y.
+    double
+    face_x(const std::pair<int, int> &a,
+           const std::pair<int, int> &b,
+           const double               y) const;
     /// Current position of vertex (block, index).
     const geometry::Point &
     vertex(const std::pair<int, int> &v) const;
@@ -157,9 +174,16 @@ namespace rockdda::coupling
     double                          alpha;
     RatchetControls                 ctrl;
     std::unique_ptr<dda::DdaSystem> engine;
-    unsigned int                    n_cycles  = 0;
-    double                          aperture0 = 0., last_displacement = 0.;
-    double                          tolerance = 0.;
+    /// The scene's heat map, extended by the supplied fragments (air).
+    BlockHeatMap heat_map;
+    /// DDA indices of the infill fragments, oldest first, and the height
+    /// of each one's top when it was placed (m, engine coordinates; the
+    /// first's at t = 0, before settling).
+    std::vector<int>    fragments;
+    std::vector<double> fragment_tops;
+    unsigned int        n_cycles  = 0;
+    double              aperture0 = 0., last_displacement = 0.;
+    double              tolerance = 0.;
     /// The pseudo time step in use (s): RatchetControls::pseudo_time_step
     /// or, if that is 0, quasi_static_time_step().
     double pseudo_time_step = 0.;

@@ -50,6 +50,13 @@ namespace rockdda::coupling
     /// touches both faces). A narrower infill lies against the cliff face
     /// and drops until it wedges; a wider one is rejected.
     double infill_width = 0.;
+    /// Supply of fragments (the thesis assumes a continuous supply of
+    /// detritus): when the newest fragment's top has descended this far
+    /// (m) below the infill's initial top, a new fragment of the infill's
+    /// height is placed at the initial position, filling the crack as it
+    /// is then. 0 = no supply; otherwise at least the infill height (the
+    /// new fragment must clear the last one).
+    double supply_distance = 0.;
     /// Slices: within @p refinement_depth (m) of an exposed vertical face
     /// (the crack faces, the block's front) the block and the cliff are
     /// cut into @p slices bonded slices of equal width; the rest of each is
@@ -95,8 +102,14 @@ namespace rockdda::coupling
     std::vector<int> block_slices, cliff_slices;
     int              infill = -1, base = -1;
     /// The block's heel and toe on the bedding plane, and its back-top
-    /// corner (crack side): (DDA block, vertex).
+    /// corner (crack side): (DDA block, vertex). The heel and the back-top
+    /// corner span the crack's block face; cliff_foot and cliff_top span
+    /// its cliff face.
     std::pair<int, int> heel{0, 0}, toe{0, 0}, back_top{0, 0};
+    std::pair<int, int> cliff_foot{0, 0}, cliff_top{0, 0};
+    /// The infill's top and bottom heights at t = 0 (m, scene
+    /// coordinates) and the supply distance (m; 0 = no supply).
+    double infill_top = 0., infill_bottom = 0., supply_distance = 0.;
     /// Unit vector down the bedding plane.
     geometry::Point downslope;
   };

@@ -195,6 +195,20 @@ namespace rockdda::dda
                        const double              overlap_fraction);
 
   /**
+   * Check @p block (in @p system's coordinates) before it joins @p system
+   * between steps, as validate_and_prepare() checks a block at t = 0:
+   * reversed if clockwise (with a warning), initial centroid set; throws
+   * InputError naming it for bad vertices, area or materials, or if it
+   * overlaps a block of @p system as that block is now by more than
+   * @p overlap_fraction of the smaller block's size.
+   */
+  void
+  validate_added_block(const BlockSystem        &system,
+                       Block                    &block,
+                       std::vector<std::string> &warnings,
+                       const double              overlap_fraction);
+
+  /**
    * The ground displacement and velocity of a seismic record, integrated
    * exactly for a piecewise-linear acceleration from rest at t = 0.
    */

@@ -200,6 +200,21 @@ namespace rockdda::dda
     void
     set_eigenstrains(const std::vector<Eigen::Vector3d> &eigenstrains);
 
+    /**
+     * Add a block between steps (a rock fragment that falls into a crack):
+     * @p block in the scene's input coordinates, at rest and stress-free
+     * at its Block::eigenstrain (e.g. the thermal strain of the moment it
+     * is placed); its displacement and potential energy are measured from
+     * where it is placed. Checked as the scene's
+     * blocks are at construction, and for overlap with the blocks as they
+     * are now (InputError naming it). Contacts it forms are not bonded.
+     * Returns its index (the last). A checkpoint() of a run with added
+     * blocks restores into an engine of the same scene to which the same
+     * blocks were added in the same order.
+     */
+    int
+    add_block(Block block);
+
     /// Advance until @p end_time (s); the last step is shortened to end
     /// there. Returns the report of the last step.
     StepReport
@@ -336,6 +351,10 @@ namespace rockdda::dda
              std::string                &why);
     void
     update(const Eigen::VectorXd &d, const double step);
+    /// Allowed vertex displacement per step of a block of size @p size (m):
+    /// the smaller of the two Controls ratios' bounds.
+    double
+    allowed_displacement_for(const double size) const;
     /// Runs work in chunks on the linear solver's threads (built per use,
     /// so that it always refers to this object).
     ChunkRunner
@@ -407,6 +426,9 @@ namespace rockdda::dda
     /// Contacts found by the first detection are intact joints (cohesion
     /// and tensile strength); contacts that form later are not bonded.
     bool first_detection = true;
+    /// Blocks of the scene at construction; those after them were added
+    /// by add_block() (their definitions go into checkpoints).
+    std::size_t n_scene_blocks = 0;
     /// Options of the contact detection, kept between steps (their
     /// per-block arrays are refilled, not reallocated).
     DetectionOptions detection_options;
