@@ -189,8 +189,8 @@ namespace rockdda::dda
         F = (2. / dt) * (mass[b] * (params.dynamic * block.velocity));
         F.segment<3>(3) -= m.area * block.stress;
         if (block.eigenstrain != block.applied_eigenstrain)
-          F.segment<3>(3) += m.area * elasticity_matrix(mat)
-                             * (block.eigenstrain - block.applied_eigenstrain);
+          F.segment<3>(3)
+            += m.area * elasticity_matrix(mat) * eigenstrain_step(block);
         F.segment<2>(0) += mat.density * m.area * params.body_acceleration;
       }
     for (const auto &l : system.load_points)

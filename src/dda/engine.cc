@@ -14,6 +14,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 namespace rockdda::dda
@@ -699,8 +701,7 @@ namespace rockdda::dda
         const Block &block = scene.blocks[b];
         if (block.eigenstrain == block.applied_eigenstrain)
           continue;
-        const Eigen::Vector3d de
-          = block.eigenstrain - block.applied_eigenstrain;
+        const Eigen::Vector3d de = eigenstrain_step(block);
         const Eigen::Matrix3d C
           = elasticity_matrix(scene.materials[block.material]);
         const Eigen::Vector3d sigma_mid
@@ -864,10 +865,7 @@ namespace rockdda::dda
           = elasticity_matrix(scene.materials[block.material]);
         // The eigenstrain change of the step is not elastic strain.
         Eigen::Vector3d sigma
-          = block.stress
-            + C
-                * (D.segment<3>(3)
-                   - (block.eigenstrain - block.applied_eigenstrain));
+          = block.stress + C * (D.segment<3>(3) - eigenstrain_step(block));
         block.applied_eigenstrain = block.eigenstrain;
         // Rotate the accumulated stress and strain with the block.
         const double    cr = std::cos(D[2]), sr = std::sin(D[2]);
@@ -907,20 +905,19 @@ namespace rockdda::dda
                        + std::to_string(eigenstrains.size())
                        + " eigenstrains for "
                        + std::to_string(scene.blocks.size()) + " blocks");
+    for (std::size_t b = 0; b < eigenstrains.size(); ++b)
+      if (!eigenstrains[b].allFinite())
+        throw InputError("set_eigenstrains: the eigenstrain of block "
+                         + std::to_string(scene.blocks[b].id)
+                         + " is not finite");
     eigenstrain_motion = 0.;
     for (std::size_t b = 0; b < eigenstrains.size(); ++b)
       {
+        scene.blocks[b].eigenstrain = eigenstrains[b];
         eigenstrain_motion
           = std::max(eigenstrain_motion,
-                     (eigenstrains[b] - scene.blocks[b].applied_eigenstrain)
-                         .cwiseAbs()
-                         .maxCoeff()
+                     eigenstrain_step(scene.blocks[b]).cwiseAbs().maxCoeff()
                        * domain);
-        if (!eigenstrains[b].allFinite())
-          throw InputError("set_eigenstrains: the eigenstrain of block "
-                           + std::to_string(scene.blocks[b].id)
-                           + " is not finite");
-        scene.blocks[b].eigenstrain = eigenstrains[b];
       }
   }
 
