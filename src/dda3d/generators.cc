@@ -1,0 +1,240 @@
+/**
+ * @file
+ * Generators of polyhedral blocks.
+ */
+#include <rockdda/analytical/sliding3d.h>
+#include <rockdda/dda3d/generators.h>
+#include <rockdda/io/error.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rockdda::dda3d
+{
+  Polyhedron
+  make_box(const Point &lo, const Point &hi)
+  {
+    Polyhedron p;
+    for (int k = 0; k < 8; ++k)
+      p.vertices.emplace_back(k & 1 ? hi.x() : lo.x(),
+                              k & 2 ? hi.y() : lo.y(),
+                              k & 4 ? hi.z() : lo.z());
+    // Counter-clockwise seen from outside.
+    p.faces = {{0, 2, 3, 1},
+               {4, 5, 7, 6},
+               {0, 1, 5, 4},
+               {2, 6, 7, 3},
+               {0, 4, 6, 2},
+               {1, 3, 7, 5}};
+    return p;
+  }
+
+
+
+  Polyhedron
+  make_prism(const geometry::Polygon &base_in, const double z0, const double z1)
+  {
+    geometry::Polygon base = base_in;
+    base.make_counter_clockwise();
+    const int  n = int(base.vertices.size());
+    Polyhedron p;
+    for (const double z : {z0, z1})
+      for (const auto &v : base.vertices)
+        p.vertices.emplace_back(v.x(), v.y(), z);
+    std::vector<int> bottom, top;
+    for (int k = 0; k < n; ++k)
+      {
+        bottom.push_back(n - 1 - k); // clockwise from above = outward down
+        top.push_back(n + k);
+      }
+    p.faces.push_back(bottom);
+    p.faces.push_back(top);
+    for (int k = 0; k < n; ++k)
+      {
+        const int l = (k + 1) % n;
+        p.faces.push_back({k, l, n + l, n + k});
+      }
+    return p;
+  }
+
+
+
+  Polyhedron
+  make_tetrahedron(const Point &a,
+                   const Point &b,
+                   const Point &c,
+                   const Point &d)
+  {
+    Polyhedron p;
+    p.vertices = {a, b, c, d};
+    p.faces    = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+    if ((b - a).dot((c - a).cross(d - a)) < 0.)
+      for (auto &f : p.faces)
+        std::reverse(f.begin(), f.end());
+    return p;
+  }
+
+
+
+  HalfSpace
+  half_space_from_dip(const double dip_deg,
+                      const double dip_direction_deg,
+                      const Point &point,
+                      const bool   above)
+  {
+    const Point n = analytical::plane_normal(dip_deg, dip_direction_deg);
+    HalfSpace   h;
+    h.normal = above ? Point(-n) : n;
+    h.offset = h.normal.dot(point);
+    return h;
+  }
+
+
+
+  Polyhedron
+  clip_convex(const Polyhedron &convex, const std::vector<HalfSpace> &cuts)
+  {
+    // Work on a polygon soup (faces as coordinate loops, counter-clockwise
+    // from outside); index it at the end.
+    std::vector<std::vector<Point>> faces;
+    for (const auto &f : convex.faces)
+      {
+        faces.emplace_back();
+        for (const int k : f)
+          faces.back().push_back(convex.vertices[k]);
+      }
+    const double size = convex.size();
+    const double tol  = 1e-9 * size;
+    for (const auto &h : cuts)
+      {
+        const double                    ln = h.normal.norm();
+        const Point                     n  = h.normal / ln;
+        const double                    d  = h.offset / ln;
+        std::vector<std::vector<Point>> kept;
+        std::vector<Point>              cap;
+        for (const auto &face : faces)
+          {
+            std::vector<Point> out;
+            const std::size_t  m = face.size();
+            for (std::size_t k = 0; k < m; ++k)
+              {
+                const Point &p  = face[k];
+                const Point &q  = face[(k + 1) % m];
+                const double sp = n.dot(p) - d, sq = n.dot(q) - d;
+                if (sp <= tol)
+                  out.push_back(p);
+                if (sp <= tol && std::abs(sp) <= tol)
+                  cap.push_back(p);
+                if ((sp < -tol && sq > tol) || (sp > tol && sq < -tol))
+                  {
+                    const Point x = p + (sp / (sp - sq)) * (q - p);
+                    out.push_back(x);
+                    cap.push_back(x);
+                  }
+              }
+            if (out.size() >= 3)
+              kept.push_back(out);
+          }
+        // The cap: the points on the plane, ordered counter-clockwise seen
+        // from +n (outside).
+        std::vector<Point> unique;
+        for (const auto &p : cap)
+          if (std::none_of(unique.begin(), unique.end(), [&](const Point &q) {
+                return (p - q).norm() <= tol;
+              }))
+            unique.push_back(p);
+        if (unique.size() >= 3)
+          {
+            Point mean = Point::Zero();
+            for (const auto &p : unique)
+              mean += p;
+            mean /= double(unique.size());
+            const Point u
+              = (std::abs(n.x()) < 0.9 ? Point::UnitX() : Point::UnitY())
+                  .cross(n)
+                  .normalized();
+            const Point w = n.cross(u);
+            std::sort(unique.begin(),
+                      unique.end(),
+                      [&](const Point &a, const Point &b) {
+                        return std::atan2((a - mean).dot(w), (a - mean).dot(u))
+                               < std::atan2((b - mean).dot(w),
+                                            (b - mean).dot(u));
+                      });
+            kept.push_back(unique);
+          }
+        faces = kept;
+      }
+    // Index the soup, merging coincident vertices and dropping repeated
+    // consecutive ones.
+    Polyhedron result;
+    for (const auto &face : faces)
+      {
+        std::vector<int> f;
+        for (const auto &p : face)
+          {
+            int k = -1;
+            for (std::size_t j = 0; j < result.vertices.size(); ++j)
+              if ((result.vertices[j] - p).norm() <= tol)
+                {
+                  k = int(j);
+                  break;
+                }
+            if (k < 0)
+              {
+                k = int(result.vertices.size());
+                result.vertices.push_back(p);
+              }
+            if (f.empty() || (f.back() != k && f.front() != k))
+              f.push_back(k);
+          }
+        if (f.size() >= 3)
+          result.faces.push_back(f);
+      }
+    if (result.faces.size() < 4 || !(result.signed_volume() > 0.))
+      throw InputError("clip_convex: the half-spaces leave no block");
+    return result;
+  }
+
+
+
+  Polyhedron
+  make_tetrahedral_wedge(const double joint1_dip_deg,
+                         const double joint1_dip_direction_deg,
+                         const double joint2_dip_deg,
+                         const double joint2_dip_direction_deg,
+                         const double slope_dip_deg,
+                         const double slope_dip_direction_deg,
+                         const double height,
+                         const Point &crest)
+  {
+    if (!(height > 0.))
+      throw InputError("tetrahedral wedge: height " + std::to_string(height)
+                       + " m; valid: > 0");
+    const double deg = std::acos(-1.) / 180.;
+    const double b = slope_dip_deg * deg, a = slope_dip_direction_deg * deg;
+    // The joints' line of intersection daylights in the slope face at
+    // depth @p height below the crest, down the slope's dip line.
+    const Point                  down(std::cos(b) * std::sin(a),
+                     std::cos(b) * std::cos(a),
+                     -std::sin(b));
+    const Point                  toe  = crest + (height / std::sin(b)) * down;
+    const double                 L    = 200. * height;
+    const Point                  big  = Point::Constant(L);
+    Polyhedron                   box  = make_box(crest - big, crest + big);
+    const std::vector<HalfSpace> cuts = {
+      {Point::UnitZ(), crest.z()},
+      half_space_from_dip(slope_dip_deg, slope_dip_direction_deg, crest),
+      half_space_from_dip(joint1_dip_deg, joint1_dip_direction_deg, toe, true),
+      half_space_from_dip(joint2_dip_deg, joint2_dip_direction_deg, toe, true)};
+    Polyhedron wedge = clip_convex(box, cuts);
+    if (wedge.vertices.size() != 4)
+      throw InputError(
+        "tetrahedral wedge: the joints' line of intersection does not "
+        "daylight in the slope face (no tetrahedron within "
+        + std::to_string(L) + " m of the crest)");
+    return wedge;
+  }
+} // namespace rockdda::dda3d

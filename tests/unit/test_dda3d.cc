@@ -1,0 +1,749 @@
+/**
+ * @file
+ * Verification of the first layer of 3D DDA (issue 17): exact polyhedron
+ * moments, generators, the 12-DOF block matrices, contact-free time
+ * stepping (rigid rotation, free fall, static elastic response) and bad
+ * input. Every test prints its measured errors.
+ */
+#include <rockdda/dda3d/block_file.h>
+#include <rockdda/dda3d/block_matrices.h>
+#include <rockdda/dda3d/free_blocks.h>
+#include <rockdda/dda3d/generators.h>
+#include <rockdda/io/error.h>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+using namespace rockdda;
+using namespace rockdda::dda3d;
+
+namespace
+{
+  const double pi = std::acos(-1.);
+
+  /// Closed-form moments of a set of disjoint axis-aligned boxes (lo, hi):
+  /// integral x_i x_j over a box is a product of 1D integrals.
+  PolyhedronMoments
+  boxes_moments(const std::vector<std::pair<Point, Point>> &boxes)
+  {
+    double          V = 0.;
+    Point           s = Point::Zero();
+    Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
+    for (const auto &[lo, hi] : boxes)
+      {
+        Point i0, i1, i2; // integral of 1, x, x^2 along each axis
+        for (int k = 0; k < 3; ++k)
+          {
+            i0[k] = hi[k] - lo[k];
+            i1[k] = (hi[k] * hi[k] - lo[k] * lo[k]) / 2.;
+            i2[k] = (std::pow(hi[k], 3) - std::pow(lo[k], 3)) / 3.;
+          }
+        V += i0.prod();
+        for (int k = 0; k < 3; ++k)
+          {
+            s[k] += i1[k] * i0.prod() / i0[k];
+            for (int l = 0; l < 3; ++l)
+              S(k, l) += k == l ? i2[k] * i0.prod() / i0[k]
+                                : i1[k] * i1[l] * i0.prod() / (i0[k] * i0[l]);
+          }
+      }
+    PolyhedronMoments m;
+    m.volume   = V;
+    m.centroid = s / V;
+    m.second   = S - V * m.centroid * m.centroid.transpose();
+    return m;
+  }
+
+  /// Right tetrahedron (0, a e_x, b e_y, c e_z): Dirichlet's integral
+  /// integral x^p y^q z^r = a^(p+1) b^(q+1) c^(r+1) p! q! r! / (p+q+r+3)!.
+  PolyhedronMoments
+  right_tetrahedron_moments(const double a, const double b, const double c)
+  {
+    const Point       L(a, b, c);
+    PolyhedronMoments m;
+    m.volume   = a * b * c / 6.;
+    m.centroid = L / 4.;
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l)
+        m.second(k, l) = (k == l ? 2. : 1.) * a * b * c * L[k] * L[l] / 120.
+                         - m.volume * m.centroid[k] * m.centroid[l];
+    return m;
+  }
+
+  /// Largest relative difference of two sets of moments (volume, centroid
+  /// relative to @p length, second moments relative to their norm).
+  double
+  moment_error(const PolyhedronMoments &a,
+               const PolyhedronMoments &b,
+               const double             length)
+  {
+    return std::max({std::abs(a.volume - b.volume) / std::abs(b.volume),
+                     (a.centroid - b.centroid).norm() / length,
+                     (a.second - b.second).norm() / b.second.norm()});
+  }
+
+  Polyhedron
+  transformed(Polyhedron p, const Eigen::Matrix3d &R, const Point &shift)
+  {
+    for (auto &v : p.vertices)
+      v = R * v + shift;
+    return p;
+  }
+
+  PolyhedronMoments
+  transformed(PolyhedronMoments m, const Eigen::Matrix3d &R, const Point &shift)
+  {
+    m.centroid = R * m.centroid + shift;
+    m.second   = R * m.second * R.transpose();
+    return m;
+  }
+
+  /// The L-shaped polygon [0, 2] x [0, 1] + [0, 1] x [1, 2] (area 3).
+  geometry::Polygon
+  l_polygon()
+  {
+    geometry::Polygon p;
+    p.vertices = {{0., 0.}, {2., 0.}, {2., 1.}, {1., 1.}, {1., 2.}, {0., 2.}};
+    return p;
+  }
+
+  /// A scene of one block of @p poly with material (rho, E, nu), no gravity.
+  BlockSystem
+  one_block(const Polyhedron &poly,
+            const double      rho = 2700.,
+            const double      E   = 1e10,
+            const double      nu  = 0.25)
+  {
+    BlockSystem s;
+    s.materials.push_back({rho, E, nu, 1});
+    Block b;
+    b.id         = 1;
+    b.polyhedron = poly;
+    b.material   = 0;
+    s.blocks.push_back(b);
+    s.gravity.setZero();
+    return s;
+  }
+
+  /// The largest volume change (relative) and vertex distance from the
+  /// exact rigid rotation (relative to the block size).
+  std::pair<double, double>
+  rotation_errors(const Polyhedron      &initial,
+                  const Polyhedron      &now,
+                  const Eigen::Matrix3d &R,
+                  const Point           &c0,
+                  const Point           &c1)
+  {
+    double d = 0.;
+    for (std::size_t k = 0; k < initial.vertices.size(); ++k)
+      d = std::max(
+        d, (now.vertices[k] - (c1 + R * (initial.vertices[k] - c0))).norm());
+    const double V0 = initial.signed_volume();
+    return {std::abs(now.signed_volume() - V0) / V0, d / initial.size()};
+  }
+} // namespace
+
+
+
+// ---------------------------------------------------------------------------
+// Exact geometry.
+
+TEST(Dda3dGeometry, MomentsAgainstClosedFormsTranslatedAndRotated)
+{
+  struct Case
+  {
+    const char       *name;
+    Polyhedron        poly;
+    PolyhedronMoments exact;
+  };
+  const std::vector<Case> cases
+    = {{"unit cube",
+        make_box(Point(0., 0., 0.), Point(1., 1., 1.)),
+        boxes_moments({{Point(0., 0., 0.), Point(1., 1., 1.)}})},
+       {"tetrahedron",
+        make_tetrahedron(Point(0., 0., 0.),
+                         Point(1., 0., 0.),
+                         Point(0., 2., 0.),
+                         Point(0., 0., 3.)),
+        right_tetrahedron_moments(1., 2., 3.)},
+       {"L-shaped prism",
+        make_prism(l_polygon(), 0., 1.5),
+        boxes_moments({{Point(0., 0., 0.), Point(2., 1., 1.5)},
+                       {Point(0., 1., 0.), Point(1., 2., 1.5)}})}};
+  // 120 deg about (1, 1, 1) / sqrt 3 permutes the axes exactly; use an
+  // irrational rotation instead.
+  const Eigen::Matrix3d R
+    = Eigen::AngleAxisd(0.7, Point(1., -2., 3.).normalized())
+        .toRotationMatrix();
+  const Point utm(5e5, 4e6, 0.);
+  for (const auto &c : cases)
+    {
+      EXPECT_FALSE(polyhedron_defect(c.poly)) << c.name;
+      const double L = c.poly.size();
+      // (1) as given, (2) rotated about the origin, (3) shifted to UTM
+      // coordinates (an exact shift of these dyadic coordinates): 1e-12.
+      const double e1 = moment_error(c.poly.moments(), c.exact, L);
+      const double e2
+        = moment_error(transformed(c.poly, R, Point::Zero()).moments(),
+                       transformed(c.exact, R, Point::Zero()),
+                       L);
+      const double e3 = moment_error(
+        transformed(c.poly, Eigen::Matrix3d::Identity(), utm).moments(),
+        transformed(c.exact, Eigen::Matrix3d::Identity(), utm),
+        L);
+      // (4) rotated, then at UTM: the coordinates themselves are rounded to
+      // half an ulp of 4e6 (u = 2.3e-10 m), which moves the volume by up to
+      // (surface / volume) u relative; bound 10 x that.
+      const double e4   = moment_error(transformed(c.poly, R, utm).moments(),
+                                     transformed(c.exact, R, utm),
+                                     L);
+      double       area = 0.;
+      for (std::size_t f = 0; f < c.poly.faces.size(); ++f)
+        {
+          Point n = Point::Zero();
+          for (std::size_t k = 0; k < c.poly.faces[f].size(); ++k)
+            n += c.poly.vertices[c.poly.faces[f][k]].cross(
+              c.poly
+                .vertices[c.poly.faces[f][(k + 1) % c.poly.faces[f].size()]]);
+          area += 0.5 * n.norm();
+        }
+      const double bound4 = 10. * area / c.exact.volume * 0.5
+                            * std::ldexp(1., std::ilogb(4e6) - 52) / L;
+      std::printf("%-15s relative error: given %.2e, rotated %.2e, at UTM "
+                  "%.2e (bound 1e-12); rotated at UTM %.2e (bound %.1e)\n",
+                  c.name,
+                  e1,
+                  e2,
+                  e3,
+                  e4,
+                  bound4);
+      EXPECT_LT(e1, 1e-12) << c.name;
+      EXPECT_LT(e2, 1e-12) << c.name;
+      EXPECT_LT(e3, 1e-12) << c.name;
+      EXPECT_LT(e4, bound4) << c.name;
+    }
+}
+
+
+
+TEST(Dda3dGeometry, GeneratorsAndConvexCuts)
+{
+  // A prism from a clockwise polygon is the same block.
+  geometry::Polygon cw = l_polygon();
+  std::reverse(cw.vertices.begin(), cw.vertices.end());
+  const Polyhedron prism = make_prism(cw, 0., 1.5);
+  EXPECT_FALSE(polyhedron_defect(prism));
+  EXPECT_NEAR(prism.signed_volume(), 4.5, 1e-13);
+  // Vertex order does not matter for a tetrahedron.
+  const Polyhedron tet = make_tetrahedron(Point(0., 0., 0.),
+                                          Point(0., 2., 0.),
+                                          Point(1., 0., 0.),
+                                          Point(0., 0., 3.));
+  EXPECT_FALSE(polyhedron_defect(tet));
+  EXPECT_NEAR(tet.signed_volume(), 1., 1e-14);
+
+  // Unit cube cut by the plane dipping 45 deg to the east through its
+  // centre: x + z <= 1 keeps half of it, a triangular prism.
+  const Polyhedron cube = make_box(Point::Zero(), Point::Ones());
+  const Polyhedron half
+    = clip_convex(cube, {half_space_from_dip(45., 90., Point::Constant(0.5))});
+  EXPECT_FALSE(polyhedron_defect(half));
+  EXPECT_EQ(half.vertices.size(), 6u);
+  EXPECT_EQ(half.faces.size(), 5u);
+  EXPECT_NEAR(half.signed_volume(), 0.5, 1e-14);
+  // The corner x + y + z <= 1.5 of the cube (a hexagonal cap): volume 1/2
+  // by symmetry.
+  const Polyhedron corner = clip_convex(cube, {{Point(1., 1., 1.), 1.5}});
+  EXPECT_FALSE(polyhedron_defect(corner));
+  EXPECT_NEAR(corner.signed_volume(), 0.5, 1e-14);
+  EXPECT_EQ(corner.faces.size(), 7u);
+  // A block cut from a 1 m slab by two vertical joint sets.
+  const Polyhedron slab  = make_box(Point(0., 0., 0.), Point(10., 10., 1.));
+  const Polyhedron piece = clip_convex(
+    slab,
+    {half_space_from_dip(90., 90., Point(4., 0., 0.)),         // x <= 4
+     half_space_from_dip(90., 0., Point(0., 3., 0.)),          // y <= 3
+     half_space_from_dip(60., 90., Point(1., 0., 0.), true)}); // above
+  EXPECT_FALSE(polyhedron_defect(piece));
+  // The joint dips 60 deg east through (1, 0, 0): x from 1 - z / tan 60
+  // to 4, y 0-3, z 0-1.
+  EXPECT_NEAR(piece.signed_volume(),
+              3. * (3. + 0.5 / std::tan(pi / 3.)),
+              1e-12);
+
+  // The shaking-table wedge (thesis 4.6: joints 51.4/065.8 and
+  // 51.4/295.2), under a slope face 80/000 with a horizontal top: its
+  // volume against the tetrahedron of the four planes' corners, found
+  // independently by solving the 3x3 systems of each three planes.
+  const double     H     = 0.5;
+  const Polyhedron wedge = make_tetrahedral_wedge(
+    51.4, 65.8, 51.4, 295.2, 80., 0., H, Point(0., 0., 1.));
+  EXPECT_FALSE(polyhedron_defect(wedge));
+  ASSERT_EQ(wedge.vertices.size(), 4u);
+  std::vector<HalfSpace> planes;
+  {
+    const double deg = pi / 180.;
+    const Point  down(std::cos(80. * deg) * std::sin(0.),
+                     std::cos(80. * deg) * std::cos(0.),
+                     -std::sin(80. * deg));
+    const Point  toe = Point(0., 0., 1.) + H / std::sin(80. * deg) * down;
+    planes           = {{Point::UnitZ(), 1.},
+                        half_space_from_dip(80., 0., Point(0., 0., 1.)),
+                        half_space_from_dip(51.4, 65.8, toe, true),
+                        half_space_from_dip(51.4, 295.2, toe, true)};
+  }
+  std::vector<Point> corners;
+  for (int skip = 0; skip < 4; ++skip)
+    {
+      Eigen::Matrix3d A;
+      Point           b;
+      int             r = 0;
+      for (int k = 0; k < 4; ++k)
+        if (k != skip)
+          {
+            A.row(r) = planes[k].normal.transpose();
+            b[r++]   = planes[k].offset;
+          }
+      corners.push_back(A.partialPivLu().solve(b));
+    }
+  const double V_exact
+    = std::abs((corners[1] - corners[0])
+                 .dot((corners[2] - corners[0]).cross(corners[3] - corners[0])))
+      / 6.;
+  std::printf("shaking-table wedge (H = %.1f m): volume %.6e m^3, against "
+              "the corners' tetrahedron %.2e relative\n",
+              H,
+              wedge.signed_volume(),
+              std::abs(wedge.signed_volume() - V_exact) / V_exact);
+  EXPECT_NEAR(wedge.signed_volume(), V_exact, 1e-12 * V_exact);
+  // Its lowest vertex is the toe, where the joints' line daylights.
+  double zmin = 1.;
+  for (const auto &v : wedge.vertices)
+    zmin = std::min(zmin, v.z());
+  EXPECT_NEAR(zmin, 1. - H, 1e-12);
+  // Joints that do not daylight: no tetrahedron.
+  EXPECT_THROW(
+    make_tetrahedral_wedge(80., 65.8, 80., 295.2, 40., 0., H, Point::Zero()),
+    InputError);
+}
+
+
+
+// ---------------------------------------------------------------------------
+// Block matrices.
+
+TEST(Dda3dBlocks, DisplacementMassAndElasticityMatrices)
+{
+  // T of Eq. 2.5: the rotation columns give w x X with w = (r2, r3, r1);
+  // the strain columns the symmetric strain tensor times X.
+  const Point c(1., 2., 3.), x(1.5, 1.2, 3.7), X = x - c;
+  const auto  T = displacement_matrix(c, x);
+  Vector12    d = Vector12::Zero();
+  d[3]          = 0.3;  // r1, about z
+  d[4]          = -0.2; // r2, about x
+  d[5]          = 0.7;  // r3, about y
+  EXPECT_LT((T * d - Point(-0.2, 0.7, 0.3).cross(X)).norm(), 1e-15);
+  d.setZero();
+  d.tail<6>() << 1e-3, 2e-3, 3e-3, 4e-3, 5e-3, 6e-3;
+  Eigen::Matrix3d E;
+  E << 1e-3, 2e-3, 3e-3, 2e-3, 2e-3, 2.5e-3, 3e-3, 2.5e-3, 3e-3;
+  EXPECT_LT((T * d - E * X).norm(), 1e-17);
+
+  // Mass matrix against a quadrature that is exact for T^T T (degree 2):
+  // the 4-point rule on each tetrahedron of a fan from the vertex mean,
+  // for a non-convex block away from the origin.
+  const Polyhedron poly = transformed(
+    make_prism(l_polygon(), 0., 1.5),
+    Eigen::AngleAxisd(0.4, Point(1., 1., 0.).normalized()).toRotationMatrix(),
+    Point(10., -20., 30.));
+  const auto     m   = poly.moments();
+  const double   rho = 2500.;
+  const Matrix12 M   = mass_matrix(m, rho);
+  Matrix12       Mq  = Matrix12::Zero();
+  const Point    o   = poly.vertex_mean();
+  const double   a = 0.5854101966249685, b = 0.1381966011250105;
+  for (const auto &f : poly.faces)
+    for (std::size_t k = 1; k + 1 < f.size(); ++k)
+      {
+        const Point  p[4] = {o,
+                             poly.vertices[f[0]],
+                             poly.vertices[f[k]],
+                             poly.vertices[f[k + 1]]};
+        const double V
+          = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6.;
+        for (int q = 0; q < 4; ++q)
+          {
+            Point x = Point::Zero();
+            for (int r = 0; r < 4; ++r)
+              x += (r == q ? a : b) * p[r];
+            const auto Tq = displacement_matrix(m.centroid, x);
+            Mq += rho * V / 4. * Tq.transpose() * Tq;
+          }
+      }
+  const double mass_error = (M - Mq).norm() / M.norm();
+  std::printf("mass matrix against 4-point quadrature: %.2e relative\n",
+              mass_error);
+  EXPECT_LT(mass_error, 1e-13);
+  EXPECT_LT((M - M.transpose()).norm(), 1e-14 * M.norm());
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Matrix12>(M).eigenvalues().minCoeff(),
+            0.);
+  // Rotation block = the inertia tensor J = rho (tr S I - S), in the
+  // order (about z, about x, about y).
+  const Eigen::Matrix3d J
+    = rho * (m.second.trace() * Eigen::Matrix3d::Identity() - m.second);
+  const int perm[3] = {2, 0, 1};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      EXPECT_NEAR(M(3 + i, 3 + j), J(perm[i], perm[j]), 1e-12 * J.norm());
+
+  // Elasticity: the compliance C^-1 of uniaxial stress gives sigma / E and
+  // -nu sigma / E; shear modulus E / (2 (1 + nu)).
+  const Material mat{2700., 3e10, 0.2, 1};
+  const Matrix6  C = elasticity_matrix(mat);
+  Vector6        s = Vector6::Zero();
+  s[1]             = 1e6;
+  const Vector6 e  = C.ldlt().solve(s);
+  EXPECT_NEAR(e[1], 1e6 / 3e10, 1e-18);
+  EXPECT_NEAR(e[0], -0.2 * 1e6 / 3e10, 1e-18);
+  EXPECT_NEAR(e[2], -0.2 * 1e6 / 3e10, 1e-18);
+  EXPECT_NEAR(C(4, 4), 3e10 / 2.4, 1e-5);
+}
+
+
+
+// ---------------------------------------------------------------------------
+// Contact-free stepping.
+
+TEST(Dda3dFreeBlocks, RigidRotationKeepsVolumeAndGivesNoStrain)
+{
+  // 90 deg about an oblique axis in 1000 steps, (a) prescribed increments,
+  // (b) by the angular velocity of a free block (dynamic scheme); the
+  // block is the non-convex L prism, at UTM coordinates in (b).
+  const Point           axis  = Point(1., 2., 3.).normalized();
+  const double          angle = pi / 2.;
+  const int             n     = 1000;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+  const Polyhedron      L = make_prism(l_polygon(), 0., 1.5);
+  {
+    FreeBlocks  blocks(one_block(L), FreeStepControls());
+    Vector12    d  = Vector12::Zero();
+    const Point w  = (angle / n) * axis;
+    d[3]           = w.z();
+    d[4]           = w.x();
+    d[5]           = w.y();
+    const Point c0 = blocks.scene().blocks[0].polyhedron.moments().centroid;
+    const auto  initial = blocks.scene().blocks[0].polyhedron;
+    for (int k = 0; k < n; ++k)
+      blocks.apply_increment(0, d);
+    const auto &block   = blocks.scene().blocks[0];
+    const auto [dv, dx] = rotation_errors(
+      initial, block.polyhedron, R, c0, block.polyhedron.moments().centroid);
+    std::printf("prescribed rotation: volume change %.2e, vertices off the "
+                "exact rotation %.2e (x size), strain %.1e\n",
+                dv,
+                dx,
+                block.strain.norm());
+    EXPECT_LT(dv, 1e-9);
+    EXPECT_LT(dx, 1e-12);
+    EXPECT_EQ(block.strain.norm(), 0.);
+  }
+  {
+    BlockSystem s = one_block(
+      transformed(L, Eigen::Matrix3d::Identity(), Point(5e5, 4e6, 0.)));
+    const Point w           = (angle / 1.) * axis; // 1 s
+    s.blocks[0].velocity[3] = w.z();
+    s.blocks[0].velocity[4] = w.x();
+    s.blocks[0].velocity[5] = w.y();
+    FreeStepControls ctrl;
+    ctrl.dt = 1. / n;
+    FreeBlocks   blocks(s, ctrl);
+    const auto   initial = blocks.scene().blocks[0].polyhedron;
+    const Point  c0      = initial.moments().centroid;
+    const double e0      = blocks.kinetic_energy();
+    for (int k = 0; k < n; ++k)
+      blocks.step();
+    const auto &block   = blocks.scene().blocks[0];
+    const auto [dv, dx] = rotation_errors(
+      initial, block.polyhedron, R, c0, block.polyhedron.moments().centroid);
+    const double de = std::abs(blocks.kinetic_energy() - e0) / e0;
+    std::printf("spinning block (dt = 1 ms, at UTM): volume change %.2e, "
+                "vertices off the exact rotation %.2e (x size), strain "
+                "%.1e, centroid drift %.1e m, kinetic energy change %.1e\n",
+                dv,
+                dx,
+                block.strain.cwiseAbs().maxCoeff(),
+                blocks.displacement(0).norm(),
+                de);
+    EXPECT_LT(dv, 1e-9);
+    EXPECT_LT(dx, 1e-9);
+    EXPECT_LT(block.strain.cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LT(block.stress.cwiseAbs().maxCoeff(), 1e-12 * 1e10);
+    EXPECT_LT(blocks.displacement(0).norm(), 1e-9);
+    EXPECT_LT(de, 1e-9);
+  }
+}
+
+
+
+TEST(Dda3dFreeBlocks, FreeFallAndSeismicLoadingFollowTheConstantAcceleration)
+{
+  // The scheme integrates a constant acceleration exactly
+  // (D = v dt + a dt^2 / 2, v' = 2 D / dt - v = v + a dt, and about the
+  // centroid the translations decouple from the rotations and strains),
+  // so the error is round-off, ~ steps x 1e-16: the issue's 1e-6 holds
+  // with a wide margin.
+  const Polyhedron tet = make_tetrahedron(Point(0., 0., 0.),
+                                          Point(1., 0., 0.),
+                                          Point(0., 2., 0.),
+                                          Point(0., 0., 3.));
+  const double     g   = 9.80665;
+  // Free fall with a horizontal initial velocity; then seismic loading by
+  // a 3-component ground acceleration (0.3, -0.2, 0.1) g.
+  for (const bool seismic : {false, true})
+    {
+      BlockSystem s                  = one_block(tet);
+      s.gravity                      = Point(0., 0., -g);
+      s.blocks[0].velocity.head<3>() = Point(0.5, 0., 0.);
+      FreeStepControls ctrl;
+      ctrl.dt         = 1e-3;
+      const Point a_g = Point(0.3, -0.2, 0.1) * g;
+      if (seismic)
+        ctrl.ground_acceleration = [a_g](double) { return a_g; };
+      FreeBlocks blocks(s, ctrl);
+      for (int k = 0; k < 1000; ++k)
+        blocks.step();
+      const double t     = blocks.time();
+      const Point  a     = s.gravity - (seismic ? a_g : Point::Zero());
+      const Point  exact = Point(0.5, 0., 0.) * t + 0.5 * a * t * t;
+      const double error
+        = (blocks.displacement(0) - exact).norm() / exact.norm();
+      std::printf("%s: displacement after %.3f s %.6f m, relative error "
+                  "%.2e (bound 1e-6); rotation %.1e rad, strain %.1e\n",
+                  seismic ? "seismic loading" : "free fall",
+                  t,
+                  blocks.displacement(0).norm(),
+                  error,
+                  blocks.scene().blocks[0].velocity.segment<3>(3).norm(),
+                  blocks.scene().blocks[0].strain.cwiseAbs().maxCoeff());
+      EXPECT_LT(error, 1e-6);
+      EXPECT_LT(blocks.scene().blocks[0].strain.cwiseAbs().maxCoeff(), 1e-15);
+    }
+}
+
+
+
+TEST(Dda3dFreeBlocks, StaticElasticResponse)
+{
+  const double E = 1e10, nu = 0.25, rho = 2700., g = 9.80665;
+  // (a) Uniaxial stress: a free unit cube pulled by +-f on two opposite
+  // face centres. The generalised force f a on eps_x balances V C eps, so
+  // eps = C^-1 (f / A) e_x: sigma / E along x, -nu sigma / E across.
+  // The geometry is updated each step (the arm and volume grow with the
+  // strain), so the small-strain values hold to O(eps) = 1e-6 relative.
+  {
+    const double f = 1e4; // N, sigma = 1e4 Pa, eps = 1e-6
+    BlockSystem  s
+      = one_block(make_box(Point::Zero(), Point::Ones()), rho, E, nu);
+    s.load_points.push_back({0, Point(1., 0.5, 0.5), Point(f, 0., 0.)});
+    s.load_points.push_back({0, Point(0., 0.5, 0.5), Point(-f, 0., 0.)});
+    FreeStepControls ctrl;
+    ctrl.dt      = 1.;
+    ctrl.dynamic = 0.;
+    FreeBlocks blocks(s, ctrl);
+    for (int k = 0; k < 10; ++k)
+      blocks.step();
+    const auto  &b       = blocks.scene().blocks[0];
+    const double ex      = f / E;
+    const double e_axial = std::abs(b.strain[0] - ex) / ex;
+    const double e_lat   = std::max(std::abs(b.strain[1] + nu * ex),
+                                  std::abs(b.strain[2] + nu * ex))
+                         / (nu * ex);
+    const double e_stress = std::abs(b.stress[0] - f) / f;
+    std::printf("uniaxial stress: eps_x off sigma/E by %.2e, eps_y, eps_z "
+                "off -nu sigma/E by %.2e, sigma_x off f/A by %.2e (bound "
+                "1e-5); last increment %.1e\n",
+                e_axial,
+                e_lat,
+                e_stress,
+                blocks.last_increment(0).norm());
+    EXPECT_LT(e_axial, 1e-5);
+    EXPECT_LT(e_lat, 1e-5);
+    EXPECT_LT(e_stress, 1e-5);
+    EXPECT_LT(b.stress.tail<3>().cwiseAbs().maxCoeff(), 1e-9 * f);
+    EXPECT_LT(b.stress.segment<2>(1).cwiseAbs().maxCoeff(), 1e-5 * f);
+  }
+  // (b) A 1 m cube hanging from a fixed point at the centre of its top
+  // face, under gravity. The spring carries m g: the point sinks by
+  // m g / p. The spring force at the arm h / 2 above the centroid loads
+  // eps_z by m g h / 2, so sigma_z = rho g h / 2 (the mean stress of a
+  // hanging column), eps_z = sigma_z / E, eps_x = eps_y = -nu eps_z, and
+  // the centroid sinks by m g / p + eps_z h / 2.
+  {
+    const double p = 1e10;
+    BlockSystem  s
+      = one_block(make_box(Point::Zero(), Point::Ones()), rho, E, nu);
+    s.gravity = Point(0., 0., -g);
+    s.fixed_points.push_back({0, Point(0.5, 0.5, 1.), Point::Zero()});
+    s.measurement_points.push_back({0, Point(0.5, 0.5, 1.), Point::Zero()});
+    FreeStepControls ctrl;
+    ctrl.dt            = 1.;
+    ctrl.dynamic       = 0.;
+    ctrl.fixed_penalty = p;
+    FreeBlocks blocks(s, ctrl);
+    for (int k = 0; k < 20; ++k)
+      blocks.step();
+    const auto  &b    = blocks.scene().blocks[0];
+    const double mg   = rho * g;
+    const double sz   = rho * g / 2.;
+    const double ez   = sz / E;
+    const double sink = mg / p;
+    const double e_top
+      = std::abs(-(blocks.measurement_point(0).z() - 1.) - sink) / sink;
+    const double e_cent
+      = std::abs(-blocks.displacement(0).z() - (sink + ez / 2.))
+        / (sink + ez / 2.);
+    const double e_sz = std::abs(b.stress[2] - sz) / sz;
+    const double e_ez = std::abs(b.strain[2] - ez) / ez;
+    const double e_ex = std::abs(b.strain[0] + nu * ez) / (nu * ez);
+    std::printf("hanging block: top point sinks %.4e m (m g / p off by "
+                "%.2e), centroid off by %.2e, sigma_z off rho g h / 2 by "
+                "%.2e, eps_z %.2e, eps_x %.2e (bound 1e-5)\n",
+                sink,
+                e_top,
+                e_cent,
+                e_sz,
+                e_ez,
+                e_ex);
+    EXPECT_LT(e_top, 1e-5);
+    EXPECT_LT(e_cent, 1e-5);
+    EXPECT_LT(e_sz, 1e-5);
+    EXPECT_LT(e_ez, 1e-5);
+    EXPECT_LT(e_ex, 1e-5);
+  }
+}
+
+
+
+// ---------------------------------------------------------------------------
+// Block file and bad input.
+
+namespace
+{
+  const char *cube_faces = "face 0 2 3 1\n"
+                           "face 4 5 7 6\n"
+                           "face 0 1 5 4\n"
+                           "face 2 6 7 3\n"
+                           "face 0 4 6 2\n"
+                           "face 1 3 7 5\n";
+
+  std::string
+  cube_vertices(const double top_corner_z = 1.)
+  {
+    std::string s;
+    for (int k = 0; k < 8; ++k)
+      s += "vertex " + std::to_string(k & 1) + " "
+           + std::to_string((k >> 1) & 1) + " "
+           + (k == 7 ? std::to_string(top_corner_z)
+                     : std::to_string((k >> 2) & 1))
+           + "\n";
+    return s;
+  }
+
+  /// The message of the InputError that parsing @p text throws ("" if
+  /// none).
+  std::string
+  error_of(const std::string &text)
+  {
+    try
+      {
+        parse_block_text(text, "bad.dda3d");
+      }
+    catch (const InputError &e)
+      {
+        return e.what();
+      }
+    return "";
+  }
+} // namespace
+
+
+
+TEST(Dda3dInput, BlockFileReadsWritesAndNamesBadInput)
+{
+  // A good file: a cube (lines 1-16) with a fixed, a load and a
+  // measurement point; written back and read again, the same block.
+  const std::string good = "material 1 2700 1e10 0.25\n"
+                           "block 7 1\n"
+                           + cube_vertices() + cube_faces
+                           + "fixed 7 0.5 0.5 0\n"
+                             "load 7 0.5 0.5 1 0 0 -100\n"
+                             "measure 7 0.5 0.5 0.5\n"
+                             "velocity 7 1 0 0 0 0 0.1\n";
+  const BlockSystem s = parse_block_text(good, "good.dda3d");
+  ASSERT_EQ(s.blocks.size(), 1u);
+  EXPECT_NEAR(s.blocks[0].polyhedron.signed_volume(), 1., 1e-15);
+  EXPECT_EQ(s.fixed_points.size(), 1u);
+  EXPECT_EQ(s.blocks[0].velocity[3], 0.1); // wz -> r1 (about z)
+  const BlockSystem again = parse_block_text(block_text(s), "again.dda3d");
+  EXPECT_EQ(again.blocks[0].polyhedron.vertices,
+            s.blocks[0].polyhedron.vertices);
+  EXPECT_EQ(again.blocks[0].polyhedron.faces, s.blocks[0].polyhedron.faces);
+  EXPECT_EQ(again.load_points.size(), 1u);
+
+  struct Bad
+  {
+    const char              *what;
+    std::string              text;
+    std::vector<std::string> expected;
+  };
+  const std::string head = "material 1 2700 1e10 0.25\nblock 7 1\n";
+  std::string       open_faces(cube_faces);
+  open_faces.erase(open_faces.rfind("face")); // drop the x = 1 face
+  std::string flipped(cube_faces);
+  flipped.replace(flipped.find("face 0 1 5 4"), 12, "face 4 5 1 0");
+  const std::string      inward = "face 1 3 2 0\nface 6 7 5 4\nface 4 5 1 0\n"
+                                  "face 3 7 6 2\nface 2 6 4 0\nface 5 7 3 1\n";
+  const std::vector<Bad> cases  = {
+     {"not closed",
+      head + cube_vertices() + open_faces,
+      {"bad.dda3d", "line 11", "block 7", "face 0", "edge 3-1", "not closed"}},
+     {"one face listed clockwise",
+      head + cube_vertices() + flipped,
+      {"line 13", "block 7", "face 2", "clockwise"}},
+     {"inward normals",
+      head + cube_vertices() + inward,
+      {"line 11", "block 7", "face 0", "inward normals"}},
+     {"non-planar face",
+      head + cube_vertices(1.01) + cube_faces,
+      {"line 12", "block 7", "face 1", "not planar"}},
+     {"zero density",
+      "material 1 0 1e10 0.25\nblock 7 1\n" + cube_vertices() + cube_faces,
+      {"line 1", "material 1", "block 7", "density"}},
+     {"negative density",
+      "material 1 -2700 1e10 0.25\nblock 7 1\n" + cube_vertices() + cube_faces,
+      {"line 1", "block 7", "density"}},
+     {"fixed point outside",
+      head + cube_vertices() + cube_faces + "fixed 7 2 0.5 0.5\n",
+      {"line 17", "outside block 7"}},
+     {"bad vertex index",
+      head + cube_vertices() + "face 0 2 3 9\n" + cube_faces,
+      {"line 11", "block 7", "face 0", "vertex index 9"}},
+     {"unknown keyword",
+      head + "vertx 0 0 0\n",
+      {"line 3", "unknown keyword 'vertx'"}},
+     {"Poisson's ratio",
+      "material 1 2700 1e10 0.5\n",
+      {"line 1", "material 1", "Poisson"}}};
+  for (const auto &c : cases)
+    {
+      const std::string message = error_of(c.text);
+      std::printf("%-26s -> %s\n", c.what, message.c_str());
+      for (const auto &e : c.expected)
+        EXPECT_NE(message.find(e), std::string::npos)
+          << c.what << ": '" << e << "' not in '" << message << "'";
+    }
+}
