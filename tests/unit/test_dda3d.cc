@@ -9,6 +9,7 @@
 #include <rockdda/dda3d/block_matrices.h>
 #include <rockdda/dda3d/free_blocks.h>
 #include <rockdda/dda3d/generators.h>
+#include <rockdda/dda3d/vtu_output.h>
 #include <rockdda/io/error.h>
 
 #include <Eigen/Dense>
@@ -16,6 +17,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <string>
 
 using namespace rockdda;
@@ -746,4 +748,67 @@ TEST(Dda3dInput, BlockFileReadsWritesAndNamesBadInput)
         EXPECT_NE(message.find(e), std::string::npos)
           << c.what << ": '" << e << "' not in '" << message << "'";
     }
+}
+
+
+
+TEST(Dda3dOutput, PolyhedraVtuRoundTrip)
+{
+  // Two blocks (a non-convex prism and a tetrahedron) at UTM coordinates:
+  // the VTU's points and its faces / faceoffsets arrays rebuild the same
+  // polyhedra (volumes to 1e-12 with the 17-digit ASCII), one
+  // VTK_POLYHEDRON (42) per block.
+  BlockSystem s = one_block(make_prism(l_polygon(), 0., 1.5));
+  Block       t = s.blocks[0];
+  t.id          = 2;
+  t.polyhedron  = make_tetrahedron(Point(3., 0., 0.),
+                                  Point(4., 0., 0.),
+                                  Point(3., 2., 0.),
+                                  Point(3., 0., 3.));
+  s.blocks.push_back(t);
+  validate_and_prepare(s);
+  const Point       origin(5e5, 4e6, 0.);
+  const std::string vtu  = blocks_vtu(s, origin);
+  auto              data = [&](const std::string &name) {
+    const auto start = vtu.find('>', vtu.find("Name=\"" + name + "\"")) + 1;
+    std::istringstream in(
+      vtu.substr(start, vtu.find("</DataArray>", start) - start));
+    std::vector<double> values;
+    for (double v; in >> v;)
+      values.push_back(v);
+    return values;
+  };
+  const auto         p0 = vtu.find('>', vtu.find("<Points>") + 9) + 1;
+  std::istringstream pin(vtu.substr(p0, vtu.find("</DataArray>", p0) - p0));
+  std::vector<Point> points;
+  for (double x, y, z; pin >> x >> y >> z;)
+    points.emplace_back(x, y, z);
+  EXPECT_EQ(points.size(), 12u + 4u);
+  const auto types = data("types");
+  EXPECT_EQ(types, std::vector<double>({42., 42.}));
+  const auto faces   = data("faces");
+  const auto offsets = data("faceoffsets");
+  ASSERT_EQ(offsets.size(), 2u);
+  EXPECT_EQ(offsets.back(), double(faces.size()));
+  std::size_t k = 0;
+  for (std::size_t c = 0; c < 2; ++c)
+    {
+      Polyhedron p;
+      p.vertices = points;
+      for (auto &v : p.vertices)
+        v -= origin;
+      const int n_faces = int(faces[k++]);
+      for (int f = 0; f < n_faces; ++f)
+        {
+          std::vector<int> face(int(faces[k++]));
+          for (auto &i : face)
+            i = int(faces[k++]);
+          p.faces.push_back(face);
+        }
+      EXPECT_EQ(double(k), offsets[c]);
+      const double V = s.blocks[c].polyhedron.signed_volume();
+      EXPECT_NEAR(p.signed_volume(), V, 1e-12 * V) << "block " << c;
+    }
+  EXPECT_EQ(data("block_id"), std::vector<double>({1., 2.}));
+  EXPECT_EQ(data("stress").size(), 12u);
 }

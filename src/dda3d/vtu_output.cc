@@ -1,0 +1,106 @@
+/**
+ * @file
+ * ASCII VTK XML output of polyhedral blocks.
+ */
+#include <rockdda/dda3d/vtu_output.h>
+
+#include <cstdint>
+#include <sstream>
+
+namespace rockdda::dda3d
+{
+  std::string
+  blocks_vtu(const BlockSystem &system, const Point &origin)
+  {
+    std::size_t n_points = 0;
+    for (const auto &b : system.blocks)
+      n_points += b.polyhedron.vertices.size();
+    std::ostringstream out;
+    out.precision(17);
+    out << "<?xml version=\"1.0\"?>\n"
+        << "<!-- rockdda 3D DDA blocks: one VTK_POLYHEDRON (42) per block; "
+           "cell data block_id, material, displacement (m), velocity "
+           "(m/s), stress (Pa, tension positive; XX YY ZZ XY YZ XZ), "
+           "volume (m^3) -->\n"
+        << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+           "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+        << "<UnstructuredGrid>\n"
+        << "<Piece NumberOfPoints=\"" << n_points << "\" NumberOfCells=\""
+        << system.blocks.size() << "\">\n"
+        << "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+           "format=\"ascii\">\n";
+    for (const auto &b : system.blocks)
+      for (const auto &v : b.polyhedron.vertices)
+        {
+          const Point x = v + origin;
+          out << x.x() << ' ' << x.y() << ' ' << x.z() << '\n';
+        }
+    out << "</DataArray>\n</Points>\n<Cells>\n";
+    // connectivity / offsets: each cell's own points; faces: per cell the
+    // number of faces, then per face the number of points and their ids.
+    std::ostringstream connectivity, offsets, types, faces, faceoffsets;
+    std::int64_t       first = 0, face_end = 0;
+    for (const auto &b : system.blocks)
+      {
+        const auto &p = b.polyhedron;
+        for (std::size_t k = 0; k < p.vertices.size(); ++k)
+          connectivity << first + std::int64_t(k) << ' ';
+        offsets << first + std::int64_t(p.vertices.size()) << ' ';
+        types << "42 ";
+        faces << p.faces.size() << ' ';
+        face_end += 1;
+        for (const auto &f : p.faces)
+          {
+            faces << f.size();
+            for (const int k : f)
+              faces << ' ' << first + k;
+            faces << '\n';
+            face_end += 1 + std::int64_t(f.size());
+          }
+        faceoffsets << face_end << ' ';
+        first += std::int64_t(p.vertices.size());
+      }
+    auto array = [&](const char *type, const char *name, const std::string &s) {
+      out << "<DataArray type=\"" << type << "\" Name=\"" << name
+          << "\" format=\"ascii\">\n"
+          << s << "\n</DataArray>\n";
+    };
+    array("Int64", "connectivity", connectivity.str());
+    array("Int64", "offsets", offsets.str());
+    array("UInt8", "types", types.str());
+    array("Int64", "faces", faces.str());
+    array("Int64", "faceoffsets", faceoffsets.str());
+    out << "</Cells>\n<CellData>\n";
+    std::ostringstream id, material, disp, vel, stress, volume;
+    for (auto *s : {&id, &material, &disp, &vel, &stress, &volume})
+      s->precision(17);
+    for (const auto &b : system.blocks)
+      {
+        const auto m = b.polyhedron.moments();
+        id << b.id << ' ';
+        const int user = system.materials[b.material].id;
+        material << (user >= 0 ? user : b.material) << ' ';
+        const Point d = m.centroid - b.initial_centroid;
+        disp << d.x() << ' ' << d.y() << ' ' << d.z() << '\n';
+        vel << b.velocity[0] << ' ' << b.velocity[1] << ' ' << b.velocity[2]
+            << '\n';
+        for (int k = 0; k < 6; ++k)
+          stress << b.stress[k] << (k == 5 ? '\n' : ' ');
+        volume << m.volume << ' ';
+      }
+    array("Int32", "block_id", id.str());
+    array("Int32", "material", material.str());
+    out << "<DataArray type=\"Float64\" Name=\"displacement\" "
+           "NumberOfComponents=\"3\" format=\"ascii\">\n"
+        << disp.str() << "</DataArray>\n"
+        << "<DataArray type=\"Float64\" Name=\"velocity\" "
+           "NumberOfComponents=\"3\" format=\"ascii\">\n"
+        << vel.str() << "</DataArray>\n"
+        << "<DataArray type=\"Float64\" Name=\"stress\" "
+           "NumberOfComponents=\"6\" format=\"ascii\">\n"
+        << stress.str() << "</DataArray>\n";
+    array("Float64", "volume", volume.str());
+    out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+    return out.str();
+  }
+} // namespace rockdda::dda3d
