@@ -4,6 +4,7 @@
  */
 #include <rockdda/dda/block_file.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/keyword_reader.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -32,9 +33,7 @@ namespace rockdda::dda
   {
     BlockSystem        system;
     std::map<int, int> materials, joints, blocks;
-    std::istringstream in(text);
-    std::string        line;
-    int                line_no = 0;
+
     struct Pending
     {
       int                 line, block;
@@ -43,37 +42,16 @@ namespace rockdda::dda
     };
     std::vector<Pending> pending;
     std::vector<int>     block_material_id, block_joint_id, block_line;
-    while (std::getline(in, line))
+    io::KeywordReader    reader(text, "block file '" + name + "'");
+    while (reader.next())
       {
-        ++line_no;
-        const auto hash = line.find('#');
-        if (hash != std::string::npos)
-          line.erase(hash);
-        std::istringstream tokens(line);
-        std::string        keyword;
-        if (!(tokens >> keyword))
-          continue;
-        const std::string where
-          = "block file '" + name + "', line " + std::to_string(line_no) + ": ";
-        std::vector<std::string> words;
-        for (std::string w; tokens >> w;)
-          words.push_back(w);
-        auto number = [&](std::size_t k) {
-          if (k >= words.size())
-            throw InputError(where + "'" + keyword + "' needs more values");
-          char        *end = nullptr;
-          const double v   = std::strtod(words[k].c_str(), &end);
-          if (end == words[k].c_str() || *end != '\0' || !std::isfinite(v))
-            throw InputError(where + "'" + words[k] + "' is not a number");
-          return v;
-        };
-        auto integer = [&](std::size_t k) {
-          const double v = number(k);
-          if (v != std::floor(v))
-            throw InputError(where + "'" + words[k] + "' is not an integer id");
-          return static_cast<int>(v);
-        };
-        auto expect = [&](std::size_t lo, std::size_t hi, const char *form) {
+        const std::string              &keyword = reader.keyword;
+        const std::vector<std::string> &words   = reader.words;
+        const std::string              &where   = reader.where;
+        const int                       line_no = reader.line;
+        auto number  = [&](std::size_t k) { return reader.number(k); };
+        auto integer = [&](std::size_t k) { return reader.integer(k); };
+        auto expect  = [&](std::size_t lo, std::size_t hi, const char *form) {
           if (words.size() < lo || words.size() > hi)
             throw InputError(where + "expected '" + form + "'");
         };

@@ -5,6 +5,7 @@
  */
 #include <rockdda/dda3d/block_file.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/keyword_reader.h>
 
 #include <cmath>
 #include <cstdio>
@@ -45,40 +46,17 @@ namespace rockdda::dda3d
       std::vector<double> values;
     };
     std::vector<Pending> pending;
-    std::istringstream   in(text);
-    std::string          line;
-    int                  line_no = 0;
-    while (std::getline(in, line))
+
+    io::KeywordReader reader(text, "block file '" + name + "'");
+    while (reader.next())
       {
-        ++line_no;
-        const auto hash = line.find('#');
-        if (hash != std::string::npos)
-          line.erase(hash);
-        std::istringstream tokens(line);
-        std::string        keyword;
-        if (!(tokens >> keyword))
-          continue;
-        const std::string where
-          = "block file '" + name + "', line " + std::to_string(line_no) + ": ";
-        std::vector<std::string> words;
-        for (std::string w; tokens >> w;)
-          words.push_back(w);
-        auto number = [&](std::size_t k) {
-          if (k >= words.size())
-            throw InputError(where + "'" + keyword + "' needs more values");
-          char        *end = nullptr;
-          const double v   = std::strtod(words[k].c_str(), &end);
-          if (end == words[k].c_str() || *end != '\0' || !std::isfinite(v))
-            throw InputError(where + "'" + words[k] + "' is not a number");
-          return v;
-        };
-        auto integer = [&](std::size_t k) {
-          const double v = number(k);
-          if (v != std::floor(v) || std::abs(v) > 2e9)
-            throw InputError(where + "'" + words[k] + "' is not an integer");
-          return static_cast<int>(v);
-        };
-        auto expect = [&](std::size_t n, const char *form) {
+        const std::string              &keyword = reader.keyword;
+        const std::vector<std::string> &words   = reader.words;
+        const std::string              &where   = reader.where;
+        const int                       line_no = reader.line;
+        auto number  = [&](std::size_t k) { return reader.number(k); };
+        auto integer = [&](std::size_t k) { return reader.integer(k); };
+        auto expect  = [&](std::size_t n, const char *form) {
           if (words.size() != n)
             throw InputError(where + "expected '" + form + "'");
         };
