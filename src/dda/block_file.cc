@@ -5,6 +5,7 @@
 #include <rockdda/dda/block_file.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/keyword_reader.h>
+#include <rockdda/io/text.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -18,12 +19,8 @@ namespace rockdda::dda
   BlockSystem
   read_block_file(const std::string &file_name)
   {
-    std::ifstream in(file_name);
-    if (!in)
-      throw InputError("block file '" + file_name + "': cannot open it");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return parse_block_text(s.str(), file_name);
+    return parse_block_text(io::read_text_file(file_name, "block file"),
+                            file_name);
   }
 
 
@@ -49,9 +46,7 @@ namespace rockdda::dda
         const std::vector<std::string> &words   = reader.words;
         const std::string              &where   = reader.where;
         const int                       line_no = reader.line;
-        auto number  = [&](std::size_t k) { return reader.number(k); };
-        auto integer = [&](std::size_t k) { return reader.integer(k); };
-        auto expect  = [&](std::size_t lo, std::size_t hi, const char *form) {
+        auto expect = [&](std::size_t lo, std::size_t hi, const char *form) {
           if (words.size() < lo || words.size() > hi)
             throw InputError(where + "expected '" + form + "'");
         };
@@ -60,15 +55,15 @@ namespace rockdda::dda
             expect(4,
                    5,
                    "material ID DENSITY E NU [plane-stress|plane-strain]");
-            const int id = integer(0);
+            const int id = reader.integer(0);
             if (materials.count(id))
               throw InputError(where + "material " + std::to_string(id)
                                + " is defined twice");
             BlockMaterial m;
             m.id      = id;
-            m.density = number(1);
-            m.young   = number(2);
-            m.poisson = number(3);
+            m.density = reader.number(1);
+            m.young   = reader.number(2);
+            m.poisson = reader.number(3);
             if (words.size() == 5)
               {
                 if (words[4] != "plane-stress" && words[4] != "plane-strain")
@@ -87,14 +82,14 @@ namespace rockdda::dda
             if (words.size() == 5)
               throw InputError(where + "expected '" + form
                                + "' (both stiffnesses or neither)");
-            const int id = integer(0);
+            const int id = reader.integer(0);
             if (joints.count(id))
               throw InputError(where + "joint " + std::to_string(id)
                                + " is defined twice");
             JointMaterial j;
-            j.friction_deg = number(1);
-            j.cohesion     = number(2);
-            j.tensile      = number(3);
+            j.friction_deg = reader.number(1);
+            j.cohesion     = reader.number(2);
+            j.tensile      = reader.number(3);
             if (words.size() == 6)
               for (const std::size_t k : {std::size_t(4), std::size_t(5)})
                 {
@@ -121,15 +116,16 @@ namespace rockdda::dda
                 + "expected 'block ID MATERIAL JOINT x1 y1 x2 y2 x3 y3 ...' "
                   "(at least 3 vertices)");
             Block b;
-            b.id = integer(0);
+            b.id = reader.integer(0);
             if (blocks.count(b.id))
               throw InputError(where + "block " + std::to_string(b.id)
                                + " is defined twice");
-            block_material_id.push_back(integer(1));
-            block_joint_id.push_back(integer(2));
+            block_material_id.push_back(reader.integer(1));
+            block_joint_id.push_back(reader.integer(2));
             block_line.push_back(line_no);
             for (std::size_t k = 3; k + 1 < words.size(); k += 2)
-              b.polygon.vertices.emplace_back(number(k), number(k + 1));
+              b.polygon.vertices.emplace_back(reader.number(k),
+                                              reader.number(k + 1));
             blocks[b.id] = static_cast<int>(system.blocks.size());
             system.blocks.push_back(b);
           }
@@ -139,9 +135,9 @@ namespace rockdda::dda
               throw InputError(where
                                + "expected 'edge-joints BLOCK J0 J1 J2 ...' "
                                  "(one joint id per edge)");
-            Pending p{line_no, integer(0), keyword, {}};
+            Pending p{line_no, reader.integer(0), keyword, {}};
             for (std::size_t k = 1; k < words.size(); ++k)
-              p.values.push_back(integer(k));
+              p.values.push_back(reader.integer(k));
             pending.push_back(p);
           }
         else if (keyword == "fixed" || keyword == "fixed-block"
@@ -155,9 +151,9 @@ namespace rockdda::dda
             if (words.size() != n)
               throw InputError(where + "'" + keyword + "' takes "
                                + std::to_string(n) + " values");
-            Pending p{line_no, integer(0), keyword, {}};
+            Pending p{line_no, reader.integer(0), keyword, {}};
             for (std::size_t k = 1; k < n; ++k)
-              p.values.push_back(number(k));
+              p.values.push_back(reader.number(k));
             pending.push_back(p);
           }
         else

@@ -6,6 +6,7 @@
 #include <rockdda/dda3d/block_file.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/keyword_reader.h>
+#include <rockdda/io/text.h>
 
 #include <cmath>
 #include <cstdio>
@@ -20,12 +21,8 @@ namespace rockdda::dda3d
   BlockSystem
   read_block_file(const std::string &file_name)
   {
-    std::ifstream in(file_name);
-    if (!in)
-      throw InputError("block file '" + file_name + "': cannot open it");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return parse_block_text(s.str(), file_name);
+    return parse_block_text(io::read_text_file(file_name, "block file"),
+                            file_name);
   }
 
 
@@ -54,9 +51,7 @@ namespace rockdda::dda3d
         const std::vector<std::string> &words   = reader.words;
         const std::string              &where   = reader.where;
         const int                       line_no = reader.line;
-        auto number  = [&](std::size_t k) { return reader.number(k); };
-        auto integer = [&](std::size_t k) { return reader.integer(k); };
-        auto expect  = [&](std::size_t n, const char *form) {
+        auto expect = [&](std::size_t n, const char *form) {
           if (words.size() != n)
             throw InputError(where + "expected '" + form + "'");
         };
@@ -69,15 +64,15 @@ namespace rockdda::dda3d
         if (keyword == "material")
           {
             expect(4, "material ID DENSITY E NU");
-            const int id = integer(0);
+            const int id = reader.integer(0);
             if (materials.count(id))
               throw InputError(where + "material " + std::to_string(id)
                                + " is defined twice");
             Material m;
             m.id                  = id;
-            m.density             = number(1);
-            m.young               = number(2);
-            m.poisson             = number(3);
+            m.density             = reader.number(1);
+            m.young               = reader.number(2);
+            m.poisson             = reader.number(3);
             const std::string mat = where + "material " + std::to_string(id);
             if (!(m.young > 0.))
               throw InputError(mat + ": Young's modulus " + words[2]
@@ -93,12 +88,12 @@ namespace rockdda::dda3d
           {
             expect(2, "block ID MATERIAL");
             Block b;
-            b.id = integer(0);
+            b.id = reader.integer(0);
             if (blocks.count(b.id))
               throw InputError(where + "block " + std::to_string(b.id)
                                + " is defined twice");
             blocks[b.id] = int(system.blocks.size());
-            block_material_id.push_back(integer(1));
+            block_material_id.push_back(reader.integer(1));
             block_line.push_back(line_no);
             face_line.emplace_back();
             system.blocks.push_back(b);
@@ -107,7 +102,9 @@ namespace rockdda::dda3d
           {
             expect(3, "vertex x y z");
             Block &b = current_block();
-            b.polyhedron.vertices.emplace_back(number(0), number(1), number(2));
+            b.polyhedron.vertices.emplace_back(reader.number(0),
+                                               reader.number(1),
+                                               reader.number(2));
           }
         else if (keyword == "face")
           {
@@ -119,7 +116,7 @@ namespace rockdda::dda3d
             Block           &b = current_block();
             std::vector<int> face;
             for (std::size_t k = 0; k < words.size(); ++k)
-              face.push_back(integer(k));
+              face.push_back(reader.integer(k));
             b.polyhedron.faces.push_back(face);
             face_line.back().push_back(line_no);
           }
@@ -134,9 +131,9 @@ namespace rockdda::dda3d
             if (words.size() != n)
               throw InputError(where + "'" + keyword + "' takes "
                                + std::to_string(n) + " values");
-            Pending p{line_no, integer(0), keyword, {}};
+            Pending p{line_no, reader.integer(0), keyword, {}};
             for (std::size_t k = 1; k < n; ++k)
-              p.values.push_back(number(k));
+              p.values.push_back(reader.number(k));
             pending.push_back(p);
           }
         else

@@ -2,8 +2,10 @@
  * @file
  * Splitting a parameter's list text into trimmed fields (see text.h).
  */
+#include <rockdda/io/error.h>
 #include <rockdda/io/text.h>
 
+#include <fstream>
 #include <sstream>
 
 namespace rockdda::io
@@ -30,5 +32,17 @@ namespace rockdda::io
     if (!text.empty() && text.back() == separator)
       fields.emplace_back();
     return fields;
+  }
+
+
+  std::string
+  read_text_file(const std::string &file_name, const std::string &what)
+  {
+    std::ifstream in(file_name);
+    if (!in)
+      throw InputError(what + " '" + file_name + "': cannot open it");
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
   }
 } // namespace rockdda::io

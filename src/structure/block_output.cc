@@ -1,4 +1,5 @@
 #include <rockdda/io/error.h>
+#include <rockdda/io/text.h>
 #include <rockdda/structure/block_output.h>
 #include <rockdda/structure/statistics.h>
 
@@ -266,12 +267,8 @@ namespace rockdda::structure
   BlockSet
   read_block_file(const std::string &file_name)
   {
-    std::ifstream in(file_name);
-    if (!in)
-      throw InputError(file_name + ": cannot open the block file");
-    std::stringstream s;
-    s << in.rdbuf();
-    return parse_block_file(s.str(), file_name);
+    return parse_block_file(io::read_text_file(file_name, "block file"),
+                            file_name);
   }
 
 
