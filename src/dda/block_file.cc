@@ -140,21 +140,10 @@ namespace rockdda::dda
               p.values.push_back(reader.integer(k));
             pending.push_back(p);
           }
-        else if (keyword == "fixed" || keyword == "fixed-block"
-                 || keyword == "load" || keyword == "measure"
-                 || keyword == "velocity")
+        else if (const std::size_t n = dda::point_line_words(keyword, 2))
           {
-            const std::size_t n = keyword == "fixed-block" ? 1
-                                  : keyword == "load"      ? 5
-                                  : keyword == "velocity"  ? 4
-                                                           : 3;
-            if (words.size() != n)
-              throw InputError(where + "'" + keyword + "' takes "
-                               + std::to_string(n) + " values");
-            Pending p{line_no, reader.integer(0), keyword, {}};
-            for (std::size_t k = 1; k < n; ++k)
-              p.values.push_back(reader.number(k));
-            pending.push_back(p);
+            auto [id, values] = reader.id_and_numbers(n);
+            pending.push_back({line_no, id, keyword, std::move(values)});
           }
         else
           throw InputError(where + "unknown keyword '" + keyword

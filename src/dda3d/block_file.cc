@@ -3,6 +3,7 @@
  * Reader and writer of the 3D DDA block file
  * (doc/block-file-format-dda3d.md).
  */
+#include <rockdda/dda/block_file.h>
 #include <rockdda/dda3d/block_file.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/keyword_reader.h>
@@ -120,21 +121,10 @@ namespace rockdda::dda3d
             b.polyhedron.faces.push_back(face);
             face_line.back().push_back(line_no);
           }
-        else if (keyword == "fixed" || keyword == "fixed-block"
-                 || keyword == "load" || keyword == "measure"
-                 || keyword == "velocity")
+        else if (const std::size_t n = dda::point_line_words(keyword, 3))
           {
-            const std::size_t n = keyword == "fixed-block" ? 1
-                                  : keyword == "load"      ? 7
-                                  : keyword == "velocity"  ? 7
-                                                           : 4;
-            if (words.size() != n)
-              throw InputError(where + "'" + keyword + "' takes "
-                               + std::to_string(n) + " values");
-            Pending p{line_no, reader.integer(0), keyword, {}};
-            for (std::size_t k = 1; k < n; ++k)
-              p.values.push_back(reader.number(k));
-            pending.push_back(p);
+            auto [id, values] = reader.id_and_numbers(n);
+            pending.push_back({line_no, id, keyword, std::move(values)});
           }
         else
           throw InputError(where + "unknown keyword '" + keyword

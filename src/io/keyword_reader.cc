@@ -63,4 +63,18 @@ namespace rockdda::io
       throw InputError(where + "'" + words[k] + "' is not an integer");
     return static_cast<int>(v);
   }
+
+
+  std::pair<int, std::vector<double>>
+  KeywordReader::id_and_numbers(const std::size_t n) const
+  {
+    if (words.size() != n)
+      throw InputError(where + "'" + keyword + "' takes " + std::to_string(n)
+                       + " values");
+    const int           id = integer(0);
+    std::vector<double> values;
+    for (std::size_t k = 1; k < n; ++k)
+      values.push_back(number(k));
+    return {id, values};
+  }
 } // namespace rockdda::io

@@ -26,6 +26,27 @@ namespace rockdda::dda
   /// Parse block-file text; @p name is used in messages.
   BlockSystem
   parse_block_text(const std::string &text, const std::string &name);
+
+  /**
+   * Words after the keyword of a point line of a @p dim-dimensional block
+   * file (2D and 3D share the keywords): "fixed ID X..." and "measure ID
+   * X..." 1 + dim, "load ID X... F..." 1 + 2 dim, "velocity ID V... W..."
+   * 1 + dim + dim (dim - 1) / 2 (the rotation components), "fixed-block
+   * ID" 1; 0 for any other keyword.
+   */
+  inline std::size_t
+  point_line_words(const std::string &keyword, const std::size_t dim)
+  {
+    if (keyword == "fixed" || keyword == "measure")
+      return 1 + dim;
+    if (keyword == "load")
+      return 1 + 2 * dim;
+    if (keyword == "velocity")
+      return 1 + dim + dim * (dim - 1) / 2;
+    if (keyword == "fixed-block")
+      return 1;
+    return 0;
+  }
 } // namespace rockdda::dda
 
 #endif

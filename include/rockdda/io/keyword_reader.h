@@ -9,6 +9,7 @@
 
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rockdda::io
@@ -33,6 +34,12 @@ namespace rockdda::io
     /// The word @p k as an integer (|v| <= 2e9); InputError as number().
     int
     integer(const std::size_t k) const;
+
+    /// A line "KEYWORD ID X1 ... X(n-1)": exactly @p n words (else
+    /// InputError "'KEYWORD' takes n values"), the integer id and the
+    /// numbers after it.
+    std::pair<int, std::vector<double>>
+    id_and_numbers(const std::size_t n) const;
 
     /// The current line's keyword and the words after it.
     std::string              keyword;
