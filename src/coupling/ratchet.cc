@@ -9,22 +9,9 @@
 #include <array>
 #include <cmath>
 #include <deque>
-#include <limits>
 
 namespace rockdda::coupling
 {
-  namespace
-  {
-    /// Highest y of a polygon (m).
-    double
-    top(const geometry::Polygon &p)
-    {
-      double y = -std::numeric_limits<double>::infinity();
-      for (const auto &v : p.vertices)
-        y = std::max(y, v[1]);
-      return y;
-    }
-  } // namespace
 
 
 
@@ -136,7 +123,8 @@ namespace rockdda::coupling
     if (!(scene.supply_distance > 0.) || fragments.empty())
       return;
     const auto &system = engine->system();
-    if (fragment_tops.back() - top(system.blocks[fragments.back()].polygon)
+    if (fragment_tops.back()
+          - system.blocks[fragments.back()].polygon.bounding_box()[3]
         < scene.supply_distance)
       return;
     // The infill's initial heights in engine coordinates (the engine works

@@ -114,24 +114,25 @@ namespace rockdda::dda
       b.initial_centroid = block_moments(b.polygon).centroid;
     }
 
-    /// Throws InputError if a vertex or the centroid of block @p a lies
-    /// deeper than @p tolerance inside block @p c.
+    /// Throws InputError if a vertex of block @p a, or its centroid
+    /// @p centroid, lies deeper than @p tolerance inside block @p c
+    /// (coordinates relative to @p origin, which messages add back).
     void
-    check_overlap(const BlockSystem &system,
-                  const int          a,
-                  const int          c,
-                  const double       tolerance)
+    check_overlap(const Block           &a,
+                  const geometry::Point &centroid,
+                  const Block           &c,
+                  const geometry::Point &origin,
+                  const double           tolerance)
     {
-      const auto                  &poly   = system.blocks[c].polygon;
-      std::vector<geometry::Point> probes = system.blocks[a].polygon.vertices;
-      probes.push_back(system.blocks[a].initial_centroid);
+      const auto                  &poly   = c.polygon;
+      std::vector<geometry::Point> probes = a.polygon.vertices;
+      probes.push_back(centroid);
       for (const auto &p : probes)
         if (poly.contains(p) && distance_to_boundary(poly, p) > tolerance)
           throw InputError(
-            block_name(system.blocks[a]) + " overlaps "
-            + block_name(system.blocks[c]) + " at t = 0 (point ("
-            + io::format_number(system.origin.x() + p.x(), 8) + ", "
-            + io::format_number(system.origin.y() + p.y(), 8) + ") m lies "
+            block_name(a) + " overlaps " + block_name(c) + " at t = 0 (point ("
+            + io::format_number(origin.x() + p.x(), 8) + ", "
+            + io::format_number(origin.y() + p.y(), 8) + ") m lies "
             + io::format_number(distance_to_boundary(poly, p), 4)
             + " m inside it)");
     }
@@ -170,8 +171,9 @@ namespace rockdda::dda
       {
         const double tolerance
           = overlap_fraction * std::min(sizes[i], sizes[j]);
-        check_overlap(system, i, j, tolerance);
-        check_overlap(system, j, i, tolerance);
+        const Block &a = system.blocks[i], &b = system.blocks[j];
+        check_overlap(a, a.initial_centroid, b, system.origin, tolerance);
+        check_overlap(b, b.initial_centroid, a, system.origin, tolerance);
       }
 
     const int n_blocks    = static_cast<int>(system.blocks.size());
@@ -220,12 +222,9 @@ namespace rockdda::dda
                        const double              overlap_fraction)
   {
     prepare_block(system, block, warnings);
-    // The overlap test against the blocks as they are: a one-block scene
-    // beside each candidate (only the new block's pairs are checked; the
-    // others may touch within their contact springs' penetration).
-    BlockSystem pair;
-    pair.origin       = system.origin;
-    pair.blocks       = {block, block};
+    // The overlap test against the blocks as they are (only the new
+    // block's pairs: the others may touch within their contact springs'
+    // penetration).
     const double size = block_size(block.polygon);
     const auto   box  = block.polygon.bounding_box();
     for (const auto &other : system.blocks)
@@ -233,12 +232,15 @@ namespace rockdda::dda
         const auto o = other.polygon.bounding_box();
         if (o[0] > box[2] || o[2] < box[0] || o[1] > box[3] || o[3] < box[1])
           continue;
-        pair.blocks[1]                  = other;
-        pair.blocks[1].initial_centroid = block_moments(other.polygon).centroid;
         const double tolerance
           = overlap_fraction * std::min(size, block_size(other.polygon));
-        check_overlap(pair, 0, 1, tolerance);
-        check_overlap(pair, 1, 0, tolerance);
+        check_overlap(
+          block, block.initial_centroid, other, system.origin, tolerance);
+        check_overlap(other,
+                      block_moments(other.polygon).centroid,
+                      block,
+                      system.origin,
+                      tolerance);
       }
   }
 
