@@ -198,6 +198,28 @@ namespace rockdda::coupling
     // The window of the stationarity test: slip and aperture per step.
     constexpr unsigned int            window = 100;
     std::deque<std::array<double, 2>> recent;
+    // A bounded limit cycle (a light fragment that rocks between the crack's
+    // faces, flipping its contacts every few tens of static steps): the
+    // means of the slip and the aperture over two successive windows of
+    // cycle_window steps agree within the tolerance, and the cycle's
+    // amplitude is at most cycle_amplitude tolerances. The sample is then in
+    // equilibrium within that amplitude (1e-7 of the block height: 1.5 um
+    // for Block 1, under 1 % of a ratchet cycle), recorded as chatter.
+    constexpr unsigned int cycle_window    = 200;
+    constexpr double       cycle_amplitude = 10.;
+    // Largest spread and mean of component i over recent[lo, hi).
+    const auto spread_of = [&recent](const std::size_t lo,
+                                     const std::size_t hi,
+                                     const std::size_t i) {
+      double a = 1e300, b = -1e300, sum = 0.;
+      for (std::size_t j = lo; j < hi; ++j)
+        {
+          a = std::min(a, recent[j][i]);
+          b = std::max(b, recent[j][i]);
+          sum += recent[j][i];
+        }
+      return std::array<double, 2>{{b - a, sum / (hi - lo)}};
+    };
     // Stalled samples: a smaller pseudo time step every stall_steps steps.
     constexpr unsigned int stall_steps  = 300;
     const auto             restore_step = [this]() {
@@ -222,28 +244,36 @@ namespace rockdda::coupling
         // Steps cut on the way count too: the test is on the slip and the
         // aperture that the ratchet measures.
         moved = std::max(moved, r.max_displacement);
-        recent.push_back({displacement(), aperture()});
-        if (recent.size() > window)
+        recent.push_back({{displacement(), aperture()}});
+        if (recent.size() > 2 * cycle_window)
           recent.pop_front();
-        if (k + 1 >= window)
+        const std::size_t n = recent.size();
+        if (n < window)
+          continue;
+        double spread = 0.;
+        for (const std::size_t i : {std::size_t(0), std::size_t(1)})
+          spread = std::max(spread, spread_of(n - window, n, i)[0]);
+        if (spread <= tolerance)
           {
-            double spread = 0.;
-            for (const std::size_t i : {std::size_t(0), std::size_t(1)})
-              {
-                const auto [lo, hi]
-                  = std::minmax_element(recent.begin(),
-                                        recent.end(),
-                                        [i](const auto &a, const auto &b) {
-                                          return a[i] < b[i];
-                                        });
-                spread = std::max(spread, (*hi)[i] - (*lo)[i]);
-              }
-            if (spread <= tolerance)
-              {
-                ++record.stationary_samples;
-                record.chatter = std::max(record.chatter, moved);
-                return restore_step();
-              }
+            ++record.stationary_samples;
+            record.chatter = std::max(record.chatter, moved);
+            return restore_step();
+          }
+        if (n < 2 * cycle_window)
+          continue;
+        double amplitude = 0., drift = 0.;
+        for (const std::size_t i : {std::size_t(0), std::size_t(1)})
+          {
+            const auto first  = spread_of(0, cycle_window, i);
+            const auto second = spread_of(cycle_window, n, i);
+            amplitude         = std::max({amplitude, first[0], second[0]});
+            drift             = std::max(drift, std::abs(second[1] - first[1]));
+          }
+        if (drift <= tolerance && amplitude <= cycle_amplitude * tolerance)
+          {
+            ++record.stationary_samples;
+            record.chatter = std::max({record.chatter, moved, amplitude});
+            return restore_step();
           }
       }
     throw dda::DdaFailure(

@@ -273,9 +273,10 @@ TEST(RatchetCoupled, InfillFallsWhenTheCrackOpens)
 
 
 // Supply of detritus (thesis 5.4 assumes a continuous supply): an infill
-// narrower than the crack (0.1 m where the crack is 0.128 m wide) drops
-// until it wedges (about 2.3 m lower, where the crack narrows to its
-// width); once the newest
+// narrower than the crack (0.07 m where the crack is 0.128 m wide) drops
+// until it wedges (several metres lower, where the crack narrows to its
+// width; a narrow fragment's static steps end in a bounded limit cycle of
+// its contacts, which RatchetRun::equilibrate accepts); once the newest
 // fragment has descended by the supply distance, a new one is placed at
 // the initial position, spanning the crack less a clearance of 1e-3 of its
 // width on each side. It must sit above the old one, only move down (the
@@ -288,7 +289,7 @@ TEST(RatchetCoupled, SupplyPlacesANewFragment)
   SeasonalForcing  f;
   RatchetGeometry  g;
   g.infill_height                = 1.;
-  g.infill_width                 = 0.1;
+  g.infill_width                 = 0.07;
   g.supply_distance              = 1.;
   const RatchetScene       scene = make_ratchet_scene(g, m);
   PeriodicBlockTemperature T(scene.heat_blocks, f, cheap_heat());

@@ -55,8 +55,9 @@ namespace rockdda::coupling
     /// Static DDA steps and step cuts of the cycle.
     unsigned long steps = 0, cuts = 0;
     /// Samples accepted as stationary although a contact kept switching
-    /// between sliding and locked (see RatchetRun), and the largest vertex
-    /// motion per step in such a sample (m).
+    /// between states (see RatchetRun::equilibrate), and the largest vertex
+    /// motion per step or limit-cycle amplitude of the slip or aperture in
+    /// such a sample (m).
     unsigned int stationary_samples = 0;
     double       chatter            = 0.;
     /// Samples that needed a smaller pseudo time step to reach equilibrium
@@ -140,7 +141,11 @@ namespace rockdda::coupling
      * by more than the tolerance, or (a contact at the friction limit that
      * switches between sliding and locked every few steps, moving one
      * vertex back and forth) 100 steps, cut or not, over which the base
-     * slip and the crack aperture stay within the tolerance. A sample
+     * slip and the crack aperture stay within the tolerance, or (a light
+     * fragment rocking between the crack's faces) a bounded limit cycle:
+     * over two successive windows of 200 steps the means of the slip and the
+     * aperture agree within the tolerance and their amplitude is at most 10
+     * tolerances. A sample
      * still not in equilibrium after 300 steps continues with the pseudo
      * time step divided by 10 (a stiffer inertia term, 2 M / dt^2, damps
      * the cycles of contact states between steps), then by 100 after 600
