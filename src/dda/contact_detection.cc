@@ -117,6 +117,13 @@ namespace rockdda::dda
     {
       Point P, a1, a2;
       bool  convex = false;
+      /// A right turn by more than flat_angle: a straight boundary with a
+      /// vertex on it (collinear edges, within round-off or the strain of
+      /// the block) is neither convex nor reflex. A vertex on one of two
+      /// collinear edges passes onto the other by contact transfer; a
+      /// 'coming round the corner' candidate on the other edge would put a
+      /// second spring on the same vertex.
+      bool reflex = false;
       /// Unit vectors along a1 and a2.
       Point u1, u2;
       /// The edge that starts here: unit tangent, outward unit normal,
@@ -124,6 +131,12 @@ namespace rockdda::dda
       Point  t, n;
       double l = 0.;
     };
+
+    /// Turn (rad) below which a corner is flat for the reflex-corner rules:
+    /// far above round-off and the elastic strain of rock (1e-6 to 1e-4 rad
+    /// of a block's corner angle come from strain of that size), far below
+    /// any kink of a real boundary.
+    constexpr double flat_angle = 1e-3;
 
     Corner
     corner(const geometry::Polygon &poly, const int k)
@@ -138,6 +151,7 @@ namespace rockdda::dda
       // A left turn: any interior angle below 180 degrees, however sharp
       // (the vertices of slivers are contact vertices too).
       c.convex = cross(-c.a1, c.a2) > 1e-14 * l1 * l2;
+      c.reflex = cross(-c.a1, c.a2) < -flat_angle * l1 * l2;
       c.u1     = c.a1 / l1;
       c.u2     = c.a2 / l2;
       c.l      = l2;
@@ -167,13 +181,14 @@ namespace rockdda::dda
     {
       const Point      r = P - E.P;
       ContactCandidate c;
-      c.block_i = a;
-      c.vertex  = k;
-      c.block_j = b;
-      c.edge    = e;
-      c.normal  = E.n;
-      c.gap     = E.n.dot(r);
-      c.xi      = std::clamp(E.t.dot(r) / E.l, 0., 1.);
+      c.block_i    = a;
+      c.vertex     = k;
+      c.block_j    = b;
+      c.edge       = e;
+      c.normal     = E.n;
+      c.gap        = E.n.dot(r);
+      c.projection = E.t.dot(r) / E.l;
+      c.xi         = std::clamp(c.projection, 0., 1.);
       return c;
     }
 
@@ -417,8 +432,8 @@ namespace rockdda::dda
                     // edge's line instead of being found already inside.
                     const Corner &F = cb[(e + 1) % nb];
                     const bool    round_corner
-                      = (xr < 0. && !E.convex && r.squaredNorm() <= d * d)
-                        || (xr > 1. && !F.convex
+                      = (xr < 0. && E.reflex && r.squaredNorm() <= d * d)
+                        || (xr > 1. && F.reflex
                             && (P.P - F.P).squaredNorm() <= d * d);
                     if ((xr >= 0. && xr <= 1.) || round_corner)
                       out.push_back(vertex_edge(P.P, a, k, b, e, E));
@@ -472,7 +487,7 @@ namespace rockdda::dda
               {
                 const int     other = end == best ? (best + nb - 1) % nb : end;
                 const Corner &R     = corners[1 - side][end];
-                if (R.convex || (P.P - R.P).norm() > d || c[other].gap > d
+                if (!R.reflex || (P.P - R.P).norm() > d || c[other].gap > d
                     || c[other].gap < -d || (c[other].gap < 0. && !ok[other]))
                   continue;
                 out.push_back(c[other]);

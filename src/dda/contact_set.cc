@@ -56,7 +56,7 @@ namespace rockdda::dda
         const ContactCandidate &g = candidates[c];
         Contact                &r = result[c];
         r.geometry                = g;
-        r.xi_ref                  = g.xi;
+        r.xi_ref                  = g.projection;
         const Contact *found
           = find(by_edge, key(g.block_i, g.vertex, g.block_j, g.edge));
         if (found != nullptr)
@@ -89,9 +89,14 @@ namespace rockdda::dda
               }
             else
               {
-                r.state  = g.gap <= closed_gap(g) ? ContactState::locked
-                                                  : ContactState::open;
-                r.broken = !intact;
+                // A vertex beyond the edge's end (coming round a reflex
+                // corner) starts open: it closes when it crosses the edge's
+                // line.
+                const bool beyond = g.projection < 0. || g.projection > 1.;
+                r.state           = !beyond && g.gap <= closed_gap(g)
+                                      ? ContactState::locked
+                                      : ContactState::open;
+                r.broken          = !intact;
               }
           }
         r.state_at_start = r.state;

@@ -509,7 +509,7 @@ namespace rockdda::dda
                   || (r.state == ContactState::sliding
                       && old == ContactState::open))
                 {
-                  ct.xi_ref = ct.geometry.xi;
+                  ct.xi_ref = ct.geometry.projection;
                   if (r.state == ContactState::locked
                       && old == ContactState::sliding)
                     {

@@ -250,6 +250,7 @@ namespace rockdda::dda
         g.edge              = r.get<std::int32_t>();
         g.normal            = get_point(r);
         g.xi                = r.get<double>();
+        g.projection        = g.xi;
         g.gap               = r.get<double>();
         const auto state    = r.get<std::int32_t>();
         const auto at_start = r.get<std::int32_t>();

@@ -823,6 +823,51 @@ TEST(DdaContactsIssue10, NoPhantomPenetrationAtFaceEnd)
   check_energy(watch, 0.01 * mgh, mgh, "phantom");
 }
 
+// A vertex of the base's top face between two collinear edges (a flat
+// corner, as where a face is split for subdivided blocks). A block's corner
+// touches one of the edges 0.05 m from the flat vertex, within the contact
+// search distance: the other, collinear edge must not get a second 'coming
+// round the corner' candidate for the same vertex. Before the fix it did;
+// touching within round-off, that contact started locked with its shear
+// reference clamped to the edge's end, 0.05 m away, and a shear spring
+// pre-stretched by that much threw the block (found after 2,235 thermal
+// cycles of the clean-crack ratchet, where a base vertex unloaded to a gap
+// of 2e-11 m). Then, in DDA, the block stays put (1e-5 m: it sinks ~1e-7 m
+// into the springs and overshoots by as much, released from rest) with no
+// energy gained.
+TEST(DdaContactsIssue10, FlatVertexOfTheBaseAddsNoSecondContact)
+{
+  const Polygon base
+    = polygon({{0., 0.}, {10., 0.}, {10., 1.}, {5., 1.}, {0., 1.}});
+  const Polygon    block = rectangle(5.05, 1., 1., 1.);
+  DetectionOptions o;
+  o.search_distance = 0.2;
+  int touching      = 0;
+  for (const auto &c : detect_contacts({base, block}, o))
+    if (c.block_i == 1
+        && (block.vertices[c.vertex] - Point(5.05, 1.)).norm() < 1e-12)
+      {
+        ++touching;
+        EXPECT_EQ(c.edge, 2);
+        EXPECT_GE(c.projection, 0.);
+        EXPECT_LE(c.projection, 1.);
+      }
+  EXPECT_EQ(touching, 1);
+
+  BlockSystem s = one_material_scene(2700., 1e10, 0.25, 30.);
+  const int   b = add_block(s, base);
+  const int   i = add_block(s, block);
+  fix_block(s, b);
+  DdaSystem   dda(s, controls(1e-3, 1., 1e11));
+  EnergyWatch watch(dda);
+  run_watched(dda, 0.2, watch, []() {});
+  const double moved = dda.centroid_displacement(i).norm();
+  std::printf("flat vertex: moved %.3e m\n", moved);
+  EXPECT_LT(moved, 1e-5);
+  const double mgh = block_mass(s, i) * g_earth * 1.;
+  check_energy(watch, 0.01 * mgh, mgh, "flat vertex");
+}
+
 // ---------------------------------------------------------------------------
 // 10. Fixed blocks: a block held by three or more non-collinear fixed points
 // is clamped, not hung on penalty springs.

@@ -303,7 +303,8 @@ TEST(JointStiffness, ZeroStiffnessIsBitForBitTheRigidJoint)
 {
   // Vertices (local coordinates) of the three blocks, then the contact
   // energy, friction work, kinetic energy and balance (J/m) and the number
-  // of steps, recorded at commit 9575c50.
+  // of steps, recorded after the contact-detection fix of flat corners and
+  // of shear references beyond an edge's end.
   const std::vector<double> recorded = {0x0p+0,
                                         0x1.3ffffffffffffp+2,
                                         0x1.1520cd1372febp+3,
@@ -312,26 +313,26 @@ TEST(JointStiffness, ZeroStiffnessIsBitForBitTheRigidJoint)
                                         0x1.bb67ae8584cacp-1,
                                         0x1p-1,
                                         0x1.776cf5d0b0994p+2,
-                                        0x1.197b04da730bfp+2,
-                                        0x1.cec6a32613f74p+1,
-                                        0x1.50e7fa6f64e7p+2,
-                                        0x1.8ec6a1167bc4dp+1,
-                                        0x1.70e80078b69f5p+2,
-                                        0x1.fda070be7ec74p+1,
-                                        0x1.397b0ae3c4c42p+2,
+                                        0x1.197b04da730c4p+2,
+                                        0x1.cec6a32613f7p+1,
+                                        0x1.50e7fa6f64e77p+2,
+                                        0x1.8ec6a1167bc44p+1,
+                                        0x1.70e80078b6ap+2,
+                                        0x1.fda070be7ec6cp+1,
+                                        0x1.397b0ae3c4c52p+2,
                                         0x1.1ed039670b7c9p+2,
-                                        0x1.397b226bdb9fap+2,
-                                        0x1.1ed02b9a876f5p+2,
-                                        0x1.70e817be63b76p+2,
-                                        0x1.fda0552fdcf95p+1,
-                                        0x1.80e818dfe0a26p+2,
-                                        0x1.1a86a38914c68p+2,
-                                        0x1.497b238d588a8p+2,
-                                        0x1.3a86a48badb8fp+2,
-                                        0x1.376015297e555p-8,
-                                        0x1.2e74d56ca1a6bp+4,
-                                        0x1.201dba9f9f679p+2,
-                                        0x1.4f9ef248fp-5,
+                                        0x1.397b226bdb52cp+2,
+                                        0x1.1ed02b9a879c3p+2,
+                                        0x1.70e817be64095p+2,
+                                        0x1.fda0552fdc9bp+1,
+                                        0x1.80e818dfe0e8fp+2,
+                                        0x1.1a86a38914838p+2,
+                                        0x1.497b238d5831ep+2,
+                                        0x1.3a86a48badd24p+2,
+                                        0x1.376015285ed14p-8,
+                                        0x1.2e74d56d2625ap+4,
+                                        0x1.201dba9fb81afp+2,
+                                        0x1.4f9ef25a998p-5,
                                         50.};
   const BlockSystem         left_out = recorded_scene();
   BlockSystem               zero     = recorded_scene();

@@ -30,6 +30,13 @@ namespace rockdda::dda
     int             block_i = 0, vertex = 0, block_j = 0, edge = 0;
     geometry::Point normal = geometry::Point::Zero();
     double          xi = 0., gap = 0.;
+    /// The vertex's projection on the edge's line, as a fraction of the
+    /// edge from its start: xi before clamping to [0, 1]. Outside [0, 1]
+    /// for a vertex coming round a reflex corner (beyond the edge's end).
+    /// A contact that locks takes its shear reference here, where the
+    /// vertex is, not at the clamped end: otherwise the shear spring starts
+    /// stretched by the vertex's distance beyond the end.
+    double projection = 0.;
   };
 
   /**
