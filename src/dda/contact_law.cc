@@ -11,29 +11,6 @@
 
 namespace rockdda::dda
 {
-  double
-  shear_strength(const Contact       &contact,
-                 const double         n,
-                 const double         length,
-                 const JointMaterial &joint)
-  {
-    // tan() is called per contact and iteration; remember the last angle.
-    thread_local double last_deg = 0., last_mu = 0.;
-    if (joint.friction_deg != last_deg)
-      {
-        last_deg = joint.friction_deg;
-        last_mu  = std::tan(joint.friction_deg * M_PI / 180.);
-      }
-    const double mu = last_mu;
-    // An intact joint: Mohr-Coulomb with the cohesion, where tension
-    // lowers the strength; once broken or sliding: residual friction.
-    if (!contact.broken && contact.state != ContactState::sliding)
-      return std::max(0., n * mu + joint.cohesion * length);
-    return std::max(0., n) * mu;
-  }
-
-
-
   StateCheck
   check_state(const Contact           &contact,
               const ContactKinematics &kin,

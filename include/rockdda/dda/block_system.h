@@ -7,6 +7,7 @@
 #ifndef ROCKDDA_DDA_BLOCK_SYSTEM_H
 #define ROCKDDA_DDA_BLOCK_SYSTEM_H
 
+#include <rockdda/dda/contact_mechanics.h>
 #include <rockdda/geometry/polygon.h>
 #include <rockdda/seismic/record.h>
 
@@ -37,26 +38,6 @@ namespace rockdda::dda
     /// `material` in the VTU output); -1 = none (a scene built in code: the
     /// outputs use the index into BlockSystem::materials).
     int id = -1;
-  };
-
-  /// Mohr-Coulomb strength and elastic stiffness of a joint (contact)
-  /// material.
-  struct JointMaterial
-  {
-    /// Friction angle (deg), in [0, 90).
-    double friction_deg = 30.;
-    /// Cohesion (Pa), >= 0.
-    double cohesion = 0.;
-    /// Tensile strength (Pa), >= 0.
-    double tensile = 0.;
-    /// Physical normal and shear stiffness of the joint (Pa/m: stress per
-    /// metre of closure or elastic slip; over a joint length l, per metre
-    /// of thickness, a spring of k l N/m), >= 0. A contact's springs are
-    /// this stiffness over its contact length in series with the numerical
-    /// penalty (contact_springs(), doc/theory/dda.md "Joint stiffness").
-    /// 0: a rigid joint, only the penalty acts.
-    double normal_stiffness = 0.;
-    double shear_stiffness  = 0.;
   };
 
   /// One block: a simple polygon with its state.

@@ -9,6 +9,7 @@
 #define ROCKDDA_DDA_CONTACT_LAW_H
 
 #include <rockdda/dda/block_system.h>
+#include <rockdda/dda/contact_mechanics.h>
 #include <rockdda/dda/contact_set.h>
 
 #include <limits>
@@ -16,55 +17,6 @@
 
 namespace rockdda::dda
 {
-  /// The numerical penalty springs (N/m per m thickness), the same for
-  /// every contact; a joint's physical stiffness acts in series with them
-  /// (contact_springs()).
-  struct ContactLaw
-  {
-    /// Normal penalty p (N/m).
-    double normal_penalty = 1e11;
-    /// Shear penalty p_s = shear_ratio * p.
-    double shear_ratio = 0.4;
-
-    double
-    shear_penalty() const
-    {
-      return shear_ratio * normal_penalty;
-    }
-  };
-
-  /// The normal and shear spring of one contact (N/m per m thickness).
-  struct ContactSprings
-  {
-    double normal = 0., shear = 0.;
-  };
-
-  /**
-   * The springs of a contact of length @p length (m, ContactKinematics::
-   * length) on @p joint: the joint's stiffness over that length in series
-   * with the penalty,
-   *   k_n = 1 / (1/p + 1/(k_n,joint l)),  k_s = 1 / (1/p_s + 1/(k_s,joint l)).
-   * The penalty alone (exactly p and p_s) where the joint's stiffness is 0
-   * (a rigid joint) or the length is 0 (a corner on a face: no joint
-   * surface to deform).
-   */
-  inline ContactSprings
-  contact_springs(const ContactLaw    &law,
-                  const JointMaterial &joint,
-                  const double         length)
-  {
-    ContactSprings k{law.normal_penalty, law.shear_penalty()};
-    if (length > 0.)
-      {
-        if (joint.normal_stiffness > 0.)
-          k.normal
-            = 1. / (1. / k.normal + 1. / (joint.normal_stiffness * length));
-        if (joint.shear_stiffness > 0.)
-          k.shear = 1. / (1. / k.shear + 1. / (joint.shear_stiffness * length));
-      }
-    return k;
-  }
-
   /// Whether any joint of @p joints has a physical stiffness (otherwise
   /// every contact spring is the penalty).
   inline bool
@@ -158,14 +110,6 @@ namespace rockdda::dda
   double
   automatic_penalty(const BlockSystem &scene, const double g);
 
-  /// Whether a contact carries no shear at all: no friction and no intact
-  /// cohesion.
-  inline bool
-  frictionless(const Contact &contact, const JointMaterial &joint)
-  {
-    return joint.friction_deg == 0. && (contact.broken || joint.cohesion == 0.);
-  }
-
   /**
    * Round-off of a contact's gap and shear displacement (m): 1e-12 of the
    * smaller block's size @p scale plus the representation error of the
@@ -181,17 +125,6 @@ namespace rockdda::dda
                * (P.norm() + Q.norm());
   }
 
-  /**
-   * Shear strength (N/m) of a closed contact with normal force @p n
-   * (compression positive): N tan(phi) + c l while the joint is intact and
-   * locked, where a tensile N lowers it (Mohr-Coulomb, floored at 0);
-   * max(N, 0) tan(phi) once it is broken or sliding (residual).
-   */
-  double
-  shear_strength(const Contact       &contact,
-                 const double         n,
-                 const double         length,
-                 const JointMaterial &joint);
 } // namespace rockdda::dda
 
 #endif

@@ -7,6 +7,7 @@
 #define ROCKDDA_DDA_CONTACT_SET_H
 
 #include <rockdda/dda/contact_detection.h>
+#include <rockdda/dda/contact_mechanics.h>
 
 #include <cstdint>
 #include <functional>
@@ -14,14 +15,6 @@
 
 namespace rockdda::dda
 {
-  /// State of a contact.
-  enum class ContactState : int
-  {
-    open    = 0,
-    sliding = 1,
-    locked  = 2
-  };
-
   /**
    * One contact during a step: the geometric record plus its state. The
    * shear reference xi_ref is the edge parameter of the point of the edge

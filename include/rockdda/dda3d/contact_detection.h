@@ -1,0 +1,151 @@
+/**
+ * @file
+ * Contact detection of 3D DDA (issue 17): a uniform-grid broad phase on
+ * bounding boxes and a narrow phase for vertex-face and edge-edge contacts
+ * of convex polyhedra with entrance rules (Shi 2001; Jiang & Yeung 2004;
+ * Beyabanaki et al. 2008). The degenerate vertex-edge, vertex-vertex and
+ * face-face contacts are represented by their vertex-face and edge-edge
+ * contacts (doc/theory/dda3d.md, "Contacts").
+ */
+#ifndef ROCKDDA_DDA3D_CONTACT_DETECTION_H
+#define ROCKDDA_DDA3D_CONTACT_DETECTION_H
+
+#include <rockdda/dda3d/polyhedron.h>
+
+#include <array>
+#include <utility>
+#include <vector>
+
+namespace rockdda::dda3d
+{
+  /// An axis-aligned box (m).
+  struct BoundingBox
+  {
+    Point lo = Point::Zero(), hi = Point::Zero();
+  };
+
+  /// The bounding box of @p p grown by @p margin (m) on every side.
+  BoundingBox
+  bounding_box(const Polyhedron &p, const double margin = 0.);
+
+  /**
+   * Every pair (i < j) of boxes that overlap (touching counts), each once,
+   * sorted. A uniform grid with the median box extent as cell (enlarged so
+   * that no box spans more than about 4 cells per axis); a pair is reported
+   * by the cell that holds the lower corner of the two boxes'
+   * intersection. O(N) for boxes of similar size.
+   */
+  std::vector<std::pair<int, int>>
+  broad_phase(const std::vector<BoundingBox> &boxes);
+
+  /// Kind of a contact.
+  enum class ContactType : int
+  {
+    /// A vertex of block i against a face of block j.
+    vertex_face = 0,
+    /// An edge of block i crossing an edge of block j.
+    edge_edge = 1
+  };
+
+  /**
+   * The edges of a polyhedron with their two faces: edge k runs from
+   * vertex v[0] to v[1] (v[0] < v[1]); face[0] traverses it as v[0] -> v[1],
+   * face[1] as v[1] -> v[0].
+   */
+  struct PolyhedronEdges
+  {
+    std::vector<std::array<int, 2>> v, face;
+  };
+
+  /// The edges of @p p (which must be closed, polyhedron_defect()).
+  PolyhedronEdges
+  polyhedron_edges(const Polyhedron &p);
+
+  /**
+   * One contact found by the narrow phase. Block i owns the vertex (or the
+   * first edge), block j the face (or the second edge). p and q are the
+   * contact points on i and j (for a vertex-face contact q is the vertex's
+   * projection on the face's plane), normal is the unit normal of the
+   * contact plane pointing out of j (towards i), gap = normal . (p - q)
+   * (m, negative: penetration). score is the entrance score (the smallest
+   * cosine between the normal and the directions into i's feature, and
+   * minus those into j's; >= 0 where the contact plane separates the two
+   * features locally).
+   */
+  struct ContactCandidate
+  {
+    ContactType type = ContactType::vertex_face;
+    int         i = 0, j = 0;
+    /// vertex_face: a = vertex of i, b = face of j; edge_edge: a = edge of
+    /// i, b = edge of j (indices into polyhedron_edges()).
+    int    a = 0, b = 0;
+    Point  p = Point::Zero(), q = Point::Zero(), normal = Point::UnitZ();
+    double gap = 0., score = 0.;
+  };
+
+  /// Tolerances of the narrow phase: dimensionless multiples of the
+  /// blocks' sizes (Polyhedron::size()) or angles (rad).
+  struct DetectionTolerances
+  {
+    /// Contact distance d = distance_factor max(size_i, size_j): features
+    /// closer than d (gap <= d) are candidates, and penetrations deeper
+    /// than d are no contact (at least twice the largest step
+    /// displacement).
+    double distance_factor = 0.02;
+    /// Points within coincidence_factor min(size_i, size_j) are the same
+    /// point (a vertex on
+    /// a face's boundary, coincident vertices).
+    double coincidence_factor = 1e-6;
+    /// Entrance tolerance (rad): a feature enters a face or edge when its
+    /// score is >= -sin(entrance_angle), larger than the relative rotation
+    /// of two blocks in one step (the 2D engine's 0.2 rad).
+    double entrance_angle = 0.2;
+    /// Edge pairs more nearly parallel than this (rad) form no edge-edge
+    /// contact (their contact is carried by the vertices at their ends).
+    double parallel_angle = 0.01;
+  };
+
+  /**
+   * The narrow phase for the convex polyhedra @p a (block @p ia) and @p b
+   * (block @p ib), with their edges; appends the contacts to @p out.
+   *
+   * Vertex-face (each block's vertices against the other's faces): a
+   * vertex P and face F with |gap| <= d whose projection lies in F
+   * (within the coincidence tolerance). A vertex outside the other block
+   * is a contact with every such face it enters (score >= -sin(entrance
+   * angle), where the score is the smallest cosine between F's normal and
+   * P's edges); a penetrated vertex with the entered face of shortest
+   * exit (least depth; if it enters none, the face of shortest exit).
+   * Vertex-vertex: two vertices within the coincidence tolerance give one
+   * contact, the vertex-face contact with the larger score (by more than
+   * 0.01; on a tie the vertex of the block with the lower index), so that
+   * a stack of flush blocks has one contact per corner.
+   *
+   * Edge-edge: two edges, not nearly parallel, whose closest points are
+   * interior to both (beyond the coincidence tolerance from the ends),
+   * with |gap| <= d, and a contact plane (normal along the cross product)
+   * that separates the two edges' faces locally: the directions into the
+   * faces of i's edge have cosine >= -sin(entrance angle) with the normal,
+   * those of j's edge <= sin(entrance angle).
+   */
+  void
+  narrow_phase(const Polyhedron              &a,
+               const PolyhedronEdges         &a_edges,
+               const int                      ia,
+               const Polyhedron              &b,
+               const PolyhedronEdges         &b_edges,
+               const int                      ib,
+               const DetectionTolerances     &tolerances,
+               std::vector<ContactCandidate> &out);
+
+  /**
+   * All contacts of the blocks @p blocks (convex polyhedra): broad phase on
+   * the bounding boxes grown by distance_factor x size each, then the
+   * narrow phase per pair. Sorted by (i, j, type, a, b).
+   */
+  std::vector<ContactCandidate>
+  detect_contacts(const std::vector<const Polyhedron *> &blocks,
+                  const DetectionTolerances             &tolerances);
+} // namespace rockdda::dda3d
+
+#endif
