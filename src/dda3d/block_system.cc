@@ -28,11 +28,29 @@ namespace rockdda::dda3d
                            + std::to_string(mat.poisson)
                            + "; valid: 0 <= nu < 0.5");
       }
+    for (std::size_t k = 0; k < system.joints.size(); ++k)
+      {
+        const auto       &j    = system.joints[k];
+        const std::string name = "joint material " + std::to_string(k);
+        if (!(j.friction_deg >= 0. && j.friction_deg < 90.))
+          throw InputError(name + ": friction angle "
+                           + std::to_string(j.friction_deg)
+                           + " deg; valid: 0 <= phi < 90");
+        if (!(j.cohesion >= 0.) || !(j.tensile >= 0.)
+            || !(j.normal_stiffness >= 0.) || !(j.shear_stiffness >= 0.))
+          throw InputError(name
+                           + ": cohesion, tensile strength and "
+                             "stiffnesses must be >= 0");
+      }
     for (auto &b : system.blocks)
       {
         const std::string name = "block " + std::to_string(b.id);
         if (b.material < 0 || b.material >= int(system.materials.size()))
           throw InputError(name + ": has no material");
+        if (!system.joints.empty()
+            && (b.joint < 0 || b.joint >= int(system.joints.size())))
+          throw InputError(name + ": joint material index "
+                           + std::to_string(b.joint) + " does not exist");
         const auto defect = polyhedron_defect(b.polyhedron);
         if (defect)
           throw InputError(name + (defect.face >= 0 ? ", " : ": ")

@@ -7,6 +7,7 @@
 #ifndef ROCKDDA_DDA3D_BLOCK_SYSTEM_H
 #define ROCKDDA_DDA3D_BLOCK_SYSTEM_H
 
+#include <rockdda/dda/contact_mechanics.h>
 #include <rockdda/dda3d/polyhedron.h>
 
 #include <Eigen/Core>
@@ -52,6 +53,10 @@ namespace rockdda::dda3d
     Polyhedron polyhedron;
     /// Index into BlockSystem::materials.
     int material = -1;
+    /// Index into BlockSystem::joints: the joint material of the block's
+    /// faces (a contact uses the one of the block that owns its face or
+    /// second edge).
+    int joint = 0;
     /// Velocity of the 12 unknowns (m/s, rad/s, 1/s).
     Vector12 velocity = Vector12::Zero();
     /// Accumulated stress (Pa, tension positive), Voigt order.
@@ -90,11 +95,15 @@ namespace rockdda::dda3d
   /// The whole scene.
   struct BlockSystem
   {
-    std::vector<Material>         materials;
-    std::vector<Block>            blocks;
-    std::vector<FixedPoint>       fixed_points;
-    std::vector<LoadPoint>        load_points;
-    std::vector<MeasurementPoint> measurement_points;
+    std::vector<Material> materials;
+    /// Joint (contact) materials, shared with the 2D engine: friction,
+    /// cohesion and tensile strength (Pa, over a contact's area), joint
+    /// stiffness (Pa/m). Needed only by scenes with contacts.
+    std::vector<dda::JointMaterial> joints;
+    std::vector<Block>              blocks;
+    std::vector<FixedPoint>         fixed_points;
+    std::vector<LoadPoint>          load_points;
+    std::vector<MeasurementPoint>   measurement_points;
     /// Constant body acceleration (m/s^2), default (0, 0, -9.80665).
     Point gravity = Point(0., 0., -9.80665);
   };

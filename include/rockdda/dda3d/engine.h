@@ -1,0 +1,277 @@
+/**
+ * @file
+ * 3D DDA with contacts (issue 17): blocks coupled by vertex-face and
+ * edge-edge contacts with normal and shear penalty springs, Mohr-Coulomb
+ * friction, cohesion and tension per joint material, open / sliding /
+ * locked states that persist across steps, the open-close iteration with a
+ * step cut when it does not converge, and an energy ledger
+ * (doc/theory/dda3d.md, "Contacts" and "Open-close iteration").
+ */
+#ifndef ROCKDDA_DDA3D_ENGINE_H
+#define ROCKDDA_DDA3D_ENGINE_H
+
+#include <rockdda/dda/contact_mechanics.h>
+#include <rockdda/dda3d/block_matrices.h>
+#include <rockdda/dda3d/contact_detection.h>
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <vector>
+
+namespace rockdda::dda3d
+{
+  using dda::ContactLaw;
+  using dda::ContactState;
+  using dda::JointMaterial;
+
+  /// A 12x2 matrix: the shear displacement's dependence on a block's
+  /// unknowns (two tangent directions).
+  using Matrix12x2 = Eigen::Matrix<double, 12, 2>;
+
+  /**
+   * One contact with its state. The shear reference is a material point of
+   * block j (moved with j) that a locked contact's
+   * shear spring is measured from; direction is the sliding direction of
+   * i relative to j (unit, global) of a sliding contact.
+   */
+  struct Contact
+  {
+    ContactCandidate geometry;
+    ContactState     state          = ContactState::open;
+    ContactState     state_at_start = ContactState::open;
+    /// Shear reference on block j (m, the engine's local coordinates); valid if
+    /// has_reference.
+    Point reference     = Point::Zero();
+    bool  has_reference = false;
+    /// Sliding direction (unit) of a sliding contact.
+    Point direction = Point::Zero();
+    /// Normal force (N, compression positive) and shear force on block i
+    /// (N, a vector in the contact plane) of the latest solve.
+    double normal_force = 0.;
+    Point  shear_force  = Point::Zero();
+    /// Cohesion and tensile strength are lost once an accepted step ends
+    /// with the contact sliding or opened.
+    bool broken = false;
+    /// Joint material (index into BlockSystem::joints).
+    int joint = 0;
+    /// Area (m^2) over which cohesion, tensile strength and the joint's
+    /// stiffness act: the overlap of the two touching faces shared among
+    /// the contacts between them; 0 for a corner or edge on a face.
+    double area = 0.;
+  };
+
+  /**
+   * Linearised kinematics of one contact over a step (normal n fixed,
+   * first-order displacement field, thesis Eq. 2.5): gap
+   * g = g0 + e_n . D_i + h_n . D_j, e_n = T_i(p)^T n, h_n = -T_j(q)^T n;
+   * shear displacement (two components in the tangent basis t1, t2)
+   * s = s0 + E_s^T D_i + H_s^T D_j, E_s = T_i(p)^T [t1 t2],
+   * H_s = -T_j(r)^T [t1 t2], r the shear reference, s0 = [t1 t2]^T (p - r).
+   */
+  struct ContactKinematics
+  {
+    double          g0 = 0.;
+    Vector12        en, hn;
+    Matrix12x2      Es, Hs;
+    Eigen::Vector2d s0 = Eigen::Vector2d::Zero();
+    Point           t1, t2;
+    /// Normal and shear spring (N/m): the penalty, in series with the
+    /// joint's stiffness over the contact area (dda::contact_springs()).
+    double normal_stiffness = 0., shear_stiffness = 0.;
+    /// Round-off of the gap and shear displacement (m).
+    double tolerance = 0.;
+    /// Force below which a state change is noise (N): 1e-4 of the weight
+    /// of the lighter block, at least the normal spring times tolerance.
+    double force_tolerance = 0.;
+  };
+
+  /// Result of the Mohr-Coulomb check of one contact after a solve.
+  struct StateCheck
+  {
+    ContactState state;
+    /// Normal force (N, compression positive).
+    double normal_force = 0.;
+    /// Shear force on block i (N) in the tangent basis.
+    Eigen::Vector2d shear_force = Eigen::Vector2d::Zero();
+    /// Sliding direction in the tangent basis (unit; zero if none).
+    Eigen::Vector2d direction = Eigen::Vector2d::Zero();
+    bool            changed   = false;
+  };
+
+  /**
+   * The 3D form of the 2D engine's state check (dda::check_state()), with
+   * the shear displacement @p s a vector in the contact plane and the
+   * sliding direction @p direction a unit vector there (k_n, k_s the
+   * contact's springs, f the force tolerance):
+   * - open -> locked when -k_n g > f (sliding at once if |k_s s| exceeds
+   *   the strength + f);
+   * - closed -> open when k_n g > T A + f (T only while intact and locked);
+   * - locked -> sliding when |k_s s| > strength + f, along s;
+   * - sliding -> locked when the slip reverses, k_s s . direction < -f
+   *   (the direction is held within a step: the shear force of the
+   *   locked spring when it started to slide, then the slip of the
+   *   previous accepted step; updating it within the open-close
+   *   iteration made the iteration wander on a block starting from rest);
+   * - a frictionless contact is sliding whenever closed.
+   */
+  StateCheck
+  check_state(const Contact           &contact,
+              const ContactKinematics &kinematics,
+              const Eigen::Vector2d   &direction,
+              const double             g,
+              const Eigen::Vector2d   &s,
+              const double             force_tolerance,
+              const JointMaterial     &joint);
+
+  /// Controls of the 3D engine.
+  struct EngineControls
+  {
+    /// Time step (s), > 0; cut by 3 when a step fails and grown back by 1.3
+    /// after good steps.
+    double dt = 1e-3;
+    /// Dynamic control parameter (-): 1 dynamic, 0 static.
+    double dynamic = 1.;
+    /// Normal penalty and shear ratio (dda::ContactLaw).
+    ContactLaw law;
+    /// Penalty of fixed points (N/m); 0: 10 x the normal penalty. Blocks
+    /// with 3 or more non-collinear fixed points (and no prescribed motion)
+    /// are clamped exactly instead.
+    double fixed_penalty = 0.;
+    /// Largest vertex displacement per step as a fraction of the block's
+    /// size (-): a step that moves a vertex further is cut. The contact
+    /// distance is 2.5 x this (DetectionTolerances::distance_factor).
+    double max_displacement_ratio = 0.01;
+    /// Open-close iterations that change a state before the step is cut;
+    /// iterations that only update friction may add as many again.
+    int max_open_close = 12;
+    /// Smallest time step (fraction of dt) before the run stops.
+    double min_dt_ratio = 1e-6;
+    /// Ground acceleration (m/s^2) in the seismic loading mode, at the
+    /// middle of each step; empty: none.
+    std::function<Point(double)> ground_acceleration;
+  };
+
+  /// Energies of the ledger (J).
+  struct Energy
+  {
+    double kinetic = 0., strain = 0., contact = 0., potential = 0.,
+           friction = 0., load_work = 0.;
+
+    /// kinetic + strain + contact + potential + friction - load work:
+    /// constant in exact dynamics; Shi's scheme may only lose energy.
+    double
+    balance() const
+    {
+      return kinetic + strain + contact + potential + friction - load_work;
+    }
+  };
+
+  /// Statistics of the last accepted step.
+  struct StepStatistics
+  {
+    int    iterations = 0, cuts = 0;
+    double dt   = 0.;
+    int    open = 0, sliding = 0, locked = 0;
+  };
+
+  /**
+   * 3D DDA with contacts. Each step: detect contacts on the geometry at the
+   * start of the step (broad and narrow phase), transfer the states of
+   * the previous step, then the open-close iteration: assemble the block
+   * terms (as FreeBlocks) and the contact springs, solve (sparse LDL^T),
+   * check every contact, until no state changes and the friction of
+   * sliding contacts has converged. A step that does not converge, or
+   * moves a vertex further than the allowed displacement, is redone with
+   * dt / 3. The scene is moved to a local origin on construction.
+   */
+  class Engine
+  {
+  public:
+    /// Validate @p system and keep it; throws InputError.
+    Engine(BlockSystem system, const EngineControls &controls);
+
+    /// One accepted step (cut as often as needed).
+    void
+    step();
+
+    /// Step until time @p t_end (the last step shortened to end there).
+    void
+    advance_to(const double t_end);
+
+    /// Time (s).
+    double
+    time() const
+    {
+      return t;
+    }
+
+    /// The scene in local coordinates.
+    const BlockSystem &
+    scene() const
+    {
+      return system;
+    }
+
+    /// The local origin (m).
+    const Point &
+    origin() const
+    {
+      return origin_;
+    }
+
+    /// Global position of the centroid of block @p b (m).
+    Point
+    centroid(const std::size_t b) const;
+
+    /// Displacement of the centroid of block @p b since t = 0 (m).
+    Point
+    displacement(const std::size_t b) const;
+
+    /// Global position of measurement point @p m (m).
+    Point
+    measurement_point(const std::size_t m) const;
+
+    /// The contacts at the end of the last accepted step.
+    const std::vector<Contact> &
+    contacts() const
+    {
+      return stored;
+    }
+
+    /// The energy ledger at the end of the last accepted step.
+    Energy
+    energy() const;
+
+    /// Statistics of the last accepted step.
+    const StepStatistics &
+    statistics() const
+    {
+      return stats;
+    }
+
+    /// Whether block @p b is clamped by its fixed points.
+    bool
+    clamped(const std::size_t b) const
+    {
+      return clamped_[b];
+    }
+
+  private:
+    /// One attempt of a step of length @p h; false if it must be cut.
+    bool
+    try_step(const double h);
+
+    BlockSystem          system;
+    EngineControls       ctrl;
+    Point                origin_ = Point::Zero();
+    double               t = 0., dt_now = 0.;
+    std::vector<char>    clamped_;
+    std::vector<Contact> stored;
+    bool                 first_detection = true;
+    double         friction_work = 0., load_work = 0., contact_energy = 0.;
+    StepStatistics stats;
+  };
+} // namespace rockdda::dda3d
+
+#endif

@@ -1,0 +1,846 @@
+/**
+ * @file
+ * 3D DDA with contacts: contact kinematics and springs, Mohr-Coulomb state
+ * checks, the open-close iteration with step cutting, and the energy
+ * ledger (Shi 1988, 2001; doc/theory/dda3d.md).
+ */
+#include <rockdda/dda3d/engine.h>
+#include <rockdda/io/error.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <tuple>
+
+namespace rockdda::dda3d
+{
+  StateCheck
+  check_state(const Contact           &contact,
+              const ContactKinematics &kin,
+              const Eigen::Vector2d   &direction,
+              const double             g,
+              const Eigen::Vector2d   &s,
+              const double             f,
+              const JointMaterial     &joint)
+  {
+    StateCheck r;
+    r.state                  = contact.state;
+    r.direction              = direction;
+    const double          kn = kin.normal_stiffness, ks = kin.shear_stiffness;
+    const double          n  = -kn * g;
+    const Eigen::Vector2d fs = -ks * s; // shear spring force on block i
+    auto                  slide_along = [&](const Eigen::Vector2d &v) {
+      const double l = v.norm();
+      return l > 0. ? Eigen::Vector2d(v / l) : direction;
+    };
+    if (contact.state == ContactState::open)
+      {
+        if (n > f)
+          {
+            Contact locked = contact;
+            locked.state   = ContactState::locked;
+            r.state        = ContactState::locked;
+            r.normal_force = n;
+            if (dda::frictionless(locked, joint)
+                || fs.norm()
+                     > dda::shear_strength(locked, n, contact.area, joint) + f)
+              {
+                r.state     = ContactState::sliding;
+                r.direction = slide_along(s);
+              }
+          }
+      }
+    else
+      {
+        const double tension_limit
+          = !contact.broken && contact.state == ContactState::locked
+              ? joint.tensile * contact.area
+              : 0.;
+        if (-n > tension_limit + f)
+          r.state = ContactState::open;
+        else
+          {
+            const double strength
+              = dda::shear_strength(contact, n, contact.area, joint);
+            r.normal_force = n;
+            if (dda::frictionless(contact, joint))
+              {
+                r.state     = ContactState::sliding;
+                r.direction = slide_along(s);
+              }
+            else if (contact.state == ContactState::locked)
+              {
+                r.shear_force = fs;
+                if (fs.norm() > strength + f)
+                  {
+                    r.state     = ContactState::sliding;
+                    r.direction = slide_along(s);
+                  }
+              }
+            else if (direction.squaredNorm() == 0.)
+              r.state = ContactState::locked;
+            else // sliding
+              {
+                if (ks * s.dot(direction) < -f)
+                  r.state = ContactState::locked;
+                else
+                  r.shear_force = -strength * r.direction;
+              }
+          }
+      }
+    r.changed = r.state != contact.state;
+    return r;
+  }
+
+
+
+  namespace
+  {
+    /// A unit vector perpendicular to @p n.
+    Point
+    perpendicular(const Point &n)
+    {
+      const Point a = std::abs(n.x()) < 0.6   ? Point::UnitX()
+                      : std::abs(n.y()) < 0.6 ? Point::UnitY()
+                                              : Point::UnitZ();
+      return (a - a.dot(n) * n).normalized();
+    }
+
+    /// Area of the overlap of two convex faces facing each other, in the
+    /// plane of @p fb (Sutherland-Hodgman clipping in 2D coordinates).
+    double
+    face_overlap(const Polyhedron &A,
+                 const int         fa,
+                 const Polyhedron &B,
+                 const int         fb)
+    {
+      const Point n = B.face_normal(fb);
+      const Point u = perpendicular(n);
+      const Point v = n.cross(u);
+      auto        to
+        = [&](const Point &p) { return Eigen::Vector2d(u.dot(p), v.dot(p)); };
+      std::vector<Eigen::Vector2d> clip, subject;
+      for (const int k : B.faces[fb])
+        clip.push_back(to(B.vertices[k]));
+      // A's face is counter-clockwise about -n: reverse it.
+      for (auto it = A.faces[fa].rbegin(); it != A.faces[fa].rend(); ++it)
+        subject.push_back(to(A.vertices[*it]));
+      auto cross = [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
+        return a.x() * b.y() - a.y() * b.x();
+      };
+      for (std::size_t e = 0; e < clip.size() && !subject.empty(); ++e)
+        {
+          const Eigen::Vector2d c0 = clip[e], c1 = clip[(e + 1) % clip.size()];
+          auto                  side
+            = [&](const Eigen::Vector2d &p) { return cross(c1 - c0, p - c0); };
+          std::vector<Eigen::Vector2d> out;
+          for (std::size_t k = 0; k < subject.size(); ++k)
+            {
+              const auto &p   = subject[k],
+                         &q   = subject[(k + 1) % subject.size()];
+              const double sp = side(p), sq = side(q);
+              if (sp >= 0.)
+                out.push_back(p);
+              if ((sp >= 0.) != (sq >= 0.))
+                out.push_back(p + (q - p) * (sp / (sp - sq)));
+            }
+          subject = out;
+        }
+      double a = 0.;
+      for (std::size_t k = 0; k < subject.size(); ++k)
+        a += cross(subject[k], subject[(k + 1) % subject.size()]);
+      return std::max(0., 0.5 * a);
+    }
+
+    /// The faces of block i's feature of candidate @p c (the faces at the
+    /// vertex, or the two faces of the edge).
+    std::vector<int>
+    feature_faces(const Polyhedron      &p,
+                  const PolyhedronEdges &edges,
+                  const ContactType      type,
+                  const int              feature)
+    {
+      std::vector<int> out;
+      if (type == ContactType::vertex_face)
+        {
+          for (int f = 0; f < int(p.faces.size()); ++f)
+            if (std::find(p.faces[f].begin(), p.faces[f].end(), feature)
+                != p.faces[f].end())
+              out.push_back(f);
+        }
+      else
+        out = {edges.face[feature][0], edges.face[feature][1]};
+      return out;
+    }
+  } // namespace
+
+
+
+  Engine::Engine(BlockSystem system_in, const EngineControls &c)
+      : system(std::move(system_in))
+      , ctrl(c)
+  {
+    if (!(ctrl.dt > 0.) || !std::isfinite(ctrl.dt))
+      throw InputError("time step " + std::to_string(ctrl.dt)
+                       + " s; valid: > 0");
+    if (!(ctrl.dynamic >= 0. && ctrl.dynamic <= 1.))
+      throw InputError("dynamic control " + std::to_string(ctrl.dynamic)
+                       + "; valid: 0-1");
+    if (!(ctrl.law.normal_penalty > 0.) || !(ctrl.law.shear_ratio > 0.))
+      throw InputError("contact penalty and shear ratio must be > 0");
+    if (!(ctrl.max_displacement_ratio > 0.))
+      throw InputError("maximum displacement ratio must be > 0");
+    if (ctrl.fixed_penalty <= 0.)
+      ctrl.fixed_penalty = 10. * ctrl.law.normal_penalty;
+    if (system.joints.empty() && system.blocks.size() > 1)
+      throw InputError("a scene of several blocks needs a joint material");
+    // Local origin: the lower corner of the bounding box (exact shift by
+    // Sterbenz for a scene in UTM coordinates).
+    Point lo = Point::Constant(std::numeric_limits<double>::infinity());
+    for (const auto &b : system.blocks)
+      for (const auto &v : b.polyhedron.vertices)
+        lo = lo.cwiseMin(v);
+    origin_ = lo.allFinite() ? lo : Point::Zero();
+    for (auto &b : system.blocks)
+      for (auto &v : b.polyhedron.vertices)
+        v -= origin_;
+    for (auto &f : system.fixed_points)
+      f.point -= origin_;
+    for (auto &l : system.load_points)
+      l.point -= origin_;
+    for (auto &m : system.measurement_points)
+      m.point -= origin_;
+    validate_and_prepare(system);
+    // Clamped blocks: 3 or more non-collinear fixed points.
+    clamped_.assign(system.blocks.size(), 0);
+    for (std::size_t b = 0; b < system.blocks.size(); ++b)
+      {
+        std::vector<Point> pts;
+        for (const auto &f : system.fixed_points)
+          if (f.block == int(b))
+            pts.push_back(f.point);
+        const double s = system.blocks[b].polyhedron.size();
+        for (std::size_t x = 0; x < pts.size() && !clamped_[b]; ++x)
+          for (std::size_t y = x + 1; y < pts.size() && !clamped_[b]; ++y)
+            for (std::size_t z = y + 1; z < pts.size() && !clamped_[b]; ++z)
+              if ((pts[y] - pts[x]).cross(pts[z] - pts[x]).norm()
+                  > 1e-6 * s * s)
+                clamped_[b] = 1;
+      }
+    dt_now = ctrl.dt;
+  }
+
+
+
+  void
+  Engine::step()
+  {
+    const BlockSystem          saved_system   = system;
+    const std::vector<Contact> saved_contacts = stored;
+    const double saved_friction = friction_work, saved_load = load_work;
+    double       h    = dt_now;
+    int          cuts = 0;
+    while (!try_step(h))
+      {
+        system        = saved_system;
+        stored        = saved_contacts;
+        friction_work = saved_friction;
+        load_work     = saved_load;
+        h /= 3.;
+        ++cuts;
+        if (h < ctrl.min_dt_ratio * ctrl.dt)
+          throw InputError(
+            "3D DDA: the time step fell below " + std::to_string(h)
+            + " s at t = " + std::to_string(t)
+            + " s (the open-close iteration does not converge, or blocks "
+              "move too far per step)");
+      }
+    t += h;
+    stats.cuts      = cuts;
+    stats.dt        = h;
+    first_detection = false;
+    if (cuts == 0 && stats.iterations <= std::max(2, ctrl.max_open_close / 2))
+      dt_now = std::min(ctrl.dt, 1.3 * h);
+    else
+      dt_now = h;
+  }
+
+
+
+  void
+  Engine::advance_to(const double t_end)
+  {
+    while (t < t_end - 1e-12 * ctrl.dt)
+      {
+        if (t + dt_now > t_end)
+          dt_now = t_end - t;
+        step();
+      }
+  }
+
+
+
+  bool
+  Engine::try_step(const double h)
+  {
+    const std::size_t n  = system.blocks.size();
+    Point             a  = system.gravity;
+    Point             ag = Point::Zero();
+    if (ctrl.ground_acceleration)
+      {
+        ag = ctrl.ground_acceleration(t + 0.5 * h);
+        a -= ag;
+      }
+    // Block terms (as FreeBlocks::step()).
+    std::vector<PolyhedronMoments> moments(n);
+    std::vector<Matrix12>          K0(n);
+    std::vector<Vector12>          F0(n), Fext(n);
+    std::vector<double>            mass(n), size(n);
+    for (std::size_t b = 0; b < n; ++b)
+      {
+        const Block    &block = system.blocks[b];
+        const Material &mat   = system.materials[block.material];
+        moments[b]            = block.polyhedron.moments();
+        const auto &m         = moments[b];
+        mass[b]               = mat.density * m.volume;
+        size[b]               = block.polyhedron.size();
+        const Matrix12 M      = mass_matrix(m, mat.density);
+        K0[b]                 = (2. / (h * h)) * M;
+        K0[b].block<6, 6>(6, 6) += m.volume * elasticity_matrix(mat);
+        Fext[b] = Vector12::Zero();
+        if (ctrl.ground_acceleration)
+          Fext[b] = body_force(m, mat.density, -ag);
+        F0[b] = (2. / h) * (M * (ctrl.dynamic * block.velocity))
+                + body_force(m, mat.density, system.gravity) + Fext[b]
+                + initial_stress_load(m.volume, block.stress);
+      }
+    for (const auto &l : system.load_points)
+      {
+        const Vector12 f
+          = point_load(moments[l.block].centroid, l.point, l.force);
+        F0[l.block] += f;
+        Fext[l.block] += f;
+      }
+    for (const auto &f : system.fixed_points)
+      {
+        const Point &c = moments[f.block].centroid;
+        K0[f.block] += fixed_point_stiffness(c, f.point, ctrl.fixed_penalty);
+        F0[f.block] += ctrl.fixed_penalty
+                       * displacement_matrix(c, f.point).transpose()
+                       * (f.anchor - f.point);
+      }
+
+    // Contacts: detection on the geometry at the start of the step.
+    DetectionTolerances tol;
+    tol.distance_factor = 2.5 * ctrl.max_displacement_ratio;
+    std::vector<const Polyhedron *> polys(n);
+    for (std::size_t b = 0; b < n; ++b)
+      polys[b] = &system.blocks[b].polyhedron;
+    const auto candidates = detect_contacts(polys, tol);
+
+    // Transfer of the stored states: by (type, i, a, j, b); a vertex that
+    // passed to another face of the same block keeps a closed state.
+    using Key = std::tuple<int, int, int, int, int>;
+    std::map<Key, const Contact *>                       by_key;
+    std::map<std::tuple<int, int, int>, const Contact *> by_vertex;
+    for (const auto &c : stored)
+      {
+        const auto &g                             = c.geometry;
+        by_key[{int(g.type), g.i, g.a, g.j, g.b}] = &c;
+        if (g.type == ContactType::vertex_face && c.state != ContactState::open)
+          by_vertex[{g.i, g.a, g.j}] = &c;
+      }
+    std::vector<Contact> contacts(candidates.size());
+    for (std::size_t k = 0; k < candidates.size(); ++k)
+      {
+        const auto &g      = candidates[k];
+        Contact    &c      = contacts[k];
+        c.geometry         = g;
+        c.joint            = system.blocks[g.j].joint;
+        auto           it  = by_key.find({int(g.type), g.i, g.a, g.j, g.b});
+        const Contact *old = it != by_key.end() ? it->second : nullptr;
+        bool           same_feature = old != nullptr;
+        if (!old && g.type == ContactType::vertex_face)
+          {
+            auto iv = by_vertex.find({g.i, g.a, g.j});
+            if (iv != by_vertex.end())
+              old = iv->second;
+          }
+        if (old)
+          {
+            c.state         = old->state;
+            c.direction     = old->direction;
+            c.normal_force  = old->normal_force;
+            c.broken        = old->broken;
+            c.reference     = old->reference;
+            c.has_reference = same_feature && old->has_reference;
+          }
+        else
+          {
+            // A new contact is closed within the round-off of its gap and
+            // of the input coordinates, which were rounded at their global
+            // magnitude (the local origin's) before the exact shift.
+            const double round_off
+              = 1e-12 * std::min(size[g.i], size[g.j])
+                + 4. * std::numeric_limits<double>::epsilon()
+                    * (g.p.norm() + g.q.norm() + 2. * origin_.norm());
+            c.state
+              = g.gap <= round_off ? ContactState::locked : ContactState::open;
+            c.broken = !first_detection;
+          }
+        if (c.state != ContactState::locked)
+          c.has_reference = false;
+      }
+    // Contact areas: the overlap of the two faces facing each other,
+    // shared among the contacts between them (a face group).
+    std::vector<int> group(contacts.size(), -1);
+    int              n_groups = 0;
+    {
+      std::vector<PolyhedronEdges> edges(n);
+      std::vector<char>            have(n, 0);
+      auto edges_of = [&](const int b) -> const PolyhedronEdges & {
+        if (!have[b])
+          {
+            edges[b] = polyhedron_edges(*polys[b]);
+            have[b]  = 1;
+          }
+        return edges[b];
+      };
+      std::map<std::tuple<int, int, int, int>, std::vector<std::size_t>> groups;
+      for (std::size_t k = 0; k < contacts.size(); ++k)
+        {
+          const auto &g = contacts[k].geometry;
+          const auto  fi
+            = feature_faces(*polys[g.i], edges_of(g.i), g.type, g.a);
+          std::vector<int> fj
+            = g.type == ContactType::vertex_face
+                ? std::vector<int>{g.b}
+                : feature_faces(*polys[g.j], edges_of(g.j), g.type, g.b);
+          bool found = false;
+          for (const int x : fi)
+            for (const int y : fj)
+              if (!found
+                  && polys[g.i]->face_normal(x).dot(polys[g.j]->face_normal(y))
+                       < -std::cos(0.1))
+                {
+                  found          = true;
+                  const auto key = g.i < g.j ? std::make_tuple(g.i, x, g.j, y)
+                                             : std::make_tuple(g.j, y, g.i, x);
+                  groups[key].push_back(k);
+                }
+        }
+      for (const auto &[key, members] : groups)
+        {
+          const auto [bi, fi, bj, fj] = key;
+          const double area = face_overlap(*polys[bi], fi, *polys[bj], fj);
+          for (const auto k : members)
+            {
+              contacts[k].area = area / double(members.size());
+              group[k]         = n_groups;
+            }
+          ++n_groups;
+        }
+    }
+
+    // Kinematics.
+    const double                   body_accel = a.norm();
+    std::vector<ContactKinematics> kin(contacts.size());
+    auto                           set_shear = [&](const std::size_t k) {
+      auto                       &c = contacts[k];
+      auto                       &K = kin[k];
+      const auto                 &g = c.geometry;
+      const Point                 r = c.has_reference ? c.reference : g.q;
+      Eigen::Matrix<double, 3, 2> tb;
+      tb.col(0) = K.t1;
+      tb.col(1) = K.t2;
+      K.Es = displacement_matrix(moments[g.i].centroid, g.p).transpose() * tb;
+      K.Hs = -displacement_matrix(moments[g.j].centroid, r).transpose() * tb;
+      K.s0 = tb.transpose() * (g.p - r);
+    };
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+      {
+        auto       &c = contacts[k];
+        auto       &K = kin[k];
+        const auto &g = c.geometry;
+        K.g0          = g.gap;
+        K.en = displacement_matrix(moments[g.i].centroid, g.p).transpose()
+               * g.normal;
+        K.hn = -displacement_matrix(moments[g.j].centroid, g.q).transpose()
+               * g.normal;
+        K.t1 = perpendicular(g.normal);
+        K.t2 = g.normal.cross(K.t1);
+        set_shear(k);
+        const auto springs
+          = dda::contact_springs(ctrl.law, system.joints[c.joint], c.area);
+        K.normal_stiffness = springs.normal;
+        K.shear_stiffness  = springs.shear;
+        K.tolerance        = 1e-12 * std::min(size[g.i], size[g.j])
+                      + 4. * std::numeric_limits<double>::epsilon()
+                          * (g.p.norm() + g.q.norm());
+        K.force_tolerance
+          = std::max(1e-4 * std::min(mass[g.i], mass[g.j]) * body_accel,
+                     K.normal_stiffness * K.tolerance);
+        c.state_at_start = c.state;
+      }
+    // Sliding directions in each contact's tangent basis.
+    std::vector<Eigen::Vector2d> dir(contacts.size(), Eigen::Vector2d::Zero());
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+      {
+        const Eigen::Vector2d d(kin[k].t1.dot(contacts[k].direction),
+                                kin[k].t2.dot(contacts[k].direction));
+        dir[k] = d.norm() > 1e-12 ? Eigen::Vector2d(d.normalized())
+                                  : Eigen::Vector2d::Zero();
+      }
+
+    // Open-close iteration.
+    const int             N = 12 * int(n);
+    Eigen::VectorXd       D(N);
+    std::vector<int>      changes(contacts.size(), 0);
+    int                   state_iterations = 0, iterations = 0;
+    bool                  converged = false;
+    std::vector<Vector12> Db(n);
+    // Face groups: the resultant of the members' shear displacements
+    // (oriented as on block i of the group's first member), the
+    // direction in which a member that starts to slide slides, so that
+    // the self-equilibrated part of the corner springs (Poisson
+    // expansion, a small relative rotation) does not turn the friction
+    // of a face sliding as a whole.
+    std::vector<Point> resultant(n_groups, Point::Zero());
+    std::vector<int>   group_i(n_groups, -1);
+    auto               slip3 = [&](const std::size_t k) {
+      const auto &K = kin[k];
+      const int   i = contacts[k].geometry.i, j = contacts[k].geometry.j;
+      const Eigen::Vector2d s
+        = K.s0 + K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j];
+      return Point(s.x() * K.t1 + s.y() * K.t2);
+    };
+    auto group_direction = [&](const std::size_t      k,
+                               const Eigen::Vector2d &fallback) {
+      if (group[k] < 0)
+        return fallback;
+      const Point r = (contacts[k].geometry.i == group_i[group[k]] ? 1. : -1.)
+                      * resultant[group[k]];
+      const Eigen::Vector2d d(kin[k].t1.dot(r), kin[k].t2.dot(r));
+      return d.norm() > 0. ? Eigen::Vector2d(d.normalized()) : fallback;
+    };
+    while (!converged)
+      {
+        ++iterations;
+        if (state_iterations > ctrl.max_open_close
+            || iterations > 2 * ctrl.max_open_close)
+          return false;
+        std::vector<Eigen::Triplet<double>> trip;
+        trip.reserve(144 * (n + 4 * contacts.size()));
+        Eigen::VectorXd       F  = Eigen::VectorXd::Zero(N);
+        std::vector<Matrix12> Kd = K0;
+        for (std::size_t b = 0; b < n; ++b)
+          F.segment<12>(12 * b) = F0[b];
+        std::map<std::pair<int, int>, Matrix12> Koff;
+        for (std::size_t k = 0; k < contacts.size(); ++k)
+          {
+            const auto &c = contacts[k];
+            if (c.state == ContactState::open)
+              continue;
+            const auto &K = kin[k];
+            const int   i = c.geometry.i, j = c.geometry.j;
+            // Stacked unknowns (D_i, D_j): gap g = g0 + [en; hn] . x.
+            Eigen::Matrix<double, 24, 1> gn;
+            gn << K.en, K.hn;
+            Eigen::Matrix<double, 24, 24> Kc
+              = K.normal_stiffness * gn * gn.transpose();
+            Eigen::Matrix<double, 24, 1> Fc = -K.normal_stiffness * K.g0 * gn;
+            Eigen::Matrix<double, 24, 2> gs;
+            gs << K.Es, K.Hs;
+            if (c.state == ContactState::locked)
+              {
+                Kc += K.shear_stiffness * gs * gs.transpose();
+                Fc -= K.shear_stiffness * gs * K.s0;
+              }
+            else // sliding: friction against the sliding direction
+              {
+                const double S = dda::shear_strength(c,
+                                                     c.normal_force,
+                                                     c.area,
+                                                     system.joints[c.joint]);
+                Fc -= S * gs * dir[k];
+              }
+            if (!clamped_[i])
+              {
+                Kd[i] += Kc.block<12, 12>(0, 0);
+                F.segment<12>(12 * i) += Fc.head<12>();
+              }
+            if (!clamped_[j])
+              {
+                Kd[j] += Kc.block<12, 12>(12, 12);
+                F.segment<12>(12 * j) += Fc.tail<12>();
+              }
+            if (!clamped_[i] && !clamped_[j])
+              {
+                if (i < j)
+                  {
+                    auto it = Koff.try_emplace({i, j}, Matrix12::Zero()).first;
+                    it->second += Kc.block<12, 12>(0, 12);
+                  }
+                else
+                  {
+                    auto it = Koff.try_emplace({j, i}, Matrix12::Zero()).first;
+                    it->second += Kc.block<12, 12>(12, 0);
+                  }
+              }
+          }
+        for (std::size_t b = 0; b < n; ++b)
+          {
+            if (clamped_[b])
+              {
+                Kd[b].setIdentity();
+                F.segment<12>(12 * b).setZero();
+              }
+            for (int r = 0; r < 12; ++r)
+              for (int s = 0; s < 12; ++s)
+                trip.emplace_back(12 * b + r, 12 * b + s, Kd[b](r, s));
+          }
+        for (const auto &[ij, Kij] : Koff)
+          for (int r = 0; r < 12; ++r)
+            for (int s = 0; s < 12; ++s)
+              {
+                trip.emplace_back(12 * ij.first + r,
+                                  12 * ij.second + s,
+                                  Kij(r, s));
+                trip.emplace_back(12 * ij.second + s,
+                                  12 * ij.first + r,
+                                  Kij(r, s));
+              }
+        Eigen::SparseMatrix<double> A(N, N);
+        A.setFromTriplets(trip.begin(), trip.end());
+        Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+        if (ldlt.info() != Eigen::Success)
+          return false;
+        D = ldlt.solve(F);
+        if (ldlt.info() != Eigen::Success || !D.allFinite())
+          return false;
+        for (std::size_t b = 0; b < n; ++b)
+          Db[b] = D.segment<12>(12 * b);
+
+        // State check.
+        double n_mean   = 0.;
+        int    n_closed = 0;
+        for (const auto &c : contacts)
+          if (c.state != ContactState::open)
+            {
+              n_mean += std::abs(c.normal_force);
+              ++n_closed;
+            }
+        n_mean = n_closed ? n_mean / n_closed : 0.;
+        std::fill(resultant.begin(), resultant.end(), Point::Zero());
+        std::fill(group_i.begin(), group_i.end(), -1);
+        for (std::size_t k = 0; k < contacts.size(); ++k)
+          if (group[k] >= 0 && contacts[k].state != ContactState::open)
+            {
+              if (group_i[group[k]] < 0)
+                group_i[group[k]] = contacts[k].geometry.i;
+              resultant[group[k]]
+                += (contacts[k].geometry.i == group_i[group[k]] ? 1. : -1.)
+                   * slip3(k);
+            }
+        bool any_state = false, any_friction = false;
+        for (std::size_t k = 0; k < contacts.size(); ++k)
+          {
+            auto                 &c = contacts[k];
+            const auto           &K = kin[k];
+            const int             i = c.geometry.i, j = c.geometry.j;
+            const double          g = K.g0 + K.en.dot(Db[i]) + K.hn.dot(Db[j]);
+            const Eigen::Vector2d s
+              = K.s0 + K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j];
+            const double f = K.force_tolerance
+                             * (changes[k] >= 3   ? 100.
+                                : changes[k] >= 2 ? 10.
+                                                  : 1.);
+            auto r = check_state(c, K, dir[k], g, s, f, system.joints[c.joint]);
+            if (r.changed && r.state == ContactState::sliding)
+              r.direction = group_direction(k, r.direction);
+            if (r.changed)
+              {
+                any_state = true;
+                ++changes[k];
+                if (c.state == ContactState::sliding
+                    && r.state == ContactState::locked)
+                  {
+                    // Force continuity: the locked spring starts at the
+                    // friction force the contact carried.
+                    const double S = dda::shear_strength(
+                      c, c.normal_force, c.area, system.joints[c.joint]);
+                    const Point d3 = dir[k].x() * K.t1 + dir[k].y() * K.t2;
+                    c.reference = c.geometry.q - (S / K.shear_stiffness) * d3;
+                    c.has_reference = true;
+                  }
+                else if (r.state == ContactState::locked)
+                  c.has_reference = false;
+                c.state = r.state;
+                set_shear(k);
+              }
+            else if (c.state == ContactState::sliding)
+              {
+                if (std::abs(r.normal_force - c.normal_force)
+                    > 1e-3 * (std::abs(r.normal_force) + n_mean) + f)
+                  any_friction = true;
+              }
+            c.normal_force = r.normal_force;
+            dir[k]         = r.direction;
+            const Point fs3
+              = r.shear_force.x() * K.t1 + r.shear_force.y() * K.t2;
+            c.shear_force = fs3;
+            if (changes[k] >= 12)
+              return false;
+          }
+        if (any_state)
+          ++state_iterations;
+        converged = !any_state && !any_friction;
+      }
+
+    // Step size: no vertex moves further than the allowed displacement.
+    for (std::size_t b = 0; b < n; ++b)
+      {
+        if (clamped_[b])
+          continue;
+        const double limit = ctrl.max_displacement_ratio * size[b];
+        for (const auto &v : system.blocks[b].polyhedron.vertices)
+          if ((displacement_matrix(moments[b].centroid, v) * Db[b]).norm()
+              > limit)
+            return false;
+      }
+
+    // Accept: energy terms of the step, contact states, geometry.
+    for (std::size_t b = 0; b < n; ++b)
+      load_work += Fext[b].dot(Db[b]);
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+      {
+        auto       &c = contacts[k];
+        const auto &K = kin[k];
+        const int   i = c.geometry.i, j = c.geometry.j;
+        if (c.state == ContactState::sliding)
+          {
+            const Eigen::Vector2d s
+              = K.s0 + K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j];
+            const double S = dda::shear_strength(c,
+                                                 c.normal_force,
+                                                 c.area,
+                                                 system.joints[c.joint]);
+            friction_work += S * dir[k].dot(s);
+            // The next step's sliding direction: this step's slip (of the
+            // face group as a whole).
+            if (K.shear_stiffness * s.norm() > K.force_tolerance)
+              dir[k] = group_direction(k, s.normalized());
+          }
+        c.direction = dir[k].x() * K.t1 + dir[k].y() * K.t2;
+        if (c.state == ContactState::sliding
+            || (c.state == ContactState::open
+                && c.state_at_start != ContactState::open))
+          c.broken = true;
+        if (c.state == ContactState::locked)
+          {
+            // The shear reference is a material point of block j.
+            const Point r   = c.has_reference ? c.reference : c.geometry.q;
+            c.reference     = move_point(moments[j].centroid, Db[j], r);
+            c.has_reference = true;
+          }
+        else
+          c.has_reference = false;
+      }
+    for (std::size_t b = 0; b < n; ++b)
+      {
+        Block      &block = system.blocks[b];
+        const Point c     = moments[b].centroid;
+        for (auto &v : block.polyhedron.vertices)
+          v = move_point(c, Db[b], v);
+        for (auto &f : system.fixed_points)
+          if (f.block == int(b))
+            f.point = move_point(c, Db[b], f.point);
+        for (auto &l : system.load_points)
+          if (l.block == int(b))
+            l.point = move_point(c, Db[b], l.point);
+        for (auto &m : system.measurement_points)
+          if (m.block == int(b))
+            m.point = move_point(c, Db[b], m.point);
+        const Matrix6 C = elasticity_matrix(system.materials[block.material]);
+        const Eigen::Matrix3d R = rotation_matrix(rotation_vector(Db[b]));
+        const Vector6         e = Db[b].tail<6>();
+        block.stress            = rotate_voigt(block.stress + C * e, R, 1.);
+        block.strain            = rotate_voigt(block.strain + e, R, 0.5);
+        block.velocity = (2. / h) * Db[b] - ctrl.dynamic * block.velocity;
+      }
+    stored           = std::move(contacts);
+    stats.iterations = iterations;
+    stats.open = stats.sliding = stats.locked = 0;
+    for (const auto &c : stored)
+      (c.state == ContactState::open      ? stats.open
+       : c.state == ContactState::sliding ? stats.sliding
+                                          : stats.locked)++;
+    // The contact springs' energy at the end of the step, from the forces
+    // of the last solve.
+    contact_energy = 0.;
+    for (std::size_t k = 0; k < stored.size(); ++k)
+      if (stored[k].state != ContactState::open)
+        {
+          contact_energy += stored[k].normal_force * stored[k].normal_force
+                            / (2. * kin[k].normal_stiffness);
+          if (stored[k].state == ContactState::locked)
+            contact_energy += stored[k].shear_force.squaredNorm()
+                              / (2. * kin[k].shear_stiffness);
+        }
+    return true;
+  }
+
+
+
+  Point
+  Engine::centroid(const std::size_t b) const
+  {
+    return origin_ + system.blocks[b].polyhedron.moments().centroid;
+  }
+
+
+
+  Point
+  Engine::displacement(const std::size_t b) const
+  {
+    return system.blocks[b].polyhedron.moments().centroid
+           - system.blocks[b].initial_centroid;
+  }
+
+
+
+  Point
+  Engine::measurement_point(const std::size_t m) const
+  {
+    return origin_ + system.measurement_points[m].point;
+  }
+
+
+
+  Energy
+  Engine::energy() const
+  {
+    Energy e;
+    for (const auto &b : system.blocks)
+      {
+        const Material &mat = system.materials[b.material];
+        const auto      m   = b.polyhedron.moments();
+        e.kinetic
+          += 0.5 * b.velocity.dot(mass_matrix(m, mat.density) * b.velocity);
+        const Matrix6 C = elasticity_matrix(mat);
+        e.strain += 0.5 * m.volume * b.stress.dot(C.ldlt().solve(b.stress));
+        e.potential -= mat.density * m.volume
+                       * system.gravity.dot(m.centroid - b.initial_centroid);
+      }
+    e.contact   = contact_energy;
+    e.friction  = friction_work;
+    e.load_work = load_work;
+    return e;
+  }
+} // namespace rockdda::dda3d
