@@ -5,6 +5,7 @@
  * stepping (rigid rotation, free fall, static elastic response) and bad
  * input. Every test prints its measured errors.
  */
+#include <rockdda/analytical/sliding3d.h>
 #include <rockdda/dda3d/block_file.h>
 #include <rockdda/dda3d/block_matrices.h>
 #include <rockdda/dda3d/contact_detection.h>
@@ -1165,4 +1166,129 @@ TEST(Dda3dContacts, InclineInUtmCoordinatesAndRotatedGivesTheSameAnswer)
   EXPECT_LT(std::abs(rr.along - r0.along), 1e-9);
   EXPECT_LT(std::abs(rb.along - r0.along), 1e-8);
   EXPECT_LT(rb.across, 1e-6);
+}
+
+
+
+TEST(Dda3dContacts, SymmetricWedgeSlidesAlongTheIntersectionLine)
+{
+  // A triangular prism in a V-trough: planes through the trough's axis at
+  // beta = 30 deg to the horizontal across it, the axis plunging psi = 30
+  // deg towards +x, friction phi = 15 deg on both. Rigid-block answer
+  // (analytical::slide_3d, double-face sliding; the same as the closed form
+  // a = g (sin psi - cos psi tan phi / cos beta)): 1.14 m at 1 s. Two
+  // clamped trough blocks, the prism (E 10 GPa, p = 1e11 N/m), dt 5 ms.
+  // Measured: the error is first order in dt (2.8e-3, 1.4e-3, 7.1e-4 at
+  // dt = 5, 2.5, 1.25 ms; not from the normal-force tolerance of the
+  // open-close iteration, 1e-6 instead of 1e-3 changes it by 1e-5); the
+  // bound is the 1 % the issue asks. Energy: at most 1e-5 of the energy
+  // released (measured 1.3e-6: the contact energy of the last iteration).
+  const double beta = 30. * pi / 180., psi = 30. * pi / 180.;
+  const double phi_deg = 15., L = 1., w = 0.5;
+  const double tb = std::tan(beta);
+  const Point  nA(0., -std::sin(beta), std::cos(beta)),
+    nB(0., std::sin(beta), std::cos(beta));
+  BlockSystem s;
+  s.materials.push_back({2700., 1e10, 0.25, 1});
+  dda::JointMaterial joint;
+  joint.friction_deg = phi_deg;
+  s.joints.push_back(joint);
+  Eigen::Matrix3d R;
+  R        = Eigen::AngleAxisd(psi, Point::UnitY());
+  auto add = [&](const Polyhedron &p, const int id) {
+    Block b;
+    b.id         = id;
+    b.material   = 0;
+    b.polyhedron = moved(p, R, Point::Zero());
+    s.blocks.push_back(b);
+  };
+  // Trough block A (y >= 0, below plane A) and B (mirror).
+  add(clip_convex(make_box(Point(-1., 0., -1.),
+                           Point(L + 2., 2. * w, 2. * w * tb)),
+                  {{nA, 0.}}),
+      1);
+  add(clip_convex(make_box(Point(-1., -2. * w, -1.),
+                           Point(L + 2., 0., 2. * w * tb)),
+                  {{nB, 0.}}),
+      2);
+  // The wedge: above both planes, below z = w tan(beta).
+  add(clip_convex(make_box(Point(0., -w, 0.), Point(L, w, w * tb)),
+                  {{-nA, 0.}, {-nB, 0.}}),
+      3);
+  for (const int b : {0, 1})
+    for (const Point &p :
+         {Point(0., 0.5, -0.5), Point(2., 0.5, -0.5), Point(1., 0.8, -0.8)})
+      s.fixed_points.push_back(
+        {b, R * Point(p.x(), b == 0 ? p.y() : -p.y(), p.z()), Point::Zero()});
+  EngineControls c;
+  c.dt                 = 0.005;
+  c.law.normal_penalty = 1e11;
+  Engine engine(s, c);
+  double max_balance = -1e300;
+  int    cuts        = 0;
+  while (engine.time() < 1. - 1e-9)
+    {
+      engine.advance_to(std::min(1., engine.time() + c.dt));
+      max_balance = std::max(max_balance, engine.energy().balance());
+      cuts += engine.statistics().cuts;
+    }
+  const Point d = engine.displacement(2);
+
+  // The analytical wedge: the planes' dip and dip direction (x east,
+  // y north) from their upward normals in the scene.
+  analytical::Sliding3dOptions o;
+  o.wedge    = true;
+  auto plane = [&](const Point &n_local) {
+    const Point              n = R * n_local;
+    analytical::SlidingPlane p;
+    p.dip_deg           = std::acos(n.z()) * 180. / pi;
+    p.dip_direction_deg = std::atan2(n.x(), n.y()) * 180. / pi;
+    if (p.dip_direction_deg < 0.)
+      p.dip_direction_deg += 360.;
+    p.friction = analytical::FrictionLaw::coulomb_deg(phi_deg);
+    EXPECT_LT(
+      (analytical::plane_normal(p.dip_deg, p.dip_direction_deg) - n).norm(),
+      1e-12);
+    return p;
+  };
+  o.plane1    = plane(nA);
+  o.plane2    = plane(nB);
+  o.time_step = 1e-3;
+  o.duration  = 1.;
+  const auto exact
+    = analytical::slide_3d([](double) { return Eigen::Vector3d(0., 0., -1.); },
+                           o);
+  const double a_closed
+    = 9.80665
+      * (std::sin(psi)
+         - std::cos(psi) * std::tan(phi_deg * pi / 180.) / std::cos(beta));
+  const double e
+    = (d - exact.final_displacement).norm() / exact.final_displacement.norm();
+  std::printf("wedge: DDA (%.6f, %.6f, %.6f) m, slide_3d (%.6f, %.6f, %.6f) m "
+              "(mode %s; closed form %.6f m), rel. error %.2e, %d cuts, "
+              "max balance %.2e J of %.2e J released, contacts o/s/l %d %d "
+              "%d\n",
+              d.x(),
+              d.y(),
+              d.z(),
+              exact.final_displacement.x(),
+              exact.final_displacement.y(),
+              exact.final_displacement.z(),
+              analytical::to_string(exact.final_mode),
+              0.5 * a_closed,
+              e,
+              cuts,
+              max_balance,
+              -2700. * engine.scene().blocks[2].polyhedron.moments().volume
+                * 9.80665 * d.z(),
+              engine.statistics().open,
+              engine.statistics().sliding,
+              engine.statistics().locked);
+  EXPECT_EQ(exact.final_mode, analytical::SlidingMode::wedge);
+  EXPECT_NEAR(exact.final_displacement.norm(), 0.5 * a_closed, 1e-6 * a_closed);
+  EXPECT_LT(e, 1e-2);
+  const double released = -engine.scene().materials[0].density
+                          * engine.scene().blocks[2].polyhedron.moments().volume
+                          * 9.80665 * d.z();
+  EXPECT_LT(max_balance, 1e-5 * released);
 }
