@@ -689,6 +689,19 @@ namespace rockdda::dda3d
                 if (std::abs(r.normal_force - c.normal_force)
                     > 1e-3 * (std::abs(r.normal_force) + n_mean) + f)
                   any_friction = true;
+                // A face group slides along the resultant of its slip in
+                // this step: the direction it started with (the trial
+                // spring forces, which in a wedge include the wedging
+                // across the axis) is corrected within the step.
+                if (group[k] >= 0 && K.shear_stiffness * s.norm() > f)
+                  {
+                    const Eigen::Vector2d dn = group_direction(k, dir[k]);
+                    if ((dn - dir[k]).norm() > 1e-3)
+                      {
+                        r.direction  = dn;
+                        any_friction = true;
+                      }
+                  }
               }
             c.normal_force = r.normal_force;
             dir[k]         = r.direction;

@@ -1178,11 +1178,13 @@ TEST(Dda3dContacts, SymmetricWedgeSlidesAlongTheIntersectionLine)
   // (analytical::slide_3d, double-face sliding; the same as the closed form
   // a = g (sin psi - cos psi tan phi / cos beta)): 1.14 m at 1 s. Two
   // clamped trough blocks, the prism (E 10 GPa, p = 1e11 N/m), dt 5 ms.
-  // Measured: the error is first order in dt (2.8e-3, 1.4e-3, 7.1e-4 at
-  // dt = 5, 2.5, 1.25 ms; not from the normal-force tolerance of the
-  // open-close iteration, 1e-6 instead of 1e-3 changes it by 1e-5); the
-  // bound is the 1 % the issue asks. Energy: at most 1e-5 of the energy
-  // released (measured 1.3e-6: the contact energy of the last iteration).
+  // Measured: 3.0e-6. Before the sliding direction of a face group was
+  // corrected within the step, the first step slid along the locked
+  // springs' trial force, which in a wedge includes the wedging across the
+  // axis: an error first order in dt (2.8e-3, 1.4e-3, 7.1e-4 at dt = 5,
+  // 2.5, 1.25 ms). Bound 1e-3 (the issue asks 1 %): ten times the start-up
+  // error of the incline (7.5e-5). Energy: at most 1e-5 of the energy
+  // released (measured 2e-6: the contact energy of the last iteration).
   const double beta = 30. * pi / 180., psi = 30. * pi / 180.;
   const double phi_deg = 15., L = 1., w = 0.5;
   const double tb = std::tan(beta);
@@ -1286,7 +1288,7 @@ TEST(Dda3dContacts, SymmetricWedgeSlidesAlongTheIntersectionLine)
               engine.statistics().locked);
   EXPECT_EQ(exact.final_mode, analytical::SlidingMode::wedge);
   EXPECT_NEAR(exact.final_displacement.norm(), 0.5 * a_closed, 1e-6 * a_closed);
-  EXPECT_LT(e, 1e-2);
+  EXPECT_LT(e, 1e-3);
   const double released = -engine.scene().materials[0].density
                           * engine.scene().blocks[2].polyhedron.moments().volume
                           * 9.80665 * d.z();

@@ -109,10 +109,8 @@ namespace rockdda::dda3d
    * - closed -> open when k_n g > T A + f (T only while intact and locked);
    * - locked -> sliding when |k_s s| > strength + f, along s;
    * - sliding -> locked when the slip reverses, k_s s . direction < -f
-   *   (the direction is held within a step: the shear force of the
-   *   locked spring when it started to slide, then the slip of the
-   *   previous accepted step; updating it within the open-close
-   *   iteration made the iteration wander on a block starting from rest);
+   *   (@p direction is not changed here: the engine sets it from the
+   *   resultant of the contact's face group, doc/theory/dda3d.md);
    * - a frictionless contact is sliding whenever closed.
    */
   StateCheck
