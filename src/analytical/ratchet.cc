@@ -149,8 +149,8 @@ namespace rockdda::analytical
             const double friction_angle_deg)
   {
     const double eta = slope_deg * degree, phi = friction_angle_deg * degree;
-    return unit_weight * block_length
-           * (block_height - 0.5 * block_length * std::tan(eta))
+    return unit_weight
+           * Block1Section{block_length, block_height, slope_deg}.area()
            * (std::tan(phi) * std::cos(eta) - std::sin(eta));
   }
 
@@ -295,8 +295,7 @@ namespace rockdda::analytical
     // delta_sigma + delta_j = F_max cos(eta) C, F_max = W (tan(phi) cos(eta)
     // - sin(eta)); delta_T does not depend on phi.
     const double weight
-      = input.density * input.gravity * input.block_length
-        * (input.block_height - 0.5 * input.block_length * std::tan(eta));
+      = input.density * input.gravity * input.section().area();
     const double compliance
       = (input.wedge_length + 0.5 * input.block_length)
           / (input.block_height * input.youngs_modulus)

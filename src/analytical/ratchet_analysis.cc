@@ -150,7 +150,7 @@ namespace rockdda::analytical
         prm.enter_subsection("Ratchet analytical");
         io::declare(prm,
                     "Block length",
-                    "7",
+                    block1_default(&analytical::Block1Section::length),
                     DoubleInterval::positive(),
                     "m",
                     "Length L_B of the sliding block (thesis Fig. 5-9, Eqs. "
@@ -158,12 +158,14 @@ namespace rockdda::analytical
                     "time t* = 2 L_B^2 / D_T. Must be > 0.");
         io::declare(prm,
                     "Block height",
-                    "15",
+                    block1_default(&analytical::Block1Section::height),
                     DoubleInterval::positive(),
                     "m",
-                    "Height H of the block at the tension crack (Eqs. 5.3, "
-                    "5.4); the cross-section is L_B (H - L_B tan(slope) / 2). "
-                    "Must be > 0 and exceed L_B tan(slope) / 2.");
+                    "Height H of the block's front (downslope) face (Eqs. "
+                    "5.3, 5.4); the back face at the tension crack is H - L_B "
+                    "tan(slope) high and the cross-section L_B (H - L_B "
+                    "tan(slope) / 2) (doc/theory/block1.md). Must be > 0 and "
+                    "exceed L_B tan(slope) / 2.");
         io::declare(prm,
                     "Wedge length",
                     "0.2",
@@ -173,7 +175,7 @@ namespace rockdda::analytical
                     "crack (Eqs. 5.2, 5.4). Must be >= 0.");
         io::declare(prm,
                     "Slope",
-                    "19",
+                    block1_default(&analytical::Block1Section::slope_deg),
                     DoubleInterval::right_open(0., 90.),
                     "deg",
                     "Dip eta of the sliding plane, 0 <= eta < 90; must be "

@@ -65,17 +65,16 @@ namespace rockdda::coupling
                      m.friction_deg,
                      "0 <= friction < 90 deg");
 
-    const double t  = std::tan(g.slope_deg * pi / 180.);
+    const double t  = g.tan_slope();
     const auto   yb = [&](const double x) { return -t * x; };
-    if (!(g.height - g.length * t > 0.1 * g.height))
+    if (!(g.back_height() > 0.1 * g.height))
       throw InputError("key '" + section
                        + "/Block height' = " + std::to_string(g.height)
                        + " m is too low for the block length and slope: the "
                          "back face would be shorter than 10 % of it");
 
     Block1Scene scene;
-    scene.downslope     = Point(std::cos(g.slope_deg * pi / 180.),
-                            -std::sin(g.slope_deg * pi / 180.));
+    scene.downslope     = g.downslope();
     dda::BlockSystem &s = scene.blocks;
     s.materials.push_back(m.rock);
     dda::JointMaterial bedding;
@@ -104,15 +103,12 @@ namespace rockdda::coupling
           s.fixed_points.push_back(f);
         }
     }
-    // The block: heel, toe, front-top, back-top.
+    // The block: heel (at the origin), toe, front-top, back-top.
     {
       dda::Block b;
-      b.id               = 1;
-      b.material         = 0;
-      b.polygon.vertices = {Point(0., 0.),
-                            Point(g.length, yb(g.length)),
-                            Point(g.length, yb(g.length) + g.height),
-                            Point(0., yb(g.length) + g.height)};
+      b.id       = 1;
+      b.material = 0;
+      b.polygon  = g.polygon();
       s.blocks.push_back(b);
       dda::MeasurementPoint p;
       p.block = 1;
@@ -235,23 +231,10 @@ namespace rockdda::coupling
   block1_rocking_acceleration(const Block1Geometry &g)
   {
     // The block's polygon as make_block1_seismic_scene() builds it.
-    const double               t = std::tan(g.slope_deg * pi / 180.);
-    const std::array<Point, 4> p{Point(0., 0.),
-                                 Point(g.length, -t * g.length),
-                                 Point(g.length, -t * g.length + g.height),
-                                 Point(0., -t * g.length + g.height)};
-    double                     a = 0., cx = 0., cy = 0.;
-    for (std::size_t i = 0; i < p.size(); ++i)
-      {
-        const Point &u = p[i], &v = p[(i + 1) % p.size()];
-        const double c = u[0] * v[1] - v[0] * u[1];
-        a += c;
-        cx += (u[0] + v[0]) * c;
-        cy += (u[1] + v[1]) * c;
-      }
-    cx /= 3. * a;
-    cy /= 3. * a;
-    return (p[1][0] - cx) / (cy - p[1][1]);
+    const geometry::Polygon poly = g.polygon();
+    const auto             &p    = poly.vertices;
+    const Point             c    = poly.centroid();
+    return (p[1][0] - c[0]) / (c[1] - p[1][1]);
   }
 
 

@@ -99,9 +99,7 @@ namespace rockdda::coupling
       ratchet_input(const std::size_t i) const
       {
         analytical::RatchetInput in;
-        in.block_length       = geometry.length;
-        in.block_height       = geometry.height;
-        in.slope_deg          = geometry.slope_deg;
+        in.set_section(geometry);
         in.friction_angle_deg = materials.friction_deg;
         in.beta               = betas[i];
         in.thermal_expansion  = alphas[i];

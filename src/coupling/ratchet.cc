@@ -220,12 +220,6 @@ namespace rockdda::coupling
         }
       return std::array<double, 2>{{b - a, sum / (hi - lo)}};
     };
-    // Stalled samples: a smaller pseudo time step every stall_steps steps.
-    constexpr unsigned int stall_steps  = 300;
-    const auto             restore_step = [this]() {
-      if (engine->controls().time_step != pseudo_time_step)
-        engine->set_time_step(pseudo_time_step);
-    };
     double moved = 0.;
     for (unsigned int k = 0; k < ctrl.max_steps_per_sample; ++k)
       {
@@ -234,13 +228,7 @@ namespace rockdda::coupling
         record.cuts += r.cuts;
         last = r.max_displacement;
         if (r.max_displacement <= tolerance && r.cuts == 0)
-          return restore_step();
-        if (k > 0 && k % stall_steps == 0 && k <= 3 * stall_steps)
-          {
-            if (k == stall_steps)
-              ++record.regularised_samples;
-            engine->set_time_step(engine->controls().time_step / 10.);
-          }
+          return;
         // Steps cut on the way count too: the test is on the slip and the
         // aperture that the ratchet measures.
         moved = std::max(moved, r.max_displacement);
@@ -257,7 +245,7 @@ namespace rockdda::coupling
           {
             ++record.stationary_samples;
             record.chatter = std::max(record.chatter, moved);
-            return restore_step();
+            return;
           }
         if (n < 2 * cycle_window)
           continue;
@@ -273,8 +261,41 @@ namespace rockdda::coupling
           {
             ++record.stationary_samples;
             record.chatter = std::max({record.chatter, moved, amplitude});
-            return restore_step();
+            return;
           }
+      }
+    // Diagnosis: over the last steps, did the slip and the aperture drift
+    // (something slides away or creeps at its friction limit) or cycle
+    // without drift (contact states that flip between steps)?
+    std::string       diagnosis;
+    const std::size_t n = recent.size();
+    if (n >= 2)
+      {
+        const std::size_t half      = n / 2;
+        double            amplitude = 0., drift = 0.;
+        for (const std::size_t i : {std::size_t(0), std::size_t(1)})
+          {
+            const auto first  = spread_of(0, half, i);
+            const auto second = spread_of(half, n, i);
+            amplitude         = std::max({amplitude, first[0], second[0]});
+            drift             = std::max(drift, std::abs(second[1] - first[1]));
+          }
+        const double slip_change = recent.back()[0] - recent.front()[0];
+        diagnosis
+          = "; over the last " + std::to_string(n)
+            + " steps the base slip changed by "
+            + io::format_number(slip_change, 3)
+            + " m, the means of slip and aperture over their two halves by "
+            + io::format_number(drift, 3) + " m, with an amplitude of "
+            + io::format_number(amplitude, 3) + " m: "
+            + (drift > tolerance
+                 ? "the scene still moves (a block or the infill slides "
+                   "or creeps at its friction limit; check the friction, "
+                   "the slope and the infill's position, or raise 'Max "
+                   "steps per sample')"
+                 : "contact states cycle between steps without drift "
+                   "(raise 'Equilibrium tolerance', or try another "
+                   "'Pseudo time step')");
       }
     throw dda::DdaFailure(
       "cycle " + std::to_string(n_cycles + 1)
@@ -283,10 +304,7 @@ namespace rockdda::coupling
       + " static steps at t = " + io::format_number(time / forcing.period, 6)
       + " periods (the last step moved a vertex by "
       + io::format_number(last, 3) + " m, the tolerance is "
-      + io::format_number(tolerance, 3)
-      + " m): raise 'Max steps per sample' or 'Equilibrium tolerance', or "
-        "the block or the infill is sliding away (check the friction, the "
-        "slope and the infill's position)");
+      + io::format_number(tolerance, 3) + " m)" + diagnosis);
   }
 
 

@@ -61,20 +61,26 @@ namespace rockdda::coupling
         const auto positive = DoubleInterval::positive();
         io::declare(prm,
                     "Block length",
-                    "7",
+                    analytical::block1_default(
+                      &analytical::Block1Section::length),
                     positive,
                     "m",
                     "Length L_B of the block along the horizontal at its "
-                    "base (> 0).");
+                    "base (> 0; thesis Eq. 5.3, doc/theory/block1.md).");
         io::declare(prm,
                     "Block height",
-                    "15",
+                    analytical::block1_default(
+                      &analytical::Block1Section::height),
                     positive,
                     "m",
-                    "Height H of the block at its back face (> 0).");
+                    "Height H of the block's front (downslope) face (> 0); "
+                    "the back face at the crack is H - L_B tan(eta) high "
+                    "(at least 10 % of H), the area L_B (H - L_B tan(eta) "
+                    "/ 2) as in thesis Eq. 5.3 (doc/theory/block1.md).");
         io::declare(prm,
                     "Slope",
-                    "19",
+                    analytical::block1_default(
+                      &analytical::Block1Section::slope_deg),
                     DoubleInterval::right_open(0., 45.),
                     "deg",
                     "Dip eta of the bedding plane the block rests on "
@@ -409,9 +415,9 @@ namespace rockdda::coupling
         prm.leave_subsection();
 
         prm.enter_subsection("Ratchet");
-        geometry.block_length       = prm.get_double("Block length");
-        geometry.block_height       = prm.get_double("Block height");
-        geometry.slope_deg          = prm.get_double("Slope");
+        geometry.block.length       = prm.get_double("Block length");
+        geometry.block.height       = prm.get_double("Block height");
+        geometry.block.slope_deg    = prm.get_double("Slope");
         geometry.crack_top_width    = prm.get_double("Crack top width");
         geometry.crack_bottom_width = prm.get_double("Crack bottom width");
         geometry.cliff_width        = prm.get_double("Cliff width");
@@ -505,7 +511,6 @@ namespace rockdda::coupling
                {"cuts", "-"},
                {"stationary_samples", "-"},
                {"chatter", "m"},
-               {"regularised_samples", "-"},
                {"fragments", "-"}})
           table.add_column(name, unit);
         io::Table loop;
@@ -564,7 +569,6 @@ namespace rockdda::coupling
                            static_cast<double>(r.cuts),
                            static_cast<double>(r.stationary_samples),
                            r.chatter,
-                           static_cast<double>(r.regularised_samples),
                            static_cast<double>(r.fragments)});
             if (record_loop)
               for (const auto &s : samples)
@@ -625,22 +629,13 @@ namespace rockdda::coupling
         {
           // Samples whose equilibrium was a stationary switching of one
           // contact (RatchetRun::equilibrate), over all cycles.
-          double stationary = 0., chatter = 0., regularised = 0.;
+          double stationary = 0., chatter = 0.;
           for (std::size_t i = 0; i < table.n_rows(); ++i)
             {
               stationary += table.row(i)[11];
               chatter = std::max(chatter, table.row(i)[12]);
-              regularised += table.row(i)[13];
             }
           context.summary.add("stationary_samples", stationary, "-");
-          context.summary.add("regularised_samples", regularised, "-");
-          if (regularised > 0.)
-            log.line("WARNING: " + io::format_number(regularised, 6)
-                     + " samples reached equilibrium only with a smaller "
-                       "pseudo time step (the contact states cycled between "
-                       "steps): the slip of such runs depends on the "
-                       "pseudo time step; compare runs with a different "
-                       "'Pseudo time step' before trusting it");
           context.summary.add("chatter_max", chatter, "m");
           if (stationary > 0.)
             log.line("note: " + io::format_number(stationary, 6)
@@ -656,10 +651,8 @@ namespace rockdda::coupling
         // the same block, wedge = the crack width at the infill's middle,
         // beta = 0.45.
         analytical::RatchetInput a;
-        a.block_length          = geometry.block_length;
-        a.block_height          = geometry.block_height;
+        a.set_section(geometry.block);
         a.wedge_length          = geometry.infill ? infill_width() : 0.;
-        a.slope_deg             = geometry.slope_deg;
         a.friction_angle_deg    = materials.bedding_friction_deg;
         a.density               = materials.rock.density;
         a.youngs_modulus        = materials.rock.young;
@@ -711,10 +704,12 @@ namespace rockdda::coupling
       std::string
       fingerprint() const
       {
-        std::string f;
-        for (const double v : {geometry.block_length,
-                               geometry.block_height,
-                               geometry.slope_deg,
+        // "H front": the block's height is that of its front face (a
+        // checkpoint of the earlier back-face geometry does not resume).
+        std::string f = "H front;";
+        for (const double v : {geometry.block.length,
+                               geometry.block.height,
+                               geometry.block.slope_deg,
                                geometry.crack_top_width,
                                geometry.crack_bottom_width,
                                geometry.infill ? 1. : 0.,

@@ -104,17 +104,18 @@ namespace rockdda::coupling
   RatchetScene
   make_ratchet_scene(const RatchetGeometry &g, const RatchetMaterials &m)
   {
-    require_in_range(g.block_length > 0.,
+    const analytical::Block1Section &section = g.block;
+    require_in_range(section.length > 0.,
                      "Ratchet/Block length",
-                     g.block_length,
+                     section.length,
                      "> 0 m");
-    require_in_range(g.block_height > 0.,
+    require_in_range(section.height > 0.,
                      "Ratchet/Block height",
-                     g.block_height,
+                     section.height,
                      "> 0 m");
-    require_in_range(g.slope_deg >= 0. && g.slope_deg < 45.,
+    require_in_range(section.slope_deg >= 0. && section.slope_deg < 45.,
                      "Ratchet/Slope",
-                     g.slope_deg,
+                     section.slope_deg,
                      "0 <= slope < 45 deg");
     require_in_range(g.crack_bottom_width > 0.,
                      "Ratchet/Crack bottom width",
@@ -122,15 +123,16 @@ namespace rockdda::coupling
                      "> 0 m (the block must not touch the cliff at the "
                      "bedding plane)");
     require_in_range(g.crack_top_width >= g.crack_bottom_width
-                       && g.crack_top_width < 0.5 * g.block_length,
+                       && g.crack_top_width < 0.5 * section.length,
                      "Ratchet/Crack top width",
                      g.crack_top_width,
                      ">= 'Crack bottom width' (a crack that narrows "
                      "downward) and < half the block length");
-    require_in_range(g.cliff_width > 0.,
+    require_in_range(g.cliff_width > g.crack_top_width - g.crack_bottom_width,
                      "Ratchet/Cliff width",
                      g.cliff_width,
-                     "> 0 m");
+                     "> 'Crack top width' - 'Crack bottom width' (the lean "
+                     "of the cliff's face) m");
     require_in_range(g.base_depth > 0.,
                      "Ratchet/Base depth",
                      g.base_depth,
@@ -144,23 +146,33 @@ namespace rockdda::coupling
                      g.refinement_depth,
                      "> 0 m");
 
-    const double t  = std::tan(g.slope_deg * pi / 180.);
+    const double t  = section.tan_slope();
     const auto   yb = [&](const double x) { return -t * x; }; // bedding plane
     const double wb = g.crack_bottom_width, wt = g.crack_top_width;
-    const double y_top = yb(wb) + g.block_height;
-    // Block corners: back-bottom, front-bottom, front-top, back-top.
-    const Point B0(wb, yb(wb)),
-      F0(wb + g.block_length, yb(wb + g.block_length));
-    const Point F1(F0[0], y_top), B1(wt, y_top);
-    if (!(F0[1] < y_top - 0.1 * g.block_height))
+    // The block is Block 1's section with its heel at the crack's bottom
+    // width from the cliff's foot (the origin): back-bottom (heel),
+    // front-bottom (toe), front-top, back-top. Its back face is vertical;
+    // the cliff's face leans back by wt - wb over the height, from its foot
+    // (0, 0) to (wb - wt, y_top), so that the crack narrows from wt at the
+    // top to wb at the bedding plane.
+    const std::vector<Point> corners
+      = section.polygon(Point(wb, yb(wb))).vertices;
+    const Point &B0 = corners[0], &F0 = corners[1], &F1 = corners[2],
+                &B1    = corners[3];
+    const double y_top = F1[1];
+    if (!(section.back_height() > 0.1 * section.height))
       throw InputError("key 'Ratchet/Block height' = "
-                       + std::to_string(g.block_height)
+                       + std::to_string(section.height)
                        + " m is too low for the block length and slope: the "
-                         "front face would be shorter than 10 % of it");
+                         "back face (H - L_B tan(slope)) would be shorter "
+                         "than 10 % of it");
+    // The cliff's face at height y (a line through (0, 0) and
+    // (wb - wt, y_top)).
+    const auto cliff_face
+      = [&](const double y) { return (wb - wt) * y / y_top; };
 
     RatchetScene scene;
-    scene.downslope     = Point(std::cos(g.slope_deg * pi / 180.),
-                            -std::sin(g.slope_deg * pi / 180.));
+    scene.downslope     = section.downslope();
     dda::BlockSystem &s = scene.blocks;
     s.materials.push_back(m.rock);
     dda::JointMaterial bed;
@@ -183,17 +195,17 @@ namespace rockdda::coupling
     // top-left), refined near the crack face and the front face, standing
     // on the foot (if sliced).
     const auto fb
-      = slice_fractions(g.block_length, g.refinement_depth, g.slices, true);
+      = slice_fractions(section.length, g.refinement_depth, g.slices, true);
     const bool   foot = fb.size() > 2;
     const double hf   = foot ? g.foot_height : 0.;
     if (foot)
       require_in_range(g.foot_height > 0.
-                         && g.foot_height < 0.5 * (F1[1] - F0[1]),
+                         && g.foot_height < 0.5 * (B1[1] - B0[1]),
                        "Ratchet/Foot height",
                        g.foot_height,
-                       "> 0 m and below half the front face");
+                       "> 0 m and below half the back face");
     // The back face at the foot's top, and the front.
-    const Point Bf = B0 + hf / (g.block_height + t * (wt - wb)) * (B1 - B0);
+    const Point Bf = B0 + Point(0., hf);
     const Point Ff = F0 + Point(0., hf);
     for (std::size_t k = 0; k + 1 < fb.size(); ++k)
       {
@@ -256,16 +268,22 @@ namespace rockdda::coupling
       }
 
     // The cliff's slices, from the crack face backwards; the last is fixed.
+    // A slice boundary at fraction f lies at -f W on the bedding plane and
+    // at (wb - wt) - f (W + wb - wt) at the top: the crack face (f = 0)
+    // leans, the far side (f = 1) is vertical.
     const auto fc
       = slice_fractions(g.cliff_width, g.refinement_depth, g.slices, false);
+    const double lean = wb - wt;
     for (std::size_t k = 0; k + 1 < fc.size(); ++k)
       {
         const double             xr = -fc[k] * g.cliff_width;
         const double             xl = -fc[k + 1] * g.cliff_width;
+        const double             tr = lean - fc[k] * (g.cliff_width + lean);
+        const double             tl = lean - fc[k + 1] * (g.cliff_width + lean);
         const std::vector<Point> v{Point(xl, yb(xl)),
                                    Point(xr, yb(xr)),
-                                   Point(xr, y_top),
-                                   Point(xl, y_top)};
+                                   Point(tr, y_top),
+                                   Point(tl, y_top)};
         const bool               first = k == 0, last = k + 2 == fc.size();
         const int                i
           = add_block(s, v, {bonded, first ? crack : bonded, bonded, bonded});
@@ -299,7 +317,7 @@ namespace rockdda::coupling
         const double ya = y_top - g.infill_top_depth;
         const double yz = ya - g.infill_height;
         require_in_range(g.infill_top_depth >= 0.
-                           && g.infill_top_depth < g.block_height,
+                           && g.infill_top_depth < section.height,
                          "Ratchet/Infill top depth",
                          g.infill_top_depth,
                          "0 <= depth < the block height");
@@ -309,11 +327,11 @@ namespace rockdda::coupling
                          "> 0 m, and the infill must end above the bedding "
                          "plane at the cliff face (at most "
                            + std::to_string(ya) + " m high)");
-        // The block's back face at height y.
-        const auto back = [&](const double y) {
-          return B0[0] + (y - B0[1]) / (B1[1] - B0[1]) * (B1[0] - B0[0]);
-        };
-        const double crack_at_top = back(ya);
+        // The crack's width at height y (the block's back face is at
+        // x = wb).
+        const auto crack_width
+          = [&](const double y) { return wb - cliff_face(y); };
+        const double crack_at_top = crack_width(ya);
         double       shift        = 0.;
         if (g.infill_width > 0.)
           {
@@ -325,16 +343,18 @@ namespace rockdda::coupling
                 + " m): it would overlap the block or the cliff");
             shift = crack_at_top - g.infill_width;
           }
-        if (back(yz) - shift <= 0.)
+        if (crack_width(yz) - shift <= 0.)
           throw InputError("key 'Ratchet/Infill width' = "
                            + std::to_string(g.infill_width)
                            + " m: the infill would taper to nothing above "
                              "its bottom; make it wider or shorter");
+        // Against the cliff's face; a narrower infill leaves a gap of
+        // @p shift to the block.
         const int i         = add_block(s,
-                                {Point(0., yz),
-                                         Point(back(yz) - shift, yz),
-                                         Point(back(ya) - shift, ya),
-                                         Point(0., ya)},
+                                {Point(cliff_face(yz), yz),
+                                         Point(wb - shift, yz),
+                                         Point(wb - shift, ya),
+                                         Point(cliff_face(ya), ya)},
                                 {crack, crack, crack, crack});
         s.blocks[i].joint   = crack;
         scene.infill        = i;

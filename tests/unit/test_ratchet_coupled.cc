@@ -81,7 +81,7 @@ TEST(RatchetCoupled, BadInputNamesTheKey)
   }
   {
     RatchetGeometry g;
-    g.slope_deg = 50.;
+    g.block.slope_deg = 50.;
     expect_error_naming([&]() { make_ratchet_scene(g, m); }, "Slope");
   }
   {
@@ -98,16 +98,22 @@ TEST(RatchetCoupled, BadInputNamesTheKey)
 
 
 // The clean-crack control (thesis 5.3, the West station: clean, tight
-// joints, no infill): Block 1 on its bedding plane (friction 41 deg, k_j
-// 1 GPa/m) under the annual cycle moves elastically within each cycle but,
-// once shaken down, ends every cycle where it began: the drift per cycle is
-// below 1e-3 of the displacement amplitude within the cycle (the elastic
-// joint response that Eq. 5.5 calls delta_j).
+// joints, no infill): Block 1 on its bedding plane (friction 41 deg) under
+// the annual cycle moves elastically within each cycle but, once shaken
+// down, ends every cycle where it began: the drift per cycle is below 1e-3
+// of the displacement amplitude within the cycle (the elastic joint
+// response that Eq. 5.5 calls delta_j). The joint's shear stiffness is
+// 0.5 GPa/m, below the onset of thermal creep (next test): Block 1 with
+// the section of Eq. 5.3 (96.6 m^2) creeps at the thesis's 1 GPa/m (0.11
+// mm/yr over 100 cycles; 2e-11 mm/yr at 0.75 and 3e-11 at 0.5 GPa/m,
+// benchmarks/ratchet/README.md). The 113 m^2 section used before (H at the
+// back face) shook down at 1 GPa/m.
 TEST(RatchetCoupled, CleanCrackShakesDown)
 {
   RatchetMaterials m;
-  SeasonalForcing  f;
-  RatchetGeometry  g;
+  m.bedding_shear_stiffness = 5e8;
+  SeasonalForcing f;
+  RatchetGeometry g;
   g.infill                        = false;
   g.crack_top_width               = g.crack_bottom_width;
   const RatchetScene        scene = make_ratchet_scene(g, m);
@@ -138,10 +144,12 @@ TEST(RatchetCoupled, CleanCrackShakesDown)
 // thermal cycles if its base cannot take the expansion elastically: each
 // end sticks in turn (thermal creep, Gunzburger, Rochat & Laumonier 2005;
 // Moseley 1855). The bedding joint's shear stiffness decides it. Block 1
-// (W = 2.9 MN/m, margin (tan phi cos eta - sin eta) W = 1.4 MN/m) sits
-// just below the onset with the thesis's k_j = 1 GPa/m (measured creep per
-// cycle 2e-14 m; 2.4e-4 m at 1.5 GPa/m, 4.9e-4 m at 3, 7.4e-4 m at 10):
-// a third of it shakes down completely, three times it creeps.
+// (W = 2.46 MN/m, margin (tan phi cos eta - sin eta) W = 1.22 MN/m, the
+// section of Eq. 5.3) sits just above the onset with the thesis's k_j =
+// 1 GPa/m (measured creep 1.1e-4 m per cycle over 100 cycles; 2e-14 m at
+// 0.75 GPa/m). (The 113 m^2 section used before, W = 2.9 MN/m, sat just
+// below it: 2e-14 m at 1 GPa/m, 2.4e-4 m at 1.5.) 0.3 GPa/m shakes down
+// completely, 3 GPa/m creeps.
 TEST(RatchetCoupled, CleanCrackCreepsOnlyAboveAJointStiffness)
 {
   RatchetMaterials m;
@@ -162,9 +170,9 @@ TEST(RatchetCoupled, CleanCrackCreepsOnlyAboveAJointStiffness)
         run.run_cycle();
       const double creep = (run.displacement() - before) / 5.;
       if (k < 1e9)
-        EXPECT_LT(std::abs(creep), 1e-10) << "k_j = " << k; // measured 7e-14
+        EXPECT_LT(std::abs(creep), 1e-10) << "k_j = " << k;
       else
-        EXPECT_GT(creep, 1e-5) << "k_j = " << k; // measured 4.9e-4
+        EXPECT_GT(creep, 1e-5) << "k_j = " << k;
     }
 }
 
@@ -200,8 +208,8 @@ TEST(RatchetCoupled, RestartIsIdentical)
 // A narrow crack (50 mm at the top, 5 mm at the bedding plane) jams its
 // light infill wedge between the block and the cliff: its contacts sit at
 // the friction limit at forces of the order of its own weight, a 1e-3 of
-// the block's. Each sample must still reach equilibrium without a
-// smaller pseudo time step (whose slip depends on that step): before
+// the block's. Each sample must still reach equilibrium at the run's pseudo
+// time step (the smaller-step fallback is gone: the run would stop): before
 // contacts held in one static step stayed held in the next, successive
 // static steps flipped the wedge's contacts and cycled between two states
 // (9 of 48 samples needed a smaller pseudo time step and 10 were accepted
@@ -219,7 +227,6 @@ TEST(RatchetCoupled, NarrowCrackReachesEquilibriumEverySample)
   for (int k = 0; k < 2; ++k)
     {
       const CycleRecord r = run.run_cycle();
-      EXPECT_EQ(r.regularised_samples, 0u) << "cycle " << r.cycle;
       // A sample may still end "stationary": the block's slip and the
       // aperture steady within the tolerance over 100 steps while one of
       // the wedge's contacts switches (measured: 1 of 48).

@@ -12,6 +12,8 @@
 #ifndef ROCKDDA_ANALYTICAL_RATCHET_H
 #define ROCKDDA_ANALYTICAL_RATCHET_H
 
+#include <rockdda/analytical/block1.h>
+
 #include <vector>
 
 namespace rockdda::analytical
@@ -23,14 +25,16 @@ namespace rockdda::analytical
    */
   struct RatchetInput
   {
-    /// Length L_B of the sliding block (m), Eqs. 5.3-5.5.
-    double block_length = 7.;
-    /// Height H of the block at the tension crack (m), Eqs. 5.3-5.4.
-    double block_height = 15.;
+    /// Length L_B of the sliding block (m), Eqs. 5.3-5.5 (Block1Section).
+    double block_length = Block1Section().length;
+    /// Height H of the block's front (downslope) face (m), Eqs. 5.3-5.4;
+    /// the back face at the tension crack is H - L_B tan(eta) high
+    /// (Block1Section).
+    double block_height = Block1Section().height;
     /// Length L_W of the wedge in the tension crack (m), Eqs. 5.2, 5.4.
     double wedge_length = 0.2;
     /// Dip eta of the sliding plane (deg).
-    double slope_deg = 19.;
+    double slope_deg = Block1Section().slope_deg;
     /// Friction angle phi of the sliding plane (deg).
     double friction_angle_deg = 41.;
     /// Mass density rho (kg/m^3).
@@ -55,6 +59,22 @@ namespace rockdda::analytical
     double heat_capacity = 810.;
     /// Exposure time t_exp of one heating season (s); 180 days.
     double exposure_time = 180. * 86400.;
+
+    /// The block's cross-section (L_B, H, eta) whose area Eq. 5.3 uses.
+    Block1Section
+    section() const
+    {
+      return Block1Section{block_length, block_height, slope_deg};
+    }
+
+    /// Set L_B, H and eta from @p section.
+    void
+    set_section(const Block1Section &section)
+    {
+      block_length = section.length;
+      block_height = section.height;
+      slope_deg    = section.slope_deg;
+    }
   };
 
   /// Every quantity of Eqs. 5.1-5.6 for one RatchetInput.
@@ -127,7 +147,8 @@ namespace rockdda::analytical
    * F_max = gamma L_B (H - L_B tan(eta) / 2) (tan(phi) cos(eta) - sin(eta))
    * (N per m of width), Eq. 5.3: the frictional resistance of the plane
    * less the down-slope weight component of the block of cross-section
-   * L_B (H - L_B tan(eta) / 2). Negative if eta > phi.
+   * Block1Section::area() = L_B (H - L_B tan(eta) / 2), H the front face.
+   * Negative if eta > phi.
    */
   double
   max_force(const double unit_weight,

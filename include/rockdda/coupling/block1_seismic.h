@@ -10,6 +10,7 @@
 #ifndef ROCKDDA_COUPLING_BLOCK1_SEISMIC_H
 #define ROCKDDA_COUPLING_BLOCK1_SEISMIC_H
 
+#include <rockdda/analytical/block1.h>
 #include <rockdda/dda/block_system.h>
 #include <rockdda/dda/engine.h>
 #include <rockdda/seismic/record.h>
@@ -19,20 +20,15 @@
 
 namespace rockdda::coupling
 {
-  /// Geometry of Block 1 on its bedding plane (m, deg). x is horizontal,
-  /// pointing downslope (east), y up; the bedding plane passes through the
-  /// block's heel at the origin and descends towards +x.
-  struct Block1Geometry
+  /**
+   * Block 1 on its bedding plane (m, deg): the block's cross-section
+   * (analytical::Block1Section: L_B, H at the front face, dip; thesis
+   * Eq. 5.3) and the fixed base it stands on. x is horizontal, pointing
+   * downslope (east), y up; the bedding plane passes through the block's
+   * heel at the origin and descends towards +x.
+   */
+  struct Block1Geometry : analytical::Block1Section
   {
-    /// Horizontal length L_B of the block's base (m), > 0 (thesis: 7 m).
-    double length = 7.;
-    /// Height H of the block's vertical front (downslope) face (m), > 0
-    /// (thesis: 15 m); the top is horizontal, so the back face is
-    /// H - L_B tan(dip) high and the area L_B (H - L_B tan(dip) / 2), as in
-    /// the thesis' Eq. 5.3.
-    double height = 15.;
-    /// Dip of the bedding plane (deg), in [0, 45) (thesis: 19 deg).
-    double slope_deg = 19.;
     /// Horizontal length of the bedding plane beyond the toe (m), > 0: room
     /// for the block to slide.
     double toe_length = 10.;
@@ -66,14 +62,12 @@ namespace rockdda::coupling
 
   /**
    * Build the scene: the fixed base (clamped at three corners; it follows
-   * the ground in displacement mode) and the block, a quadrilateral with
-   * vertical back and front faces and a horizontal top standing on the
-   * bedding plane, with a rigid joint (penalty only) of friction
-   * Block1Materials::friction_deg on every face. Without infill the tension
-   * crack never closes on a block that slides downslope, so the cliff
-   * behind it is left out. Throws
-   * InputError naming the key ('@p section/...') for an impossible
-   * geometry.
+   * the ground in displacement mode) and the block,
+   * analytical::Block1Section::polygon() with its heel at the origin, with a
+   * rigid joint (penalty only) of friction Block1Materials::friction_deg on
+   * every face. Without infill the tension crack never closes on a block that
+   * slides downslope, so the cliff behind it is left out. Throws InputError
+   * naming the key ('@p section/...') for an impossible geometry.
    */
   Block1Scene
   make_block1_seismic_scene(const Block1Geometry  &geometry,

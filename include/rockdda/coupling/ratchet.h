@@ -60,9 +60,6 @@ namespace rockdda::coupling
     /// such a sample (m).
     unsigned int stationary_samples = 0;
     double       chatter            = 0.;
-    /// Samples that needed a smaller pseudo time step to reach equilibrium
-    /// (see RatchetRun::equilibrate).
-    unsigned int regularised_samples = 0;
     /// Infill fragments in the crack at the end of the cycle (the first
     /// and those supplied; RatchetGeometry::supply_distance).
     unsigned int fragments = 0;
@@ -145,11 +142,11 @@ namespace rockdda::coupling
      * fragment rocking between the crack's faces) a bounded limit cycle:
      * over two successive windows of 200 steps the means of the slip and the
      * aperture agree within the tolerance and their amplitude is at most 10
-     * tolerances. A sample
-     * still not in equilibrium after 300 steps continues with the pseudo
-     * time step divided by 10 (a stiffer inertia term, 2 M / dt^2, damps
-     * the cycles of contact states between steps), then by 100 after 600
-     * and by 1000 after 900 steps; the step is restored afterwards.
+     * tolerances. The pseudo time step stays that of the run. A sample
+     * still not in equilibrium after RatchetControls::max_steps_per_sample
+     * steps stops the run with dda::DdaFailure, whose message says whether
+     * the slip and the aperture were still drifting (something slides or
+     * creeps) or cycling without drift (contact states flipping).
      */
     void
     equilibrate(const double time, CycleRecord &record);

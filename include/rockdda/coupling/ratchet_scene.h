@@ -10,6 +10,7 @@
 #ifndef ROCKDDA_COUPLING_RATCHET_SCENE_H
 #define ROCKDDA_COUPLING_RATCHET_SCENE_H
 
+#include <rockdda/analytical/block1.h>
 #include <rockdda/coupling/thermal_load.h>
 #include <rockdda/dda/block_system.h>
 #include <rockdda/thermal/heat_solver.h>
@@ -24,14 +25,16 @@ namespace rockdda::coupling
   /// face at the origin.
   struct RatchetGeometry
   {
-    /// Block length L_B along the horizontal at its base (m), > 0.
-    double block_length = 7.;
-    /// Block height H at its back face (m), > 0.
-    double block_height = 15.;
-    /// Dip of the bedding plane eta (deg), in [0, 45).
-    double slope_deg = 19.;
+    /// The block's cross-section: L_B, H at the front (downslope) face and
+    /// the dip eta in [0, 45) of the bedding plane (thesis Eq. 5.3). The
+    /// block is exactly Block1Section::polygon(), its heel at the crack's
+    /// bottom width from the cliff's foot; the union of its slices and its
+    /// foot is that polygon.
+    analytical::Block1Section block;
     /// Crack width at the top and at the bedding plane (m); top >= bottom
-    /// > 0 (a crack that narrows downward lets the infill descend).
+    /// > 0 (a crack that narrows downward lets the infill descend). The
+    /// block's back face is vertical: the cliff's face leans (from the
+    /// cliff's foot back by top - bottom width at the top).
     double crack_top_width    = 0.2;
     double crack_bottom_width = 0.02;
     /// Horizontal extent of the cliff behind the crack (m), > 0; its
@@ -116,10 +119,11 @@ namespace rockdda::coupling
 
   /**
    * Build the scene. Throws InputError naming the key ('Ratchet/...') for
-   * an impossible geometry: a crack that widens downward or has zero width
-   * at the bedding plane, an infill that does not fit in the crack (wider
-   * than the crack, or reaching below the bedding plane), a slope of 45
-   * deg or more.
+   * an impossible geometry: a back face lower than 10 % of the front face,
+   * a crack that widens downward or has zero width at the bedding plane, a
+   * cliff narrower than the crack's lean, an infill that does not fit in the
+   * crack (wider than the crack, or reaching below the bedding plane), a slope
+   * of 45 deg or more.
    */
   RatchetScene
   make_ratchet_scene(const RatchetGeometry  &geometry,
