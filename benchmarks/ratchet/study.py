@@ -275,18 +275,21 @@ def measures(run):
 def wedge_length_mm(over, base):
     """The analytical wedge length of the run (ratchet_analysis.cc): the
     crack's width at the infill's mid-height (mm); 0 without infill. The
-    back face of the block runs straight from the bottom width at the
-    bedding plane to the top width one block height higher."""
+    crack's width grows linearly from the bottom width at the cliff's foot
+    to the top width at the block's top, H - (bottom width + L_B) tan(eta)
+    above it (H is the block's front face, doc/theory/block1.md)."""
     def get(sec, key):
         return over.get((sec, key), base[(sec, key)])
     if str(get(R, "Infill")).lower() == "false":
         return 0.
     wt = float(get(R, "Crack top width"))
     wb = float(get(R, "Crack bottom width"))
-    h = float(get(R, "Block height"))
+    top = float(get(R, "Block height")) \
+        - (wb + float(get(R, "Block length"))) \
+        * math.tan(math.radians(float(get(R, "Slope"))))
     d = float(get(R, "Infill top depth")) \
         + 0.5 * float(get(R, "Infill height"))
-    return 1e3 * (wt - (wt - wb) * d / h)
+    return 1e3 * (wt - (wt - wb) * d / top)
 
 
 def base_settings(text):
