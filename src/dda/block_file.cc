@@ -25,6 +25,40 @@ namespace rockdda::dda
 
 
 
+  std::pair<int, JointMaterial>
+  joint_line(const io::KeywordReader &reader)
+  {
+    const auto &words = reader.words;
+    const char *form  = "joint ID FRICTION_DEG COHESION TENSILE "
+                        "[NORMAL_STIFFNESS SHEAR_STIFFNESS]";
+    if (words.size() != 4 && words.size() != 6)
+      throw InputError(
+        reader.where + "expected '" + form + "'"
+        + (words.size() == 5 ? " (both stiffnesses or neither)" : ""));
+    const int     id = reader.integer(0);
+    JointMaterial j;
+    j.friction_deg = reader.number(1);
+    j.cohesion     = reader.number(2);
+    j.tensile      = reader.number(3);
+    if (words.size() == 6)
+      for (const std::size_t k : {std::size_t(4), std::size_t(5)})
+        {
+          char        *end = nullptr;
+          const double v   = std::strtod(words[k].c_str(), &end);
+          if (end == words[k].c_str() || *end != '\0' || !std::isfinite(v)
+              || !(v >= 0.))
+            throw InputError(reader.where + "joint " + std::to_string(id) + ": "
+                             + (k == 4 ? "normal" : "shear") + " stiffness '"
+                             + words[k]
+                             + "' Pa/m; valid: a number >= 0 (0: a rigid "
+                               "joint, only the contact penalty acts)");
+          (k == 4 ? j.normal_stiffness : j.shear_stiffness) = v;
+        }
+    return {id, j};
+  }
+
+
+
   BlockSystem
   parse_block_text(const std::string &text, const std::string &name)
   {
@@ -76,35 +110,10 @@ namespace rockdda::dda
           }
         else if (keyword == "joint")
           {
-            const char *form = "joint ID FRICTION_DEG COHESION TENSILE "
-                               "[NORMAL_STIFFNESS SHEAR_STIFFNESS]";
-            expect(4, 6, form);
-            if (words.size() == 5)
-              throw InputError(where + "expected '" + form
-                               + "' (both stiffnesses or neither)");
-            const int id = reader.integer(0);
+            const auto [id, j] = joint_line(reader);
             if (joints.count(id))
               throw InputError(where + "joint " + std::to_string(id)
                                + " is defined twice");
-            JointMaterial j;
-            j.friction_deg = reader.number(1);
-            j.cohesion     = reader.number(2);
-            j.tensile      = reader.number(3);
-            if (words.size() == 6)
-              for (const std::size_t k : {std::size_t(4), std::size_t(5)})
-                {
-                  char        *end = nullptr;
-                  const double v   = std::strtod(words[k].c_str(), &end);
-                  if (end == words[k].c_str() || *end != '\0'
-                      || !std::isfinite(v) || !(v >= 0.))
-                    throw InputError(
-                      where + "joint " + std::to_string(id) + ": "
-                      + (k == 4 ? "normal" : "shear") + " stiffness '"
-                      + words[k]
-                      + "' Pa/m; valid: a number >= 0 (0: a rigid joint, "
-                        "only the contact penalty acts)");
-                  (k == 4 ? j.normal_stiffness : j.shear_stiffness) = v;
-                }
             joints[id] = static_cast<int>(system.joints.size());
             system.joints.push_back(j);
           }

@@ -32,10 +32,10 @@ namespace rockdda::dda3d
   parse_block_text(const std::string &text, const std::string &name)
   {
     BlockSystem        system;
-    std::map<int, int> materials, blocks;
+    std::map<int, int> materials, blocks, joints;
     std::vector<int>   material_line;
     // Per block: the line of its 'block' line and of each face.
-    std::vector<int>              block_line, block_material_id;
+    std::vector<int>              block_line, block_material_id, block_joint_id;
     std::vector<std::vector<int>> face_line;
     struct Pending
     {
@@ -85,9 +85,19 @@ namespace rockdda::dda3d
             material_line.push_back(line_no);
             system.materials.push_back(m);
           }
+        else if (keyword == "joint")
+          {
+            const auto [id, j] = dda::joint_line(reader);
+            if (joints.count(id))
+              throw InputError(where + "joint " + std::to_string(id)
+                               + " is defined twice");
+            joints[id] = int(system.joints.size());
+            system.joints.push_back(j);
+          }
         else if (keyword == "block")
           {
-            expect(2, "block ID MATERIAL");
+            if (words.size() != 2 && words.size() != 3)
+              throw InputError(where + "expected 'block ID MATERIAL [JOINT]'");
             Block b;
             b.id = reader.integer(0);
             if (blocks.count(b.id))
@@ -95,6 +105,8 @@ namespace rockdda::dda3d
                                + " is defined twice");
             blocks[b.id] = int(system.blocks.size());
             block_material_id.push_back(reader.integer(1));
+            block_joint_id.push_back(words.size() == 3 ? reader.integer(2)
+                                                       : -1);
             block_line.push_back(line_no);
             face_line.emplace_back();
             system.blocks.push_back(b);
@@ -128,11 +140,19 @@ namespace rockdda::dda3d
           }
         else
           throw InputError(where + "unknown keyword '" + keyword
-                           + "'; valid: material, block, vertex, face, "
-                             "fixed, fixed-block, load, measure, velocity");
+                           + "'; valid: material, joint, block, vertex, "
+                             "face, fixed, fixed-block, load, measure, "
+                             "velocity");
       }
     if (system.blocks.empty())
       throw InputError("block file '" + name + "': no blocks");
+    if (system.joints.empty())
+      {
+        // The default joint: phi = 30 deg, no cohesion, tension or
+        // stiffness (as in 2D), id 0.
+        system.joints.push_back(dda::JointMaterial());
+        joints[0] = 0;
+      }
     for (std::size_t b = 0; b < system.blocks.size(); ++b)
       {
         Block            &block = system.blocks[b];
@@ -144,7 +164,20 @@ namespace rockdda::dda3d
           throw InputError(head + ": material "
                            + std::to_string(block_material_id[b])
                            + " is not defined");
-        block.material   = m->second;
+        block.material = m->second;
+        if (block_joint_id[b] >= 0 || system.joints.size() > 1)
+          {
+            const int  jid = block_joint_id[b] >= 0 ? block_joint_id[b] : 0;
+            const auto j   = joints.find(jid);
+            if (j == joints.end())
+              throw InputError(head + ": joint " + std::to_string(jid)
+                               + " is not defined"
+                               + (block_joint_id[b] < 0
+                                    ? " (give the block's joint: 'block ID "
+                                      "MATERIAL JOINT')"
+                                    : ""));
+            block.joint = j->second;
+          }
         const double rho = system.materials[m->second].density;
         if (!(rho > 0.))
           throw InputError(
@@ -219,11 +252,20 @@ namespace rockdda::dda3d
         out << "material " << (mat.id >= 0 ? mat.id : int(m)) << ' '
             << mat.density << ' ' << mat.young << ' ' << mat.poisson << '\n';
       }
+    for (std::size_t j = 0; j < system.joints.size(); ++j)
+      {
+        const auto &jm = system.joints[j];
+        out << "joint " << j << ' ' << jm.friction_deg << ' ' << jm.cohesion
+            << ' ' << jm.tensile << ' ' << jm.normal_stiffness << ' '
+            << jm.shear_stiffness << '\n';
+      }
     for (const auto &b : system.blocks)
       {
         const auto &mat = system.materials[b.material];
-        out << "block " << b.id << ' ' << (mat.id >= 0 ? mat.id : b.material)
-            << '\n';
+        out << "block " << b.id << ' ' << (mat.id >= 0 ? mat.id : b.material);
+        if (!system.joints.empty())
+          out << ' ' << b.joint;
+        out << '\n';
         for (const auto &v : b.polyhedron.vertices)
           out << "vertex " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
         for (const auto &f : b.polyhedron.faces)

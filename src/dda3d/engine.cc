@@ -217,6 +217,7 @@ namespace rockdda::dda3d
     for (auto &m : system.measurement_points)
       m.point -= origin_;
     validate_and_prepare(system);
+    check_overlaps(system, 1e-6, origin_);
     // Clamped blocks: 3 or more non-collinear fixed points.
     clamped_.assign(system.blocks.size(), 0);
     for (std::size_t b = 0; b < system.blocks.size(); ++b)
@@ -286,6 +287,40 @@ namespace rockdda::dda3d
 
 
 
+  void
+  Engine::settle(const unsigned int n)
+  {
+    const EngineControls saved = ctrl;
+    const double         t0    = t;
+    ctrl.dynamic               = 0.;
+    ctrl.ground_acceleration   = nullptr;
+    ctrl.ground_displacement   = nullptr;
+    try
+      {
+        for (unsigned int k = 0; k < n; ++k)
+          step();
+      }
+    catch (...)
+      {
+        ctrl = saved;
+        throw;
+      }
+    ctrl   = saved;
+    t      = t0;
+    dt_now = ctrl.dt;
+    for (auto &b : system.blocks)
+      {
+        b.velocity.setZero();
+        b.initial_centroid = b.polyhedron.moments().centroid;
+      }
+    for (auto &m : system.measurement_points)
+      m.initial = m.point;
+    friction_work = 0.;
+    load_work     = 0.;
+  }
+
+
+
   bool
   Engine::try_step(const double h)
   {
@@ -327,13 +362,23 @@ namespace rockdda::dda3d
         F0[l.block] += f;
         Fext[l.block] += f;
       }
+    // Displacement mode: the ground's displacement at the end of the step;
+    // clamped blocks get the translation that puts their centroid there.
+    const Point ug = ctrl.ground_displacement ? ctrl.ground_displacement(t + h)
+                                              : Point::Zero();
+    std::vector<Vector12> prescribed(n, Vector12::Zero());
+    if (ctrl.ground_displacement)
+      for (std::size_t b = 0; b < n; ++b)
+        if (clamped_[b])
+          prescribed[b].head<3>()
+            = ug - (moments[b].centroid - system.blocks[b].initial_centroid);
     for (const auto &f : system.fixed_points)
       {
         const Point &c = moments[f.block].centroid;
         K0[f.block] += fixed_point_stiffness(c, f.point, ctrl.fixed_penalty);
         F0[f.block] += ctrl.fixed_penalty
                        * displacement_matrix(c, f.point).transpose()
-                       * (f.anchor - f.point);
+                       * (f.anchor + ug - f.point);
       }
 
     // Contacts: detection on the geometry at the start of the step.
@@ -574,11 +619,18 @@ namespace rockdda::dda3d
               {
                 Kd[i] += Kc.block<12, 12>(0, 0);
                 F.segment<12>(12 * i) += Fc.head<12>();
+                // A clamped j's prescribed motion moves to the right side.
+                if (clamped_[j])
+                  F.segment<12>(12 * i)
+                    -= Kc.block<12, 12>(0, 12) * prescribed[j];
               }
             if (!clamped_[j])
               {
                 Kd[j] += Kc.block<12, 12>(12, 12);
                 F.segment<12>(12 * j) += Fc.tail<12>();
+                if (clamped_[i])
+                  F.segment<12>(12 * j)
+                    -= Kc.block<12, 12>(12, 0) * prescribed[i];
               }
             if (!clamped_[i] && !clamped_[j])
               {
@@ -599,7 +651,7 @@ namespace rockdda::dda3d
             if (clamped_[b])
               {
                 Kd[b].setIdentity();
-                F.segment<12>(12 * b).setZero();
+                F.segment<12>(12 * b) = prescribed[b];
               }
             for (int r = 0; r < 12; ++r)
               for (int s = 0; s < 12; ++s)
@@ -785,7 +837,12 @@ namespace rockdda::dda3d
         const Vector6         e = Db[b].tail<6>();
         block.stress            = rotate_voigt(block.stress + C * e, R, 1.);
         block.strain            = rotate_voigt(block.strain + e, R, 0.5);
-        block.velocity = (2. / h) * Db[b] - ctrl.dynamic * block.velocity;
+        // A clamped block moves with its prescribed motion: its velocity
+        // is the step's mean.
+        block.velocity
+          = clamped_[b]
+              ? Vector12(Db[b] / h)
+              : Vector12((2. / h) * Db[b] - ctrl.dynamic * block.velocity);
       }
     stored           = std::move(contacts);
     stats.iterations = iterations;

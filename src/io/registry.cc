@@ -1,6 +1,7 @@
 #include <rockdda/analytical/analyses.h>
 #include <rockdda/coupling/analyses.h>
 #include <rockdda/dda/analyses.h>
+#include <rockdda/dda3d/analyses.h>
 #include <rockdda/io/analysis.h>
 #include <rockdda/seismic/analyses.h>
 #include <rockdda/structure/analyses.h>
@@ -17,6 +18,8 @@ namespace rockdda::io
     for (auto &a : thermal::make_analyses())
       list.push_back(std::move(a));
     for (auto &a : dda::make_analyses())
+      list.push_back(std::move(a));
+    for (auto &a : dda3d::make_analyses())
       list.push_back(std::move(a));
     for (auto &a : structure::make_analyses())
       list.push_back(std::move(a));

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <utility>
 
 namespace rockdda::seismic
 {
@@ -86,6 +87,16 @@ namespace rockdda::seismic
                 "vertical motion. Used by the dda analysis (Seismic input "
                 "inertial or displacement); other analyses ignore it.");
     io::declare(prm,
+                "Transverse record file",
+                "",
+                dealii::Patterns::Anything(),
+                "-",
+                "Optional second horizontal acceleration record, at 90 deg "
+                "clockwise from the record's direction (seen from above), "
+                "read, processed, scaled and inverted by the Polarity like "
+                "the record. Empty = none. Used by the dda3d analysis "
+                "(three-component input); other analyses ignore it.");
+    io::declare(prm,
                 "Vertical scale",
                 "1",
                 Double(-10., 10.),
@@ -135,6 +146,14 @@ namespace rockdda::seismic
                 io::DoubleInterval::positive(),
                 "Hz",
                 "Frequency f of the harmonic input. Must be > 0.");
+    io::declare(prm,
+                "Harmonic ramp duration",
+                "0",
+                Double(0.),
+                "s",
+                "The harmonic amplitude grows linearly from 0 at t = 0 to A "
+                "at this time (a shaking table's ramp, thesis Sec. 4.6: 5 "
+                "s); >= 0, 0 = no ramp.");
     io::declare(prm,
                 "Duration",
                 "10",
@@ -306,6 +325,7 @@ namespace rockdda::seismic
                     "Ground motion/Time step",
                     dt,
                     "at most 1e9 samples (Duration/Time step)");
+        const double ramp  = prm.get_double("Harmonic ramp duration");
         harmonic_amplitude = a;
         harmonic_omega     = 2. * M_PI * f;
         record.name        = "harmonic";
@@ -313,9 +333,17 @@ namespace rockdda::seismic
         const auto n       = static_cast<std::size_t>(std::llround(T / dt)) + 1;
         record.acceleration.resize(n);
         for (std::size_t i = 0; i < n; ++i)
-          record.acceleration[i] = a * std::sin(harmonic_omega * i * dt);
+          record.acceleration[i]
+            = a * std::sin(harmonic_omega * i * dt)
+              * (ramp > 0. ? std::min(1., i * dt / ramp) : 1.);
         d << "harmonic " << a << " g x sin(2 pi " << f << " Hz t), " << T
           << " s, dt = " << dt << " s";
+        if (ramp > 0.)
+          {
+            // The closed forms take a steady harmonic.
+            d << ", linear ramp over " << ramp << " s";
+            harmonic_omega = 0.;
+          }
       }
     else
       {
@@ -340,6 +368,17 @@ namespace rockdda::seismic
           << vertical_record.acceleration.size()
           << " samples, dt = " << vertical_record.dt << " s, PGA "
           << vertical_record.peak() << " g)";
+      }
+    const std::string transverse_name = prm.get("Transverse record file");
+    transverse_record                 = Record();
+    if (!transverse_name.empty())
+      {
+        transverse_record
+          = read_file(transverse_name, "Ground motion/Transverse record file");
+        d << "; transverse " << transverse_record.name << " ("
+          << transverse_record.acceleration.size()
+          << " samples, dt = " << transverse_record.dt << " s, PGA "
+          << transverse_record.peak() << " g)";
       }
     raw_record = record;
 
@@ -390,23 +429,27 @@ namespace rockdda::seismic
           record = process(record, processing, &processing_report);
         });
         d << ", " << processing_report.description;
-        if (!vertical_record.acceleration.empty())
-          {
-            const double vertical_step = processing.resample_dt > 0.
-                                           ? processing.resample_dt
-                                           : vertical_record.dt;
-            io::require(
-              processing.low_pass < 0.5 / vertical_step
-                && processing.high_pass < 0.5 / vertical_step,
-              prm_file,
-              "Ground motion/Processing/Low-pass corner",
-              std::max(processing.low_pass, processing.high_pass),
-              "corners below " + io::format_number(0.5 / vertical_step, 6)
-                + " Hz (the Nyquist frequency of the vertical record)");
-            io::with_parameter_file(prm_file, [&]() {
-              vertical_record = process(vertical_record, processing);
-            });
-          }
+        for (auto [other, what] :
+             {std::make_pair(&vertical_record, "vertical"),
+              std::make_pair(&transverse_record, "transverse")})
+          if (!other->acceleration.empty())
+            {
+              const double other_step = processing.resample_dt > 0.
+                                          ? processing.resample_dt
+                                          : other->dt;
+              io::require(processing.low_pass < 0.5 / other_step
+                            && processing.high_pass < 0.5 / other_step,
+                          prm_file,
+                          "Ground motion/Processing/Low-pass corner",
+                          std::max(processing.low_pass, processing.high_pass),
+                          "corners below "
+                            + io::format_number(0.5 / other_step, 6)
+                            + " Hz (the Nyquist frequency of the " + what
+                            + " record)");
+              io::with_parameter_file(prm_file, [&]() {
+                *other = process(*other, processing);
+              });
+            }
         // A processed harmonic is no longer the closed form's input.
         harmonic_omega = 0.;
       }
@@ -474,6 +517,8 @@ namespace rockdda::seismic
         d << "; vertical x " << scale_factor * vertical_scale << ", PGA "
           << io::format_number(vertical_record.peak(), 6) << " g";
       }
+    if (!transverse_record.acceleration.empty())
+      scale(transverse_record, scale_factor);
     const std::string p = prm.get("Polarity");
     polarity            = p == "normal"     ? Polarity::normal
                           : p == "inverted" ? Polarity::inverted

@@ -8,8 +8,10 @@
 #define ROCKDDA_DDA_BLOCK_FILE_H
 
 #include <rockdda/dda/block_system.h>
+#include <rockdda/io/keyword_reader.h>
 
 #include <string>
+#include <utility>
 
 namespace rockdda::dda
 {
@@ -26,6 +28,17 @@ namespace rockdda::dda
   /// Parse block-file text; @p name is used in messages.
   BlockSystem
   parse_block_text(const std::string &text, const std::string &name);
+
+  /**
+   * The joint line "joint ID FRICTION_DEG COHESION TENSILE [KN KS]" that
+   * @p reader stands on (2D and 3D block files): its id and material.
+   * Throws InputError naming the line (and the joint) for a wrong word
+   * count (5 words: both stiffnesses or neither), a malformed number or a
+   * stiffness that is negative or not finite. Ranges of the friction
+   * angle, cohesion and tension are checked with the scene.
+   */
+  std::pair<int, JointMaterial>
+  joint_line(const io::KeywordReader &reader);
 
   /**
    * Words after the keyword of a point line of a @p dim-dimensional block

@@ -114,11 +114,47 @@ namespace rockdda::dda3d
    * naming the block (and face) for a defective polyhedron
    * (polyhedron_defect()), a missing material, a density, Young's modulus
    * or Poisson's ratio out of range, and a fixed, load or measurement
-   * point outside its block. Overlapping blocks at t = 0 are not checked
-   * yet (that needs the contact detection).
+   * point outside its block. Overlapping blocks at t = 0 are checked
+   * separately (check_overlaps(); the Engine does it on construction).
    */
   void
   validate_and_prepare(BlockSystem &system);
+
+  /// How deep two polyhedra overlap (overlap_depth()).
+  struct OverlapDepth
+  {
+    /// Penetration depth (m); <= 0 if they are apart or only touch.
+    double depth = 0.;
+    /// A point in or near the overlap (m).
+    Point point = Point::Zero();
+    /// For convex blocks the axis of least overlap (unit).
+    Point axis = Point::Zero();
+  };
+
+  /**
+   * The overlap of two polyhedra. Both convex (every vertex within 1e-9 of
+   * the size on the inner side of every face): the separating-axis test
+   * over the face normals of both and the cross products of an edge of
+   * each, exact: the depth is the least overlap of the projections.
+   * Otherwise a lower bound: the depth of the deepest vertex (or centroid)
+   * of one inside the other, measured to the nearest face plane; two
+   * non-convex blocks whose edges cross with no vertex inside the other are
+   * not detected.
+   */
+  OverlapDepth
+  overlap_depth(const Polyhedron &a, const Polyhedron &b);
+
+  /**
+   * Throw InputError naming both blocks (ids), the depth and a point of the
+   * overlap (plus @p origin, m) if two blocks of @p system overlap by more
+   * than @p overlap_fraction times the smaller block's size (touching and
+   * round-off are allowed). Pairs come from the broad phase on the
+   * bounding boxes, so the check is O(N) for blocks of similar size.
+   */
+  void
+  check_overlaps(const BlockSystem &system,
+                 const double       overlap_fraction = 1e-6,
+                 const Point       &origin           = Point::Zero());
 } // namespace rockdda::dda3d
 
 #endif

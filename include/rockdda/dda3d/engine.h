@@ -148,6 +148,14 @@ namespace rockdda::dda3d
     /// Ground acceleration (m/s^2) in the seismic loading mode, at the
     /// middle of each step; empty: none.
     std::function<Point(double)> ground_acceleration;
+    /**
+     * Ground displacement u_g(t) (m, u_g(0) = 0) in the seismic
+     * displacement mode: every clamped block (the foundation) is moved so
+     * that its centroid is displaced by u_g at the end of each step (a
+     * prescribed translation), and the anchors of the other fixed points
+     * follow u_g. Empty: none.
+     */
+    std::function<Point(double)> ground_displacement;
   };
 
   /// Energies of the ledger (J).
@@ -196,6 +204,20 @@ namespace rockdda::dda3d
     /// Step until time @p t_end (the last step shortened to end there).
     void
     advance_to(const double t_end);
+
+    /**
+     * @p n static steps (dynamic control 0) under gravity and the constant
+     * loads, without seismic input, before t = 0: the contacts take up the
+     * weight without the undamped bounce of a dynamic start (blocks given
+     * touching, with zero penetration, oscillate about the penetrated
+     * equilibrium with an amplitude of W / k_n, and the friction with
+     * them). Afterwards the time is unchanged, the velocities are zero and
+     * the settled state is the reference of displacements (centroids and
+     * measurement points at t = 0) and of the energy ledger's potential,
+     * friction and load work.
+     */
+    void
+    settle(const unsigned int n);
 
     /// Time (s).
     double

@@ -74,6 +74,10 @@ namespace rockdda::seismic
     /// scaled like the record (times vertical_scale); empty if no
     /// "Vertical record file" is given.
     Record vertical_record;
+    /// Second horizontal ground acceleration (g), at 90 deg clockwise
+    /// from the record's direction, processed and scaled like the record
+    /// (normal polarity); empty if no "Transverse record file" is given.
+    Record transverse_record;
     /// Multiplier of the vertical record after the common scaling (-).
     double vertical_scale = 1.;
     /// Harmonic source: amplitude (g) and angular frequency (rad/s); 0 for

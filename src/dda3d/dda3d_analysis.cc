@@ -1,0 +1,685 @@
+/**
+ * @file
+ * Analysis type "dda3d": 3D discontinuous deformation analysis of a scene
+ * of polyhedral blocks read from a block file
+ * (doc/block-file-format-dda3d.md), with optional seismic input in the
+ * thesis's loading or displacement mode (Bakun-Mazor 2011, Sec. 4.6-4.7).
+ */
+#include <rockdda/dda/block_system.h>
+#include <rockdda/dda/vtu_output.h>
+#include <rockdda/dda3d/analyses.h>
+#include <rockdda/dda3d/block_file.h>
+#include <rockdda/dda3d/engine.h>
+#include <rockdda/dda3d/vtu_output.h>
+#include <rockdda/io/error.h>
+#include <rockdda/io/interrupt.h>
+#include <rockdda/io/parameters.h>
+#include <rockdda/io/progress.h>
+#include <rockdda/seismic/ground_motion.h>
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+
+namespace rockdda::dda3d
+{
+  namespace
+  {
+    using dealii::Patterns::Double;
+    using dealii::Patterns::Integer;
+    using dealii::Patterns::Selection;
+
+    /// Three expressions of t separated by ';' as a function of t;
+    /// throws InputError naming the key.
+    std::function<Point(double)>
+    parse_expressions(const std::string &expr,
+                      const std::string &prm_file,
+                      const std::string &key)
+    {
+      auto parser = std::make_shared<dealii::FunctionParser<1>>(3);
+      try
+        {
+          parser->initialize("x,t",
+                             expr,
+                             std::map<std::string, double>{{"pi", M_PI}},
+                             true);
+          parser->set_time(0.);
+          for (unsigned int c = 0; c < 3; ++c)
+            if (!std::isfinite(parser->value(dealii::Point<1>(), c)))
+              throw InputError("not finite at t = 0");
+        }
+      catch (const std::exception &)
+        {
+          throw InputError(prm_file + ": key '" + key + "' = '" + expr
+                           + "' is not valid; valid: three expressions of "
+                             "t (s) separated by ';' (e.g. "
+                             "'-0.5*sin(10*t); 0; 0')");
+        }
+      return [parser](const double t) {
+        parser->set_time(t);
+        return Point(parser->value(dealii::Point<1>(), 0),
+                     parser->value(dealii::Point<1>(), 1),
+                     parser->value(dealii::Point<1>(), 2));
+      };
+    }
+
+    /// The "dda3d" analysis.
+    class Dda3dAnalysis : public io::Analysis
+    {
+    public:
+      std::string
+      name() const override
+      {
+        return "dda3d";
+      }
+
+      std::string
+      description() const override
+      {
+        return "3D discontinuous deformation analysis (DDA) of polyhedral "
+               "blocks";
+      }
+
+      void
+      declare_parameters(dealii::ParameterHandler &prm) const override
+      {
+        seismic::GroundMotionInput::declare_parameters(prm);
+        prm.enter_subsection("DDA 3d");
+        io::declare(prm,
+                    "Block file",
+                    "",
+                    dealii::Patterns::Anything(),
+                    "-",
+                    "Scene file (doc/block-file-format-dda3d.md): materials, "
+                    "joints, polyhedral blocks, fixed, load and measurement "
+                    "points, initial velocities. Relative to this parameter "
+                    "file; $VAR is expanded.");
+        io::declare(prm,
+                    "End time",
+                    "1",
+                    io::DoubleInterval::positive(),
+                    "s",
+                    "Simulated duration, > 0.");
+        io::declare(prm,
+                    "Time step",
+                    "0.001",
+                    io::DoubleInterval::positive(),
+                    "s",
+                    "Largest (and initial) time step, > 0. A step is cut by "
+                    "3 when the open-close iteration does not converge or a "
+                    "vertex moves too far, and grows back by 1.3 after good "
+                    "steps. End time / Time step must be at most 1e8.");
+        io::declare(prm,
+                    "Minimum time step ratio",
+                    "1e-6",
+                    io::DoubleInterval(0., true, 1., false),
+                    "-",
+                    "The run stops with a diagnosis when a step must be cut "
+                    "below this fraction of the Time step; 0 < ratio <= 1.");
+        io::declare(prm,
+                    "Dynamic control",
+                    "1",
+                    Double(0., 1.),
+                    "-",
+                    "Fraction of the velocity carried into the next step, in "
+                    "[0, 1]: 0 static relaxation, 1 fully dynamic.");
+        io::declare(prm,
+                    "Maximum open-close iterations",
+                    "12",
+                    Integer(1, 100),
+                    "-",
+                    "Open-close iterations that change contact states before "
+                    "the step is cut, in [1, 100]; iterations that only "
+                    "update friction may add as many again.");
+        io::declare(prm,
+                    "Maximum displacement ratio",
+                    "0.01",
+                    io::DoubleInterval(0., true, 1., false),
+                    "-",
+                    "Largest vertex displacement per step as a fraction of "
+                    "its block's size, 0 < ratio <= 1; a step that moves a "
+                    "vertex further is cut. The contact distance is 2.5 x "
+                    "this.");
+        io::declare(prm,
+                    "Contact penalty",
+                    "1e10",
+                    io::DoubleInterval::positive(),
+                    "N/m",
+                    "Normal penalty spring of a contact, > 0 (in series with "
+                    "a joint's stiffness over the contact area, if the joint "
+                    "has one). A block of weight W on n contacts sinks by "
+                    "W / (n p).");
+        io::declare(prm,
+                    "Shear penalty ratio",
+                    "0.4",
+                    io::DoubleInterval::positive(),
+                    "-",
+                    "Shear penalty / normal penalty, > 0.");
+        io::declare(prm,
+                    "Fixed point penalty",
+                    "0",
+                    Double(0.),
+                    "N/m",
+                    "Spring of a fixed point of a block held by one or two "
+                    "of them, >= 0; 0 = 10 x the contact penalty. A block "
+                    "with three or more fixed points that are not collinear "
+                    "is clamped (its motion prescribed: at rest, or the "
+                    "ground's in the displacement mode).");
+        io::declare(prm,
+                    "Settling steps",
+                    "0",
+                    Integer(0, 100000),
+                    "-",
+                    "Static steps (dynamic control 0) under gravity before "
+                    "t = 0, in [0, 100000], without seismic input; the "
+                    "settled state is the reference for displacements. "
+                    "Blocks given touching start with zero penetration and, "
+                    "without settling, bounce on their contact springs "
+                    "(amplitude W / k_n, undamped by Shi's scheme), which "
+                    "modulates the friction for the whole run.");
+        io::declare(prm,
+                    "Gravity",
+                    "9.80665",
+                    Double(0.),
+                    "m/s^2",
+                    "Gravitational acceleration, >= 0, acting towards -z "
+                    "(x east, y north, z up).");
+        io::declare(prm,
+                    "Seismic input",
+                    "none",
+                    Selection("none|loading|displacement"),
+                    "-",
+                    "'loading' (the thesis's loading mode): every block is "
+                    "loaded by the inertial body force -rho V a_g(t) at the "
+                    "middle of each step, the foundation stays put (the "
+                    "scene is seen in the ground's frame); 'displacement': "
+                    "the clamped blocks (the foundation) are moved by the "
+                    "ground displacement u_g(t), the double integral of "
+                    "a_g from rest, and fixed points follow it (low-pass "
+                    "and baseline-correct a record first: 'Ground "
+                    "motion/Processing'; the thesis used a 2.5 Hz "
+                    "Butterworth).");
+        io::declare(prm,
+                    "Seismic source",
+                    "expression",
+                    Selection("expression|ground motion"),
+                    "-",
+                    "'expression': a_g(t) from 'Ground acceleration'; "
+                    "'ground motion': the 'Ground motion' section's record "
+                    "or harmonic (with its ramp and processing), "
+                    "horizontal along 'Ground motion azimuth', its "
+                    "'Transverse record file' 90 deg clockwise from it and "
+                    "its 'Vertical record file' upward.");
+        io::declare(prm,
+                    "Ground acceleration",
+                    "0; 0; 0",
+                    dealii::Patterns::Anything(),
+                    "g",
+                    "Ground acceleration a_g(t) (not the resultant on the "
+                    "block: that is gravity - a_g): three expressions of t "
+                    "(s) for x (east), y (north), z (up), separated by ';'. "
+                    "Thesis Fig. 4-2A, r = [0.5 sin 10t, 0, -1] g, is "
+                    "'-0.5*sin(10*t); 0; 0'. A ramp is written into the "
+                    "expression, e.g. 'min(t/5,1)*0.21*sin(4*pi*t); 0; 0'.");
+        io::declare(prm,
+                    "Ground motion azimuth",
+                    "90",
+                    Double(0., 360.),
+                    "deg",
+                    "Direction (clockwise from north, 0 to 360) of the "
+                    "horizontal record of the Ground motion section.");
+        io::declare(prm,
+                    "Output interval",
+                    "0.1",
+                    Double(0.),
+                    "s",
+                    "Spacing of the VTU snapshots of the blocks "
+                    "(blocks-NNNNN.vtu, series blocks.pvd), >= 0; 0 = none.");
+        io::declare(prm,
+                    "Statistics interval",
+                    "0",
+                    Double(0.),
+                    "s",
+                    "Spacing of rows in statistics.csv, >= 0; 0 = every "
+                    "step.");
+        prm.leave_subsection();
+      }
+
+      void
+      parse_parameters(dealii::ParameterHandler &prm,
+                       const std::string        &prm_file) override
+      {
+        prm.enter_subsection("DDA 3d");
+        const std::string file   = prm.get("Block file");
+        end_time                 = prm.get_double("End time");
+        c.dt                     = prm.get_double("Time step");
+        c.min_dt_ratio           = prm.get_double("Minimum time step ratio");
+        c.dynamic                = prm.get_double("Dynamic control");
+        c.max_open_close         = prm.get_integer("Maximum open-close "
+                                                   "iterations");
+        c.max_displacement_ratio = prm.get_double("Maximum displacement "
+                                                  "ratio");
+        c.law.normal_penalty     = prm.get_double("Contact penalty");
+        c.law.shear_ratio        = prm.get_double("Shear penalty ratio");
+        c.fixed_penalty          = prm.get_double("Fixed point penalty");
+        const double gravity     = prm.get_double("Gravity");
+        settling_steps           = prm.get_integer("Settling steps");
+        output_interval          = prm.get_double("Output interval");
+        statistics_interval      = prm.get_double("Statistics interval");
+        prm.leave_subsection();
+        const std::string s = "DDA 3d/";
+        io::require(end_time > 0., prm_file, s + "End time", end_time, "> 0 s");
+        io::require(c.dt > 0., prm_file, s + "Time step", c.dt, "> 0 s");
+        {
+          const double n = io::planned_steps(0., end_time, c.dt);
+          if (n > io::max_planned_steps)
+            throw InputError(
+              prm_file
+              + ": keys 'DDA 3d/End time' = " + io::format_number(end_time)
+              + " s and 'DDA 3d/Time step' = " + io::format_number(c.dt)
+              + " s plan " + io::format_number(n, 4) + " time steps; at most "
+              + io::format_number(io::max_planned_steps, 3)
+              + " are allowed: raise the time step or shorten the run");
+        }
+        io::require(c.min_dt_ratio > 0. && c.min_dt_ratio <= 1.,
+                    prm_file,
+                    s + "Minimum time step ratio",
+                    c.min_dt_ratio,
+                    "0 < ratio <= 1");
+        io::require(c.max_displacement_ratio > 0.
+                      && c.max_displacement_ratio <= 1.,
+                    prm_file,
+                    s + "Maximum displacement ratio",
+                    c.max_displacement_ratio,
+                    "0 < ratio <= 1");
+        io::require(c.law.normal_penalty > 0.,
+                    prm_file,
+                    s + "Contact penalty",
+                    c.law.normal_penalty,
+                    "> 0 N/m");
+        io::require(c.law.shear_ratio > 0.,
+                    prm_file,
+                    s + "Shear penalty ratio",
+                    c.law.shear_ratio,
+                    "> 0");
+        if (file.empty())
+          throw InputError(prm_file
+                           + ": key 'DDA 3d/Block file' is empty; give the "
+                             "scene's block file");
+        const std::string path
+          = io::resolve_path(file, prm_file, "DDA 3d/Block file");
+        BlockSystem scene = read_block_file(path);
+        scene.gravity     = Point(0., 0., -gravity);
+        seismic           = parse_seismic_input(
+          prm, prm_file, end_time, c.dt, gravity > 0. ? gravity : 9.80665);
+        if (seismic.mode == SeismicInput3d::Mode::loading)
+          c.ground_acceleration = seismic.acceleration;
+        else if (seismic.mode == SeismicInput3d::Mode::displacement)
+          c.ground_displacement = seismic.displacement;
+        try
+          {
+            engine = std::make_unique<Engine>(scene, c);
+          }
+        catch (const InputError &e)
+          {
+            throw InputError("block file '" + path + "': " + e.what());
+          }
+      }
+
+      void
+      run(io::RunContext &context) override
+      {
+        if (!seismic.description.empty())
+          context.log.line("seismic input: " + seismic.description);
+        const auto &sys = engine->scene();
+        context.log.line(
+          "DDA 3d: " + std::to_string(sys.blocks.size()) + " blocks, penalty "
+          + io::format_number(c.law.normal_penalty, 4) + " N/m, time step "
+          + io::format_number(c.dt, 4) + " s");
+        if (settling_steps > 0)
+          {
+            engine->settle(settling_steps);
+            context.log.line("settled with " + std::to_string(settling_steps)
+                             + " static steps");
+          }
+        io::Table table;
+        for (const auto &[n, u] :
+             std::vector<std::pair<std::string, std::string>>{
+               {"time", "s"},
+               {"dt", "s"},
+               {"open_close_iterations", "-"},
+               {"cuts", "-"},
+               {"contacts_open", "-"},
+               {"contacts_sliding", "-"},
+               {"contacts_locked", "-"},
+               {"kinetic_energy", "J"},
+               {"strain_energy", "J"},
+               {"contact_energy", "J"},
+               {"gravity_potential_energy", "J"},
+               {"friction_dissipation", "J"},
+               {"load_work", "J"},
+               {"energy_balance", "J"}})
+          table.add_column(n, u);
+        const bool ground = seismic.mode == SeismicInput3d::Mode::displacement;
+        if (ground)
+          for (const char *n : {"ground_ux", "ground_uy", "ground_uz"})
+            table.add_column(n, "m");
+        const std::size_t n_mp = sys.measurement_points.size();
+        for (std::size_t m = 0; m < n_mp; ++m)
+          {
+            const std::string p = "mp" + std::to_string(m + 1) + "_";
+            for (const char *x : {"ux", "uy", "uz"})
+              table.add_column(p + x, "m");
+            for (const char *x : {"sigma_x", "sigma_y", "sigma_z"})
+              table.add_column(p + x, "Pa");
+          }
+        auto mp_displacement = [&](const std::size_t m) {
+          const auto &mp = engine->scene().measurement_points[m];
+          return Point(mp.point - mp.initial);
+        };
+        int  cuts_since_row = 0;
+        auto add_row        = [&]() {
+          const auto         &st = engine->statistics();
+          const Energy        e  = engine->energy();
+          std::vector<double> row{engine->time(),
+                                  st.dt,
+                                  double(st.iterations),
+                                  double(cuts_since_row),
+                                  double(st.open),
+                                  double(st.sliding),
+                                  double(st.locked),
+                                  e.kinetic,
+                                  e.strain,
+                                  e.contact,
+                                  e.potential,
+                                  e.friction,
+                                  e.load_work,
+                                  e.balance()};
+          cuts_since_row = 0;
+          if (ground)
+            {
+              const Point u = seismic.displacement(engine->time());
+              row.insert(row.end(), {u.x(), u.y(), u.z()});
+            }
+          for (std::size_t m = 0; m < n_mp; ++m)
+            {
+              const Point d = mp_displacement(m);
+              const auto &b
+                = engine->scene()
+                    .blocks[engine->scene().measurement_points[m].block];
+              row.insert(
+                row.end(),
+                {d.x(), d.y(), d.z(), b.stress[0], b.stress[1], b.stress[2]});
+            }
+          table.add_row(row);
+        };
+        std::vector<std::pair<double, std::string>> files;
+        auto                                        snapshot = [&]() {
+          char name[64];
+          std::snprintf(name, sizeof(name), "blocks-%05zu.vtu", files.size());
+          context.output.write(name,
+                               blocks_vtu(engine->scene(), engine->origin()));
+          files.emplace_back(engine->time(), name);
+          context.output.write("blocks.pvd", dda::pvd(files));
+        };
+
+        add_row();
+        if (output_interval > 0.)
+          snapshot();
+        double        next_output = output_interval;
+        double        next_row    = statistics_interval;
+        unsigned long steps = 0, cuts = 0, iterations = 0;
+        const double  balance0    = engine->energy().balance();
+        double        created_max = 0.;
+        int           interrupted = 0;
+        std::string   failure;
+        const auto    start = std::chrono::steady_clock::now();
+        {
+          io::ProgressBar progress("dda3d",
+                                   0.,
+                                   end_time,
+                                   static_cast<unsigned long>(
+                                     io::planned_steps(0., end_time, c.dt)));
+          try
+            {
+              while (engine->time() < end_time - 1e-9 * c.dt
+                     && (interrupted = io::interrupt_signal()) == 0)
+                {
+                  double target = end_time;
+                  if (output_interval > 0.)
+                    target = std::min(target, next_output);
+                  // One step (the last before an output time shortened to
+                  // land on it).
+                  const double t0 = engine->time();
+                  engine->advance_to(std::min(target, t0 + c.dt));
+                  ++steps;
+                  cuts += engine->statistics().cuts;
+                  cuts_since_row += engine->statistics().cuts;
+                  iterations += engine->statistics().iterations;
+                  created_max = std::max(created_max,
+                                         engine->energy().balance() - balance0);
+                  if (statistics_interval <= 0.
+                      || engine->time() >= next_row - 1e-12)
+                    {
+                      add_row();
+                      while (statistics_interval > 0.
+                             && next_row <= engine->time() + 1e-12)
+                        next_row += statistics_interval;
+                    }
+                  if (output_interval > 0.
+                      && engine->time() >= next_output - 1e-12)
+                    {
+                      snapshot();
+                      next_output += output_interval;
+                    }
+                  progress.update(steps, engine->time());
+                }
+            }
+          catch (const InputError &e)
+            {
+              failure = e.what();
+            }
+        }
+        const double wall = std::chrono::duration<double>(
+                              std::chrono::steady_clock::now() - start)
+                              .count();
+        context.output.write("statistics.csv", table.csv());
+        if (!failure.empty())
+          {
+            context.log.line("DDA 3d stopped: " + failure);
+            throw InputError(failure);
+          }
+        if (interrupted != 0)
+          {
+            context.stopped_early = true;
+            context.stopped_note
+              = "DDA 3d stopped at t = " + io::format_number(engine->time(), 8)
+                + " s of " + io::format_number(end_time, 8)
+                + " s; statistics.csv so far written";
+            context.log.line(context.stopped_note);
+          }
+        auto &sm = context.summary;
+        sm.add("final_time", engine->time(), "s");
+        sm.add("steps", double(steps), "-");
+        sm.add("time_step_cuts", double(cuts), "-");
+        sm.add("open_close_iterations_per_step",
+               double(iterations) / double(std::max(1ul, steps)),
+               "-");
+        const Energy e = engine->energy();
+        sm.add("kinetic_energy", e.kinetic, "J");
+        sm.add("energy_balance_change", e.balance() - balance0, "J");
+        sm.add("energy_created_max", created_max, "J");
+        sm.add("contacts_final", double(engine->contacts().size()), "-");
+        double max_disp = 0.;
+        for (std::size_t b = 0; b < sys.blocks.size(); ++b)
+          max_disp = std::max(max_disp, engine->displacement(b).norm());
+        sm.add("max_block_displacement", max_disp, "m");
+        for (std::size_t m = 0; m < n_mp; ++m)
+          {
+            const Point       d = mp_displacement(m);
+            const std::string p = "mp" + std::to_string(m + 1) + "_";
+            sm.add(p + "ux", d.x(), "m");
+            sm.add(p + "uy", d.y(), "m");
+            sm.add(p + "uz", d.z(), "m");
+          }
+        if (ground)
+          {
+            const Point u = seismic.displacement(engine->time());
+            sm.add("ground_ux", u.x(), "m");
+            sm.add("ground_uy", u.y(), "m");
+            sm.add("ground_uz", u.z(), "m");
+          }
+        sm.add("wall_time", wall, "s");
+        context.log.line("DDA 3d finished: " + std::to_string(steps)
+                         + " steps, " + std::to_string(cuts) + " cuts, "
+                         + io::format_number(wall, 3) + " s wall");
+      }
+
+    private:
+      std::unique_ptr<Engine> engine;
+      EngineControls          c;
+      SeismicInput3d          seismic;
+      double end_time = 1., output_interval = 0.1, statistics_interval = 0.;
+      unsigned int settling_steps = 0;
+    };
+  } // namespace
+
+
+
+  SeismicInput3d
+  parse_seismic_input(dealii::ParameterHandler &prm,
+                      const std::string        &prm_file,
+                      const double              end_time,
+                      const double              time_step,
+                      const double              g)
+  {
+    SeismicInput3d in;
+    prm.enter_subsection("DDA 3d");
+    const std::string mode    = prm.get("Seismic input");
+    const std::string source  = prm.get("Seismic source");
+    const std::string expr    = prm.get("Ground acceleration");
+    const double      azimuth = prm.get_double("Ground motion azimuth");
+    prm.leave_subsection();
+    if (mode == "none")
+      return in;
+    in.mode = mode == "loading" ? SeismicInput3d::Mode::loading
+                                : SeismicInput3d::Mode::displacement;
+    // The three components as records (g): x, y, z.
+    std::array<seismic::Record, 3> records;
+    if (source == "expression")
+      {
+        const auto a
+          = parse_expressions(expr, prm_file, "DDA 3d/Ground acceleration");
+        in.description = "a_g(t) = [" + expr + "] g, " + mode + " mode";
+        if (in.mode == SeismicInput3d::Mode::loading)
+          {
+            in.acceleration
+              = [a, g](const double t) { return Point(g * a(t)); };
+            return in;
+          }
+        // Sampled at dt / 20 for the exact piecewise-linear integral.
+        const double      h = time_step / 20.;
+        const std::size_t n
+          = static_cast<std::size_t>(std::ceil(end_time / h)) + 2;
+        for (auto &r : records)
+          {
+            r.name = "expression";
+            r.dt   = h;
+            r.acceleration.resize(n);
+          }
+        for (std::size_t k = 0; k < n; ++k)
+          {
+            const Point v = a(k * h);
+            for (int d = 0; d < 3; ++d)
+              records[d].acceleration[k] = v[d];
+          }
+        in.description += " (sampled at " + io::format_number(h, 4) + " s)";
+      }
+    else
+      {
+        seismic::GroundMotionInput motion;
+        motion.parse_parameters(prm, prm_file);
+        if (motion.polarity == seismic::GroundMotionInput::Polarity::both)
+          throw InputError(prm_file
+                           + ": key 'Ground motion/Polarity' = both is not "
+                             "supported by dda3d (one simulation per file); "
+                             "valid: normal or inverted");
+        const double sign
+          = motion.polarity == seismic::GroundMotionInput::Polarity::inverted
+              ? -1.
+              : 1.;
+        const double a  = azimuth * M_PI / 180.;
+        const Point  e1 = sign * Point(std::sin(a), std::cos(a), 0.);
+        const Point  e2 = sign * Point(std::cos(a), -std::sin(a), 0.);
+        const auto add = [&](const seismic::Record &r, const Point &direction) {
+          if (r.acceleration.empty())
+            return;
+          for (int d = 0; d < 3; ++d)
+            if (direction[d] != 0.)
+              {
+                // Resample the component onto the record's own
+                // grid: every component shares it (add in place).
+                seismic::Record &out = records[d];
+                if (out.acceleration.empty())
+                  {
+                    out.dt = r.dt;
+                    out.acceleration.assign(r.acceleration.size(), 0.);
+                  }
+                const std::size_t n
+                  = std::max(out.acceleration.size(),
+                             static_cast<std::size_t>(
+                               std::ceil(r.duration() / out.dt))
+                               + 1);
+                out.acceleration.resize(n, 0.);
+                for (std::size_t k = 0; k < n; ++k)
+                  out.acceleration[k] += direction[d] * r.at(k * out.dt);
+              }
+        };
+        add(motion.record, e1);
+        add(motion.transverse_record, e2);
+        add(motion.vertical_record, Point::UnitZ());
+        in.description = motion.description + ", azimuth "
+                         + io::format_number(azimuth, 6) + " deg, " + mode
+                         + " mode";
+        if (in.mode == SeismicInput3d::Mode::loading)
+          {
+            auto rec
+              = std::make_shared<std::array<seismic::Record, 3>>(records);
+            in.acceleration = [rec, g](const double t) {
+              return Point(g * (*rec)[0].at(t),
+                           g * (*rec)[1].at(t),
+                           g * (*rec)[2].at(t));
+            };
+            return in;
+          }
+      }
+    auto integrals
+      = std::make_shared<std::array<dda::GroundMotionIntegral, 3>>();
+    for (int d = 0; d < 3; ++d)
+      if (!records[d].acceleration.empty())
+        (*integrals)[d] = dda::GroundMotionIntegral(records[d], g);
+    in.displacement = [integrals](const double t) {
+      return Point((*integrals)[0].displacement(t),
+                   (*integrals)[1].displacement(t),
+                   (*integrals)[2].displacement(t));
+    };
+    return in;
+  }
+
+
+
+  std::vector<std::unique_ptr<io::Analysis>>
+  make_analyses()
+  {
+    std::vector<std::unique_ptr<io::Analysis>> list;
+    list.push_back(std::make_unique<Dda3dAnalysis>());
+    return list;
+  }
+} // namespace rockdda::dda3d
