@@ -12,7 +12,15 @@ end (the driver's own timer), peak resident memory, and the mean settlement
 of the top row of bricks at the end (settlement.py).
 
   from_rest.py [--repeat N] [--threads 1,2] [--scenes wall-25x40,wall-50x80]
-               NAME=BINARY [NAME=BINARY ...] > from-rest.csv
+               NAME=BINARY[:OPTION=VALUE...] [...] > from-rest.csv
+
+OPTIONs of a configuration (issue 16, distributed DDA): np=N runs it with
+'mpirun -np N' (ranks, column 'ranks'); threads=T fixes its threads
+(otherwise each of --threads); solver=S and pc=P set 'Linear solver' and
+'Distributed preconditioner'. The column 'time_ratio' is the median over
+the rounds of the time to the end divided by that of the first
+configuration on the same scene in the same round (binaries alternate
+within a round).
 """
 import argparse
 import csv
@@ -37,7 +45,16 @@ def summary(path):
     return out
 
 
-def run(binary, scene, threads, work):
+def parse_spec(text):
+    """NAME=BINARY[:OPTION=VALUE...] -> (name, binary, options)."""
+    name, rest = text.split("=", 1)
+    parts = rest.split(":")
+    options = dict(o.split("=", 1) for o in parts[1:])
+    return name, parts[0], options
+
+
+def run(binary, scene, threads, work, options=None):
+    options = options or {}
     prm = open(os.path.join(DATA, scene + ".prm")).read()
     end = float(re.search(r"set End time\s*=\s*(\S+)", prm).group(1))
     out = os.path.join(work, "out")
@@ -47,12 +64,26 @@ def run(binary, scene, threads, work):
                  lambda m: "set Block file = "
                  + os.path.join(DATA, m.group(1)), prm)
     prm = re.sub(r"set Threads\s*=.*", "set Threads = %d" % threads, prm)
+    extra = ""
+    if "solver" in options:
+        extra += "  set Linear solver = %s\n" % options["solver"]
+    if "pc" in options:
+        extra += "  set Distributed preconditioner = %s\n" % options["pc"]
+    prm = prm.replace("subsection DDA\n", "subsection DDA\n" + extra, 1)
     # One output at the start and one at the end, for the settlement.
     prm = re.sub(r"set Output interval\s*=.*", "set Output interval = %g" % end,
                  prm)
     path = os.path.join(work, scene + ".prm")
     open(path, "w").write(prm)
-    child = subprocess.Popen([binary, path], stdout=subprocess.DEVNULL)
+    command = [binary, path]
+    if int(options.get("np", 0)) > 0:
+        # Plain copies between ranks (containers often forbid the
+        # cross-memory attach of the shared-memory transport).
+        command = ["mpirun", "--allow-run-as-root", "--oversubscribe",
+                   "--bind-to", "none", "--mca",
+                   "btl_vader_single_copy_mechanism", "none",
+                   "-np", options["np"]] + command
+    child = subprocess.Popen(command, stdout=subprocess.DEVNULL)
     _, status, usage = os.wait4(child.pid, 0)
     child.returncode = os.waitstatus_to_exitcode(status)
     if child.returncode != 0:
@@ -85,26 +116,37 @@ def main():
     p.add_argument("--scenes", default="wall-25x40,wall-50x80")
     p.add_argument("binaries", nargs="+")
     a = p.parse_args()
-    binaries = [b.split("=", 1) for b in a.binaries]
+    specs = [parse_spec(b) for b in a.binaries]
     w = csv.writer(sys.stdout)
     keys = ["steps", "cuts", "iterations_per_step", "linear_solves",
             "ms_per_step", "time_to_end_s", "peak_memory_MiB",
             "top_settlement_m"]
-    w.writerow(["scene", "code", "threads", "runs"] + keys)
+    w.writerow(["scene", "code", "ranks", "threads", "runs"] + keys
+               + ["time_ratio"])
     for scene in a.scenes.split(","):
+        # The (configuration, threads) pairs of this scene, in order.
+        runs = []
         for threads in [int(t) for t in a.threads.split(",")]:
-            results = {name: [] for name, _ in binaries}
-            for _ in range(a.repeat):
-                for name, binary in binaries:
-                    with tempfile.TemporaryDirectory() as work:
-                        results[name].append(run(binary, scene, threads,
-                                                 work))
-            for name, _ in binaries:
-                rows = results[name]
-                w.writerow([scene, name, threads, len(rows)]
-                           + ["%.6g" % statistics.median(r[k] for r in rows)
-                              for k in keys])
-                sys.stdout.flush()
+            for name, binary, options in specs:
+                t = int(options.get("threads", threads))
+                if (name, t) not in [(r[0], r[3]) for r in runs]:
+                    runs.append((name, binary, options, t))
+        results = {(r[0], r[3]): [] for r in runs}
+        for _ in range(a.repeat):
+            for name, binary, options, t in runs:
+                with tempfile.TemporaryDirectory() as work:
+                    results[(name, t)].append(run(binary, scene, t, work,
+                                                  options))
+        first = results[(runs[0][0], runs[0][3])]
+        for name, _, options, t in runs:
+            rows = results[(name, t)]
+            ratio = statistics.median(
+                r["time_to_end_s"] / f["time_to_end_s"]
+                for r, f in zip(rows, first))
+            w.writerow([scene, name, int(options.get("np", 1)), t, len(rows)]
+                       + ["%.6g" % statistics.median(r[k] for r in rows)
+                          for k in keys] + ["%.3f" % ratio])
+            sys.stdout.flush()
 
 
 main()

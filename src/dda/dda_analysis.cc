@@ -15,6 +15,8 @@
 #include <rockdda/io/progress.h>
 #include <rockdda/seismic/ground_motion.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -31,6 +33,20 @@ namespace rockdda::dda
     using dealii::Patterns::Double;
     using dealii::Patterns::Integer;
     using dealii::Patterns::Selection;
+
+    /// The log's description of the distributed solver of @p ls.
+    std::string
+    distributed_solver_text(const LinearSolver &ls, const Controls &c)
+    {
+      const auto p = c.solver.distributed_preconditioner;
+      return std::string("CG (Trilinos) + ")
+             + (p == DistributedPreconditioner::amg   ? "ML AMG"
+                : p == DistributedPreconditioner::ilu ? "Ifpack ILU(0)"
+                                                      : "Ifpack block-Jacobi")
+             + " on " + std::to_string(ls.n_ranks())
+             + " MPI ranks (blocks partitioned along a Hilbert curve; "
+               "geometry, contacts and assembly replicated)";
+    }
 
     /**
      * Log lines on the ground motion the fixed points follow: for each
@@ -232,11 +248,25 @@ namespace rockdda::dda
         io::declare(prm,
                     "Linear solver",
                     "automatic",
-                    Selection("automatic|direct|iterative"),
+                    Selection("automatic|direct|iterative|distributed"),
                     "-",
                     "'direct': sparse LDL^T; 'iterative': preconditioned CG "
-                    "with warm start; 'automatic': direct up to 60 blocks, "
-                    "iterative above.");
+                    "with warm start; 'distributed' (mpirun -np N only): CG "
+                    "on a Trilinos matrix whose block rows are partitioned "
+                    "over the ranks (doc/theory/dda-mpi.md); 'automatic': "
+                    "direct up to 60 blocks, above that iterative on one "
+                    "process and distributed on several MPI ranks.");
+        io::declare(prm,
+                    "Distributed preconditioner",
+                    "ilu",
+                    Selection("ilu|block-jacobi|amg"),
+                    "-",
+                    "Preconditioner of the distributed solver, from "
+                    "Trilinos: 'ilu' (Ifpack ILU(0) on each rank's rows, "
+                    "additive Schwarz without overlap; the fastest on the "
+                    "brick walls), 'block-jacobi' (Ifpack, the 6x6 blocks "
+                    "of the blocks) or 'amg' (ML smoothed aggregation); "
+                    "doc/theory/dda-mpi.md.");
         io::declare(prm,
                     "Preconditioner",
                     "block-dilu",
@@ -362,12 +392,25 @@ namespace rockdda::dda
                              + "'; valid: 'auto' or a stiffness >= 0 N/m "
                                "(0 = auto)");
         }
-        c.law.shear_ratio         = prm.get_double("Shear penalty ratio");
-        c.fixed_penalty           = prm.get_double("Fixed point penalty");
-        const std::string solver  = prm.get("Linear solver");
-        c.solver.type             = solver == "direct"      ? SolverType::direct
-                                    : solver == "iterative" ? SolverType::iterative
-                                                            : SolverType::automatic;
+        c.law.shear_ratio        = prm.get_double("Shear penalty ratio");
+        c.fixed_penalty          = prm.get_double("Fixed point penalty");
+        const std::string solver = prm.get("Linear solver");
+        c.solver.type            = solver == "direct"      ? SolverType::direct
+                                   : solver == "iterative" ? SolverType::iterative
+                                   : solver == "distributed" ? SolverType::distributed
+                                                             : SolverType::automatic;
+        const std::string dpc    = prm.get("Distributed preconditioner");
+        c.solver.distributed_preconditioner
+          = dpc == "amg"   ? DistributedPreconditioner::amg
+            : dpc == "ilu" ? DistributedPreconditioner::ilu
+                           : DistributedPreconditioner::block_jacobi;
+        if (c.solver.type == SolverType::distributed
+            && !dealii::Utilities::MPI::job_supports_mpi())
+          throw InputError(prm_file
+                           + ": key 'DDA/Linear solver' = 'distributed' "
+                             "needs a run under MPI (mpirun -np N rockdda "
+                             "FILE.prm); valid here: automatic, direct, "
+                             "iterative");
         c.solver.tolerance        = prm.get_double("Solver tolerance");
         c.solver.threads          = prm.get_integer("Threads");
         c.solver.preconditioner   = prm.get("Preconditioner") == "block-jacobi"
@@ -839,13 +882,15 @@ namespace rockdda::dda
                   dda->system().blocks[mp.block].stress[1],
                   "Pa");
           }
-        const LinearSolver &ls          = dda->linear_solver();
-        std::string         solver_text = ls.type() == SolverType::direct
-                                            ? "sparse LDL^T (direct)"
-                                          : dda->controls().solver.preconditioner
-                                      == Preconditioner::block_jacobi
-                                            ? "CG + block-Jacobi"
-                                            : "CG + block D-ILU";
+        const LinearSolver &ls = dda->linear_solver();
+        std::string         solver_text
+          = ls.type() == SolverType::direct ? "sparse LDL^T (direct)"
+            : ls.type() == SolverType::distributed
+              ? distributed_solver_text(ls, dda->controls())
+            : dda->controls().solver.preconditioner
+                == Preconditioner::block_jacobi
+              ? "CG + block-Jacobi"
+              : "CG + block D-ILU";
         if (ls.separator_size() > 0)
           solver_text += ", two subdomains and a separator of "
                          + std::to_string(ls.separator_size()) + " blocks, "

@@ -387,7 +387,7 @@ namespace rockdda::dda
     par.run_chunks = chunks();
     par.clamped    = &clamped_block;
     assembler.prepare_step(scene, contacts, par, matrix);
-    solver.new_pattern(matrix);
+    solver.new_pattern(matrix, &scene.blocks);
 
     Eigen::VectorXd x = last_solution;
     if (x.size() != static_cast<long>(6 * scene.blocks.size()))

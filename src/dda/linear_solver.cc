@@ -4,19 +4,47 @@
  */
 #include <rockdda/dda/linear_solver.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include "distributed_solver.h"
 #include "task_team.h"
 #include "thread_pair.h"
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 namespace rockdda::dda
 {
   namespace
   {
+    /// Ranks of MPI_COMM_WORLD (1 without MPI).
+    int
+    world_ranks()
+    {
+      return dealii::Utilities::MPI::job_supports_mpi() ? static_cast<int>(
+               dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD))
+                                                        : 1;
+    }
+
+    /// Ranks of MPI_COMM_WORLD on this machine (1 without MPI).
+    int
+    ranks_on_this_machine()
+    {
+      if (world_ranks() == 1)
+        return 1;
+      MPI_Comm node;
+      MPI_Comm_split_type(
+        MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+      int n = 1;
+      MPI_Comm_size(node, &n);
+      MPI_Comm_free(&node);
+      return n;
+    }
+
     /// Inverse of a symmetric positive definite 6x6 matrix by Cholesky
     /// (fixed-size loops; Eigen's LLT::solve takes a generic path here).
     /// Returns false if a pivot is not positive.
@@ -678,11 +706,20 @@ namespace rockdda::dda
 
   LinearSolver::LinearSolver(const SolverOptions &options)
       : options(options)
+      , machine_ranks(ranks_on_this_machine())
   {}
 
 
 
   LinearSolver::~LinearSolver() = default;
+
+
+
+  int
+  LinearSolver::n_ranks() const
+  {
+    return distributed ? distributed->n_ranks() : 1;
+  }
 
 
 
@@ -706,8 +743,17 @@ namespace rockdda::dda
   LinearSolver::team_of_run() const
   {
     if (!team)
-      team = std::make_unique<internal::TaskTeam>(
-        static_cast<unsigned int>(std::max(options.threads, 0)));
+      {
+        // 0: one per core, the cores shared by the ranks on this machine.
+        int threads = std::max(options.threads, 0);
+        if (threads == 0 && world_ranks() > 1)
+          threads
+            = std::max(1,
+                       static_cast<int>(std::thread::hardware_concurrency())
+                         / machine_ranks);
+        team = std::make_unique<internal::TaskTeam>(
+          static_cast<unsigned int>(threads));
+      }
     return *team;
   }
 
@@ -737,14 +783,28 @@ namespace rockdda::dda
 
 
   void
-  LinearSolver::new_pattern(const BlockSparseMatrix &K)
+  LinearSolver::new_pattern(const BlockSparseMatrix  &K,
+                            const std::vector<Block> *blocks)
   {
     factorised = false;
     current    = options.type;
     if (current == SolverType::automatic)
       current = K.n_blocks() <= options.automatic_limit ? SolverType::direct
-                                                        : SolverType::iterative;
-    if (current == SolverType::direct)
+                : world_ranks() > 1 ? SolverType::distributed
+                                    : SolverType::iterative;
+    if (current == SolverType::distributed)
+      {
+        if (!distributed)
+          distributed = std::make_unique<internal::DistributedSolver>(
+            options.distributed_preconditioner);
+        std::vector<geometry::Point> centroids(K.n_blocks(),
+                                               geometry::Point::Zero());
+        if (blocks != nullptr)
+          for (int b = 0; b < K.n_blocks(); ++b)
+            centroids[b] = (*blocks)[b].initial_centroid;
+        distributed->new_pattern(K, centroids);
+      }
+    else if (current == SolverType::direct)
       {
         if (!direct)
           direct = std::make_unique<Direct>();
@@ -783,6 +843,14 @@ namespace rockdda::dda
         return x.allFinite();
       }
 
+    if (current == SolverType::distributed)
+      return distributed->solve(K,
+                                f,
+                                x,
+                                same_matrix,
+                                tolerance > 0. ? tolerance : options.tolerance,
+                                iteration_limit(K.n_blocks()),
+                                iterations);
     if (x.size() != f.size() || !x.allFinite())
       x = Eigen::VectorXd::Zero(f.size());
     if (options.preconditioner == Preconditioner::block_jacobi)

@@ -1,6 +1,7 @@
 # One MPI case: the driver on PRM serially (one process, no MPI) and with
-# MPIEXEC -np RANKS (the distributed heat solver; on one rank with the
-# linear solver 'amg', which selects it), each in its own folder
+# MPIEXEC -np RANKS (the distributed heat solver, or the distributed DDA
+# solver; on one rank with the linear solver 'amg' (heat) or 'distributed'
+# (DDA), which selects it), each in its own folder
 # under OUT; every numeric quantity of the serial summary.csv (except wall
 # times and counters of the method) must be matched by the parallel run
 # within the tolerances of the first '# compare: REL ABS' line of PRM, and
@@ -21,17 +22,28 @@ execute_process(COMMAND ${DRIVER} --quiet ${PRM}
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "serial run failed (exit ${rc}):\n${out}\n${err}")
 endif()
-# On one rank the distributed solver runs only if asked for ('amg'): a
-# copy of PRM (same name, so the same output folder) asks for it.
+# On one rank the distributed solver runs only if asked for ('amg' for
+# heat, 'distributed' for DDA): a copy of PRM (same name, so the same output
+# folder) asks for it.
 set(mpi_prm ${PRM})
 if(RANKS EQUAL 1)
   file(READ ${PRM} text)
+  set(solver amg)
+  set(section "subsection Time stepping")
+  if(text MATCHES "set Analysis type *= *dda")
+    set(solver distributed)
+    set(section "subsection DDA")
+    # The copy lives elsewhere: the block file by its absolute path.
+    get_filename_component(prm_dir ${PRM} DIRECTORY)
+    string(REGEX REPLACE "set Block file( *)= *([^\n]+)"
+      "set Block file\\1= ${prm_dir}/\\2" text "${text}")
+  endif()
   if(text MATCHES "set Linear solver *= *[a-z]+")
     string(REGEX REPLACE "set Linear solver( *)= *[a-z]+"
-      "set Linear solver\\1= amg" text "${text}")
+      "set Linear solver\\1= ${solver}" text "${text}")
   else()
-    string(REPLACE "subsection Time stepping"
-      "subsection Time stepping\n    set Linear solver = amg" text "${text}")
+    string(REPLACE "${section}"
+      "${section}\n    set Linear solver = ${solver}" text "${text}")
   endif()
   set(mpi_prm ${OUT}/mpi/${name}.prm)
   file(WRITE ${mpi_prm} "${text}")
@@ -61,8 +73,9 @@ foreach(row ${rows})
     continue()
   endif()
   # Provenance is not a result (a commit hash such as 0881970...e can look
-  # like a number).
-  if(q MATCHES "^(quantity|method|wall_time|solver_wall_time|factorizations|rockdda_version|git_commit|build_type|run_date|command_line|host)$")
+  # like a number); counters of the linear solver's own iterations differ
+  # between the serial and the distributed preconditioners.
+  if(q MATCHES "^(quantity|method|wall_time|solver_wall_time|factorizations|solver_iterations|rockdda_version|git_commit|build_type|run_date|command_line|host)$")
     continue()
   endif()
   if(NOT v MATCHES "^[-+]?([0-9]+[.]?[0-9]*|[.][0-9]+)([eE][-+]?[0-9]+)?$")

@@ -8,6 +8,7 @@
 #include <rockdda/analytical/newmark.h>
 #include <rockdda/dda/block_file.h>
 #include <rockdda/dda/block_matrices.h>
+#include <rockdda/dda/block_partition.h>
 #include <rockdda/dda/contact_detection.h>
 #include <rockdda/dda/engine.h>
 #include <rockdda/io/error.h>
@@ -964,4 +965,75 @@ TEST(DdaSolvers, ResultsDoNotDependOnTheThreadCount)
   for (const int threads : {2, 3})
     EXPECT_EQ(max_vertex_difference(one, run(threads)), 0.)
       << threads << " threads";
+}
+
+
+
+TEST(DdaPartition, HilbertCurveVisitsEveryCellOnceBetweenNeighbours)
+{
+  // On a 2^4 x 2^4 grid the curve is a permutation of the 256 cells, and
+  // cells consecutive along it share a side.
+  constexpr int              bits = 4, side = 1 << bits;
+  std::vector<std::uint64_t> index_of(side * side);
+  std::vector<int>           cell_at(side * side, -1);
+  for (int x = 0; x < side; ++x)
+    for (int y = 0; y < side; ++y)
+      {
+        const auto d = hilbert_index(x, y, bits);
+        ASSERT_LT(d, static_cast<std::uint64_t>(side * side));
+        EXPECT_EQ(cell_at[d], -1) << "cell " << x << ", " << y;
+        cell_at[d] = x * side + y;
+      }
+  for (int d = 1; d < side * side; ++d)
+    {
+      const int a = cell_at[d - 1], b = cell_at[d];
+      EXPECT_EQ(std::abs(a / side - b / side) + std::abs(a % side - b % side),
+                1)
+        << "step " << d;
+    }
+}
+
+
+
+TEST(DdaPartition, BalancedCompactPiecesOfAGrid)
+{
+  // 40 x 25 bricks into 1 to 5 parts: every block in exactly one part,
+  // part sizes within one block, and few neighbours cut apart. A straight
+  // cut of the grid across its length severs 25 neighbour pairs; a piece
+  // of the curve has a staircase boundary, so allow three times that per
+  // boundary between parts (a random assignment would sever about
+  // (1 - 1/parts) of the 1,935 pairs).
+  const int                    nx = 40, ny = 25;
+  std::vector<geometry::Point> centroids;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      centroids.emplace_back(2. * i + 1., j + 0.5);
+  for (int parts = 1; parts <= 5; ++parts)
+    {
+      const BlockPartition p = partition_blocks(centroids, parts);
+      ASSERT_EQ(p.n_parts(), parts);
+      std::vector<int> count(parts, 0);
+      for (int b = 0; b < nx * ny; ++b)
+        {
+          EXPECT_EQ(p.order[p.position[b]], b);
+          ++count[p.owner(b)];
+        }
+      for (const int c : count)
+        EXPECT_LE(std::abs(c - nx * ny / parts), 1) << parts << " parts";
+      int cut = 0;
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i)
+          {
+            const int b = j * nx + i;
+            if (i + 1 < nx && p.owner(b) != p.owner(b + 1))
+              ++cut;
+            if (j + 1 < ny && p.owner(b) != p.owner(b + nx))
+              ++cut;
+          }
+      EXPECT_LE(cut, 3 * ny * (parts - 1)) << parts << " parts";
+    }
+  // The same centroids always give the same partition.
+  EXPECT_EQ(partition_blocks(centroids, 3).order,
+            partition_blocks(centroids, 3).order);
+  EXPECT_THROW(partition_blocks(centroids, 0), std::invalid_argument);
 }

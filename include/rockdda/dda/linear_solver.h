@@ -63,7 +63,14 @@ namespace rockdda::dda
     /// once per step, factorised per open-close iteration.
     direct,
     /// Block-Jacobi preconditioned conjugate gradients, warm-started.
-    iterative
+    iterative,
+    /// CG on a Trilinos matrix whose block rows are distributed over the
+    /// ranks of MPI_COMM_WORLD (a space-filling-curve partition of the
+    /// blocks), preconditioned by SolverOptions::distributed_preconditioner;
+    /// the solution is gathered on every rank (doc/theory/dda-mpi.md).
+    /// Automatic picks it instead of iterative when the run has more than
+    /// one rank. Needs MPI to be initialised.
+    distributed
   };
 
   /// Preconditioner of the iterative solver.
@@ -77,6 +84,18 @@ namespace rockdda::dda
     /// iteration costs about one mat-vec (Eisenstat 1981; Saad 2003,
     /// Sec. 10.3).
     block_dilu
+  };
+
+  /// Preconditioner of the distributed solver (from Trilinos).
+  enum class DistributedPreconditioner
+  {
+    /// ML smoothed-aggregation algebraic multigrid, the six unknowns of a
+    /// block aggregated together.
+    amg,
+    /// Ifpack ILU(0) on each rank's rows (additive Schwarz, no overlap).
+    ilu,
+    /// Ifpack block-Jacobi with the 6x6 blocks of the blocks.
+    block_jacobi
   };
 
   /// Options of the linear solver.
@@ -101,12 +120,17 @@ namespace rockdda::dda
     /// subdomains and their separator (last), so that the two subdomains
     /// are swept in parallel.
     int subdomain_limit = 300;
+    /// Preconditioner of the distributed solver (ILU(0): the fastest of
+    /// the three on the brick walls, doc/theory/dda-mpi.md).
+    DistributedPreconditioner distributed_preconditioner
+      = DistributedPreconditioner::ilu;
   };
 
   namespace internal
   {
     class TaskTeam;
     class ThreadPair;
+    class DistributedSolver;
   } // namespace internal
 
   /**
@@ -120,9 +144,13 @@ namespace rockdda::dda
     ~LinearSolver();
 
     /// Analyse the pattern of @p matrix (symbolic factorisation, or the
-    /// subdomain ordering of the D-ILU).
+    /// subdomain ordering of the D-ILU, or the distributed pattern). The
+    /// distributed solver partitions the blocks by the initial centroids
+    /// of @p blocks (the scene's blocks, one per block row) when their
+    /// number changes; the other solvers do not use them.
     void
-    new_pattern(const BlockSparseMatrix &matrix);
+    new_pattern(const BlockSparseMatrix  &matrix,
+                const std::vector<Block> *blocks = nullptr);
 
     /**
      * Solve K x = f; @p x holds the starting guess on entry (iterative).
@@ -154,7 +182,12 @@ namespace rockdda::dda
       return iterations;
     }
 
-    /// Threads of the run (SolverOptions::threads resolved).
+    /// MPI ranks the distributed solver runs on (1 for the others).
+    int
+    n_ranks() const;
+
+    /// Threads of the run (SolverOptions::threads resolved; 0 = the cores
+    /// shared by the ranks of this machine).
     unsigned int
     n_threads() const;
 
@@ -191,14 +224,17 @@ namespace rockdda::dda
     int
     iteration_limit(const int n) const;
 
-    SolverOptions                               options;
-    SolverType                                  current    = SolverType::direct;
-    int                                         iterations = 0;
-    bool                                        factorised = false;
-    std::unique_ptr<Direct>                     direct;
-    std::unique_ptr<Dilu>                       dilu;
-    mutable std::unique_ptr<internal::TaskTeam> team;
-    std::unique_ptr<internal::ThreadPair>       pair;
+    SolverOptions options;
+    /// MPI ranks on this machine (1 without MPI): they share its cores.
+    int                                          machine_ranks = 1;
+    SolverType                                   current = SolverType::direct;
+    int                                          iterations = 0;
+    bool                                         factorised = false;
+    std::unique_ptr<Direct>                      direct;
+    std::unique_ptr<Dilu>                        dilu;
+    std::unique_ptr<internal::DistributedSolver> distributed;
+    mutable std::unique_ptr<internal::TaskTeam>  team;
+    std::unique_ptr<internal::ThreadPair>        pair;
     /// Inverse diagonal blocks (block-Jacobi).
     std::vector<Matrix6> inverse_diag;
     Eigen::VectorXd      r, z, p, q;
