@@ -42,7 +42,8 @@ endfunction()
 variant(full ${t2} false full)
 variant(part1 ${t1} false resume)
 variant(part2 ${t2} true resume)
-# With MPIEXEC, every run is 'MPIEXEC -np 2' (the distributed solver).
+# With MPIEXEC, every run is 'MPIEXEC -np 2' (the distributed heat or DDA
+# solver).
 set(launcher "")
 if(MPIEXEC)
   set(launcher ${MPIEXEC} --allow-run-as-root --oversubscribe -np 2)
