@@ -20,10 +20,8 @@
 #include <Ifpack_Preconditioner.h>
 #include <Teuchos_ParameterList.hpp>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
