@@ -183,7 +183,7 @@ namespace rockdda::dda3d
 
 
   Engine::Engine(BlockSystem system_in, const EngineControls &c)
-      : system(std::move(system_in))
+      : LocalScene(std::move(system_in))
       , ctrl(c)
   {
     if (!(ctrl.dt > 0.) || !std::isfinite(ctrl.dt))
@@ -200,22 +200,6 @@ namespace rockdda::dda3d
       ctrl.fixed_penalty = 10. * ctrl.law.normal_penalty;
     if (system.joints.empty() && system.blocks.size() > 1)
       throw InputError("a scene of several blocks needs a joint material");
-    // Local origin: the lower corner of the bounding box (exact shift by
-    // Sterbenz for a scene in UTM coordinates).
-    Point lo = Point::Constant(std::numeric_limits<double>::infinity());
-    for (const auto &b : system.blocks)
-      for (const auto &v : b.polyhedron.vertices)
-        lo = lo.cwiseMin(v);
-    origin_ = lo.allFinite() ? lo : Point::Zero();
-    for (auto &b : system.blocks)
-      for (auto &v : b.polyhedron.vertices)
-        v -= origin_;
-    for (auto &f : system.fixed_points)
-      f.point -= origin_;
-    for (auto &l : system.load_points)
-      l.point -= origin_;
-    for (auto &m : system.measurement_points)
-      m.point -= origin_;
     validate_and_prepare(system);
     check_overlaps(system, 1e-6, origin_);
     // Clamped blocks: 3 or more non-collinear fixed points.
@@ -864,31 +848,6 @@ namespace rockdda::dda3d
                               / (2. * kin[k].shear_stiffness);
         }
     return true;
-  }
-
-
-
-  Point
-  Engine::centroid(const std::size_t b) const
-  {
-    return origin_ + system.blocks[b].polyhedron.moments().centroid;
-  }
-
-
-
-  Point
-  Engine::displacement(const std::size_t b) const
-  {
-    return system.blocks[b].polyhedron.moments().centroid
-           - system.blocks[b].initial_centroid;
-  }
-
-
-
-  Point
-  Engine::measurement_point(const std::size_t m) const
-  {
-    return origin_ + system.measurement_points[m].point;
   }
 
 

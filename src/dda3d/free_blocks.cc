@@ -14,7 +14,7 @@
 namespace rockdda::dda3d
 {
   FreeBlocks::FreeBlocks(BlockSystem system_in, const FreeStepControls &c)
-      : system(std::move(system_in))
+      : LocalScene(std::move(system_in))
       , ctrl(c)
   {
     if (!(ctrl.dt > 0.) || !std::isfinite(ctrl.dt))
@@ -27,23 +27,6 @@ namespace rockdda::dda3d
       throw InputError("fixed point penalty "
                        + std::to_string(ctrl.fixed_penalty)
                        + " N/m; valid: > 0");
-    // Local origin: the lower corner of the bounding box. The coordinates
-    // of a scene far from the origin (UTM) are within a factor 2 of the
-    // corner's, so the subtraction is exact (Sterbenz).
-    Point lo = Point::Constant(std::numeric_limits<double>::infinity());
-    for (const auto &b : system.blocks)
-      for (const auto &v : b.polyhedron.vertices)
-        lo = lo.cwiseMin(v);
-    origin_ = lo.allFinite() ? lo : Point::Zero();
-    for (auto &b : system.blocks)
-      for (auto &v : b.polyhedron.vertices)
-        v -= origin_;
-    for (auto &f : system.fixed_points)
-      f.point -= origin_;
-    for (auto &l : system.load_points)
-      l.point -= origin_;
-    for (auto &m : system.measurement_points)
-      m.point -= origin_;
     validate_and_prepare(system);
     increments.assign(system.blocks.size(), Vector12::Zero());
   }
@@ -128,31 +111,6 @@ namespace rockdda::dda3d
     block.stress            = rotate_voigt(block.stress + C * e, R, 1.);
     block.strain            = rotate_voigt(block.strain + e, R, 0.5);
     increments[b]           = d;
-  }
-
-
-
-  Point
-  FreeBlocks::centroid(const std::size_t b) const
-  {
-    return origin_ + system.blocks[b].polyhedron.moments().centroid;
-  }
-
-
-
-  Point
-  FreeBlocks::displacement(const std::size_t b) const
-  {
-    return system.blocks[b].polyhedron.moments().centroid
-           - system.blocks[b].initial_centroid;
-  }
-
-
-
-  Point
-  FreeBlocks::measurement_point(const std::size_t m) const
-  {
-    return origin_ + system.measurement_points[m].point;
   }
 
 

@@ -266,7 +266,7 @@ namespace rockdda::io
         for (const auto &[name, value] : provenance.fields())
           summary.add_text(name, value);
         log.line("rockdda " + analysis->name() + ": " + prm_file);
-        RunContext context{output, log, summary};
+        RunContext context{output, log, summary, false, ""};
         // SIGINT / SIGTERM only set a flag from here on: 'dda' and 'heat'
         // stop after the current step and write what they have.
         InterruptGuard guard;

@@ -160,7 +160,7 @@ namespace
     io::OutputDirectory out((dir / "out").string());
     io::Log             log(false);
     io::Summary         summary;
-    io::RunContext      context{out, log, summary};
+    io::RunContext      context{out, log, summary, false, ""};
     const auto          start = std::chrono::steady_clock::now();
     a.run(context);
     if (wall)

@@ -13,6 +13,7 @@
 #include <rockdda/dda/contact_mechanics.h>
 #include <rockdda/dda3d/block_matrices.h>
 #include <rockdda/dda3d/contact_detection.h>
+#include <rockdda/dda3d/local_scene.h>
 
 #include <Eigen/Core>
 
@@ -191,7 +192,7 @@ namespace rockdda::dda3d
    * moves a vertex further than the allowed displacement, is redone with
    * dt / 3. The scene is moved to a local origin on construction.
    */
-  class Engine
+  class Engine : public LocalScene
   {
   public:
     /// Validate @p system and keep it; throws InputError.
@@ -219,38 +220,6 @@ namespace rockdda::dda3d
     void
     settle(const unsigned int n);
 
-    /// Time (s).
-    double
-    time() const
-    {
-      return t;
-    }
-
-    /// The scene in local coordinates.
-    const BlockSystem &
-    scene() const
-    {
-      return system;
-    }
-
-    /// The local origin (m).
-    const Point &
-    origin() const
-    {
-      return origin_;
-    }
-
-    /// Global position of the centroid of block @p b (m).
-    Point
-    centroid(const std::size_t b) const;
-
-    /// Displacement of the centroid of block @p b since t = 0 (m).
-    Point
-    displacement(const std::size_t b) const;
-
-    /// Global position of measurement point @p m (m).
-    Point
-    measurement_point(const std::size_t m) const;
 
     /// The contacts at the end of the last accepted step.
     const std::vector<Contact> &
@@ -282,10 +251,8 @@ namespace rockdda::dda3d
     bool
     try_step(const double h);
 
-    BlockSystem          system;
     EngineControls       ctrl;
-    Point                origin_ = Point::Zero();
-    double               t = 0., dt_now = 0.;
+    double               dt_now = 0.;
     std::vector<char>    clamped_;
     std::vector<Contact> stored;
     bool                 first_detection = true;

@@ -9,6 +9,7 @@
 #define ROCKDDA_DDA3D_FREE_BLOCKS_H
 
 #include <rockdda/dda3d/block_matrices.h>
+#include <rockdda/dda3d/local_scene.h>
 
 #include <functional>
 #include <vector>
@@ -46,7 +47,7 @@ namespace rockdda::dda3d
    * The scene is moved to a local origin (the lower corner of its
    * bounding box) on construction; positions returned here are global.
    */
-  class FreeBlocks
+  class FreeBlocks : public LocalScene
   {
   public:
     /// Validate @p system (validate_and_prepare()) and keep it.
@@ -63,38 +64,6 @@ namespace rockdda::dda3d
     void
     apply_increment(const std::size_t b, const Vector12 &d);
 
-    /// Time (s).
-    double
-    time() const
-    {
-      return t;
-    }
-
-    /// The scene in local coordinates (add origin() for global ones).
-    const BlockSystem &
-    scene() const
-    {
-      return system;
-    }
-
-    /// The local origin (m).
-    const Point &
-    origin() const
-    {
-      return origin_;
-    }
-
-    /// Global position of the centroid of block @p b (m).
-    Point
-    centroid(const std::size_t b) const;
-
-    /// Displacement of the centroid of block @p b since t = 0 (m).
-    Point
-    displacement(const std::size_t b) const;
-
-    /// Global position of measurement point @p m (m).
-    Point
-    measurement_point(const std::size_t m) const;
 
     /// The increment of block @p b in the last step.
     const Vector12 &
@@ -108,10 +77,7 @@ namespace rockdda::dda3d
     kinetic_energy() const;
 
   private:
-    BlockSystem           system;
     FreeStepControls      ctrl;
-    Point                 origin_ = Point::Zero();
-    double                t       = 0.;
     std::vector<Vector12> increments;
   };
 } // namespace rockdda::dda3d
