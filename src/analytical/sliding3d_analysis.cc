@@ -10,9 +10,8 @@
 #include <rockdda/io/error.h>
 #include <rockdda/io/parameters.h>
 #include <rockdda/io/progress.h>
+#include <rockdda/io/time_expression.h>
 #include <rockdda/seismic/ground_motion.h>
-
-#include <deal.II/base/function_parser.h>
 
 #include <Eigen/Geometry>
 
@@ -211,33 +210,11 @@ namespace rockdda::analytical
           }
         else
           {
-            auto parser = std::make_shared<dealii::FunctionParser<1>>(3);
-            try
-              {
-                parser->initialize("x,t",
-                                   expr,
-                                   std::map<std::string, double>{{"pi", M_PI}},
-                                   true);
-                parser->set_time(0.);
-                for (unsigned int c = 0; c < 3; ++c)
-                  if (!std::isfinite(parser->value(dealii::Point<1>(), c)))
-                    throw InputError("not finite at t = 0");
-              }
-            catch (const std::exception &e)
-              {
-                throw InputError(
-                  prm_file + ": key 'Sliding 3d/Resultant acceleration' = '"
-                  + expr
-                  + "' is not valid; valid: three expressions of "
-                    "t separated by ';' (e.g. '0.5*sin(10*t); 0; "
-                    "-1')");
-              }
-            resultant = [parser](const double t) {
-              parser->set_time(t);
-              return Eigen::Vector3d(parser->value(dealii::Point<1>(), 0),
-                                     parser->value(dealii::Point<1>(), 1),
-                                     parser->value(dealii::Point<1>(), 2));
-            };
+            resultant
+              = io::parse_time_expressions(expr,
+                                           prm_file,
+                                           "Sliding 3d/Resultant acceleration",
+                                           "0.5*sin(10*t); 0; -1");
             input_text = "r(t) = [" + expr + "] g";
           }
       }

@@ -15,9 +15,9 @@
 #include <rockdda/io/interrupt.h>
 #include <rockdda/io/parameters.h>
 #include <rockdda/io/progress.h>
+#include <rockdda/io/time_expression.h>
 #include <rockdda/seismic/ground_motion.h>
 
-#include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
@@ -35,40 +35,6 @@ namespace rockdda::dda3d
     using dealii::Patterns::Double;
     using dealii::Patterns::Integer;
     using dealii::Patterns::Selection;
-
-    /// Three expressions of t separated by ';' as a function of t;
-    /// throws InputError naming the key.
-    std::function<Point(double)>
-    parse_expressions(const std::string &expr,
-                      const std::string &prm_file,
-                      const std::string &key)
-    {
-      auto parser = std::make_shared<dealii::FunctionParser<1>>(3);
-      try
-        {
-          parser->initialize("x,t",
-                             expr,
-                             std::map<std::string, double>{{"pi", M_PI}},
-                             true);
-          parser->set_time(0.);
-          for (unsigned int c = 0; c < 3; ++c)
-            if (!std::isfinite(parser->value(dealii::Point<1>(), c)))
-              throw InputError("not finite at t = 0");
-        }
-      catch (const std::exception &)
-        {
-          throw InputError(prm_file + ": key '" + key + "' = '" + expr
-                           + "' is not valid; valid: three expressions of "
-                             "t (s) separated by ';' (e.g. "
-                             "'-0.5*sin(10*t); 0; 0')");
-        }
-      return [parser](const double t) {
-        parser->set_time(t);
-        return Point(parser->value(dealii::Point<1>(), 0),
-                     parser->value(dealii::Point<1>(), 1),
-                     parser->value(dealii::Point<1>(), 2));
-      };
-    }
 
     /// The "dda3d" analysis.
     class Dda3dAnalysis : public io::Analysis
@@ -575,8 +541,10 @@ namespace rockdda::dda3d
     std::array<seismic::Record, 3> records;
     if (source == "expression")
       {
-        const auto a
-          = parse_expressions(expr, prm_file, "DDA 3d/Ground acceleration");
+        const auto a   = io::parse_time_expressions(expr,
+                                                  prm_file,
+                                                  "DDA 3d/Ground acceleration",
+                                                  "-0.5*sin(10*t); 0; 0");
         in.description = "a_g(t) = [" + expr + "] g, " + mode + " mode";
         if (in.mode == SeismicInput3d::Mode::loading)
           {
