@@ -182,9 +182,9 @@ namespace rockdda::dda
                     "shear beyond the strength) is at most p_s x this x "
                     "the smaller block's size, i.e. a penetration or "
                     "elastic slip of at most this fraction of the block "
-                    "size, and at most 1 % of the lighter block's weight "
-                    "until it has changed state 8 times; a contact that "
-                    "still changes state 12 times cuts the step. In static "
+                    "size, and at most 1 % of the lighter block's weight; "
+                    "a contact that still changes state 12 times cuts the "
+                    "step. In static "
                     "steps a held contact stays held in the next step. Holding "
                     "cannot create energy. 0: no "
                     "holding.");

@@ -422,17 +422,17 @@ namespace rockdda::dda
               // An elastic slip or penetration of hold_fraction x the
               // smaller block's size, and at most 100 force tolerances (1 %
               // of the lighter block's weight): a light block between stiff
-              // ones (an infill wedge) is not hung on a held contact. A
-              // contact that still cycles (2 hold_after changes in this
-              // attempt) gets the slip bound alone, for this attempt only.
+              // ones (an infill wedge) is not hung on a held contact, and no
+              // held contact exceeds its strength by more. (A contact that
+              // still cycled used to get the slip bound alone, 1.6e4 N for
+              // the ratchet's wedge, 3x its weight: accepted locked contacts
+              // then carried shear far beyond Mohr-Coulomb and pushed.)
               const auto  &g   = contacts[c].geometry;
               const auto  &kin = assembler.kinematics()[c];
               const double slip
                 = kin.shear_stiffness * ctrl.hold_fraction
                   * std::min(block_size[g.block_i], block_size[g.block_j]);
-              hold[c] = flips[c] >= 2 * static_cast<int>(ctrl.hold_after)
-                                   ? slip
-                                   : std::min(slip, 100. * kin.force_tolerance);
+              hold[c] = std::min(slip, 100. * kin.force_tolerance);
             }
         }
     };

@@ -266,6 +266,27 @@ TEST(RatchetCoupled, AutomaticPseudoTimeStepIsQuasiStatic)
 // with the hold as a slip of 1e-7 of the block size alone (1.6e11 N/m x
 // 1e-7 x 2 m = 3e4 N/m, 20 times the wedge's weight) the wedge hung on
 // the crack face, and descended 0.2 m in 20 years instead of 1.6 m.
+// Without thermal expansion nothing drives the ratchet: Block 1 with its
+// infill, after settling, must stay where gravity put it. Its elastic
+// response to the wedge's weight (5.1 kN/m over the 7 m bedding joint at
+// k_j = 1 GPa/m) is ~1e-6 m; the bound is 10x that. A held contact that
+// carried shear beyond its Mohr-Coulomb strength (the hold of a contact
+// still cycling in the open-close iteration was 1.6e4 N, 3x the wedge's
+// weight) let the wedge push the block 2.1e-4 m here.
+TEST(RatchetCoupled, NoThermalLoadNoSlip)
+{
+  RatchetMaterials         m;
+  SeasonalForcing          f;
+  RatchetGeometry          g;
+  const RatchetScene       scene = make_ratchet_scene(g, m);
+  PeriodicBlockTemperature T(scene.heat_blocks, f, cheap_heat());
+  RatchetRun               run(scene, T, f, 0., RatchetControls());
+  run.run_cycle();
+  EXPECT_LT(std::abs(run.displacement()), 1e-5);
+}
+
+
+
 TEST(RatchetCoupled, InfillFallsWhenTheCrackOpens)
 {
   RatchetMaterials         m;

@@ -54,10 +54,9 @@ namespace rockdda::dda
     /// shear beyond the strength) is at most p_s x hold_fraction x the
     /// smaller block's size (N/m), i.e. a penetration or elastic slip of
     /// at most hold_fraction x that size, and at most 100 force tolerances
-    /// (1 % of the lighter block's weight) until the contact has changed
-    /// state 2 hold_after times. In static steps (dynamic 0) a held contact
-    /// stays held in the next step (Contact::held). Holding cannot create
-    /// energy.
+    /// (1 % of the lighter block's weight). In static steps (dynamic 0) a
+    /// held contact stays held in the next step (Contact::held). Holding
+    /// cannot create energy.
     unsigned int hold_after    = 4;
     double       hold_fraction = 1e-7;
     /// A contact that has changed state this many times although held: the
