@@ -51,7 +51,18 @@ namespace rockdda::dda
     k.normal_stiffness = params.law.normal_penalty;
     k.shear_stiffness  = params.law.shear_penalty();
     k.force_tolerance  = force_tolerance_of(k, c.block_i, c.block_j);
+    k.weight_tolerance = weight_tolerance_of(c.block_i, c.block_j);
     return k;
+  }
+
+
+
+  double
+  Assembler::weight_tolerance_of(const int block_i, const int block_j) const
+  {
+    // Force scale: 1e-4 of the weight of the lighter block.
+    return 1e-4 * std::min(mass[block_i](0, 0), mass[block_j](0, 0))
+           * params.body_acceleration.norm();
   }
 
 
@@ -61,10 +72,8 @@ namespace rockdda::dda
                                 const int                block_i,
                                 const int                block_j) const
   {
-    // Force scale: the weight of the lighter block.
-    const double weight = std::min(mass[block_i](0, 0), mass[block_j](0, 0))
-                          * params.body_acceleration.norm();
-    return std::max(1e-4 * weight, k.normal_stiffness * k.tolerance);
+    return std::max(weight_tolerance_of(block_i, block_j),
+                    k.normal_stiffness * k.tolerance);
   }
 
 
@@ -337,6 +346,7 @@ namespace rockdda::dda
     k.normal_stiffness = old.normal_stiffness;
     k.shear_stiffness  = old.shear_stiffness;
     k.force_tolerance  = old.force_tolerance;
+    k.weight_tolerance = old.weight_tolerance;
   }
 
 

@@ -432,7 +432,7 @@ namespace rockdda::dda
               const double slip
                 = kin.shear_stiffness * ctrl.hold_fraction
                   * std::min(block_size[g.block_i], block_size[g.block_j]);
-              hold[c] = std::min(slip, 100. * kin.force_tolerance);
+              hold[c] = std::min(slip, escalated_tolerance(kin, 100.));
             }
         }
     };
@@ -467,7 +467,8 @@ namespace rockdda::dda
                            if (factor[c] != 1. || hold[c] != 0.)
                              {
                                chatter = *k;
-                               chatter.force_tolerance *= factor[c];
+                               chatter.force_tolerance
+                                 = escalated_tolerance(*k, factor[c]);
                                chatter.hold_tolerance = hold[c];
                                k                      = &chatter;
                              }

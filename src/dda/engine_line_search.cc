@@ -77,7 +77,7 @@ namespace rockdda::dda
         t.p      = kin.normal_stiffness;
         t.ps     = kin.shear_stiffness;
         t.closed = ct.state != ContactState::open;
-        t.f      = kin.force_tolerance * tolerance_factor[c];
+        t.f      = escalated_tolerance(kin, tolerance_factor[c]);
         t.f_hold = std::max(t.f, hold_tolerance[c]);
         t.f_open = ct.state == ContactState::locked ? t.f_hold : t.f;
         // An intact joint with tensile strength is a linear spring while it

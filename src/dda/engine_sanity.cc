@@ -87,6 +87,40 @@ namespace rockdda::dda
         + " % of its size into a contact under its own weight; use at "
           "least "
         + num(need) + " N/m (10 to 100 x E is usual)");
+    // The other end: a penalty so stiff that the round-off of a contact's
+    // gap (1e-12 of the block's size) carries more than 1 % of a free
+    // block's weight. Its contact states are then decided by round-off:
+    // the tolerances of the open-close iteration cannot grow in units of
+    // its weight (an infill wedge hung on one contact at 40 x its strength
+    // before they were floored instead of multiplied).
+    worst = 0.;
+    block = -1;
+    for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+      {
+        if (clamped_block[b])
+          continue;
+        const auto  &blk = scene.blocks[b];
+        const double weight
+          = scene.materials[blk.material].density * blk.polygon.area() * g;
+        const double ratio = weight > 0. ? ctrl.law.normal_penalty * 1e-12
+                                             * block_size[b] / weight
+                                         : 0.;
+        if (ratio > worst)
+          {
+            worst = ratio;
+            block = static_cast<int>(b);
+            need  = 1e-2 * weight / (1e-12 * block_size[b]);
+          }
+      }
+    if (block >= 0 && worst > 1e-2)
+      warning_list.push_back(
+        "contact penalty " + num(ctrl.law.normal_penalty)
+        + " N/m resolves the contact forces of block "
+        + std::to_string(scene.blocks[block].id) + " only to "
+        + num(worst * 100.)
+        + " % of its weight (the force of a round-off gap, 1e-12 x its "
+          "size): its contact states are decided by round-off; use at most "
+        + num(need) + " N/m");
     // Joint stiffness against the penalty in series with it: the penalty
     // adds k l / (p + k l) to a contact's compliance. A contact's length is
     // at most the smaller of its two blocks' sizes, so at most the second

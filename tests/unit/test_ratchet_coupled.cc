@@ -7,6 +7,7 @@
  * rule places new fragments.
  */
 #include <rockdda/coupling/ratchet.h>
+#include <rockdda/dda/contact_law.h>
 #include <rockdda/io/error.h>
 
 #include <gtest/gtest.h>
@@ -364,4 +365,33 @@ TEST(RatchetCoupled, SupplyPlacesANewFragment)
   second.run_cycle();
   EXPECT_EQ(second.displacement(), run.displacement());
   EXPECT_EQ(-second.dda().centroid_displacement(n0)[1], drop);
+}
+
+
+
+// A penalty so stiff that a gap of round-off size (1e-12 of a block's size)
+// carries more than 1 % of a free block's weight decides that block's
+// contact states by round-off: Block 1's infill wedge (5 kN/m, 2 m) at
+// 4e15 N/m hung on one contact with 40 x its Mohr-Coulomb strength, and the
+// ratchet vanished. The engine warns, naming the block and the largest
+// penalty that resolves it; the automatic penalty does not trigger it.
+TEST(RatchetCoupled, PenaltyTooStiffForTheInfillIsReported)
+{
+  RatchetMaterials   m;
+  RatchetGeometry    g;
+  const RatchetScene scene = make_ratchet_scene(g, m);
+  const auto         warns = [&](const double penalty) {
+    dda::Controls c;
+    c.law.normal_penalty = penalty;
+    const dda::DdaSystem dda(scene.blocks, c);
+    for (const auto &w : dda.warnings())
+      if (w.find("resolves the contact forces of block "
+                 + std::to_string(scene.blocks.blocks[scene.infill].id))
+          != std::string::npos)
+        return true;
+    return false;
+  };
+  EXPECT_TRUE(warns(4e15));
+  EXPECT_FALSE(
+    warns(dda::automatic_penalty(scene.blocks, scene.blocks.gravity.norm())));
 }

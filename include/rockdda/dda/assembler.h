@@ -145,6 +145,10 @@ namespace rockdda::dda
     gap(const int index, const Eigen::VectorXd &x) const;
 
   private:
+    /// 1e-4 of the weight of the lighter of blocks @p block_i and
+    /// @p block_j (N/m): ContactKinematics::weight_tolerance.
+    double
+    weight_tolerance_of(const int block_i, const int block_j) const;
     /// Force tolerance of a contact with the normal spring and round-off
     /// of @p k between blocks @p block_i and @p block_j (N/m).
     double

@@ -61,12 +61,31 @@ namespace rockdda::dda
     /// and a sliding contact locks when reversing its slip would change
     /// the shear spring force by more than this.
     double force_tolerance = 0.;
+    /// 1e-4 of the weight of the lighter block (N/m): the unit in which a
+    /// chattering or held contact's tolerance grows (escalated_tolerance()).
+    /// The round-off part of force_tolerance is a floor, never multiplied:
+    /// at a penalty where p x tolerance exceeds the weight of a light block
+    /// (an infill wedge), 100 x force_tolerance let such a block hang on
+    /// one contact with 40 x its Mohr-Coulomb strength.
+    double weight_tolerance = 0.;
     /// Held contact (one that cycles in the open-close iteration): an
     /// open contact closes only above this compression, a locked one
     /// slides only when its shear force exceeds the strength by more than
     /// this (N/m; 0: force_tolerance). Neither rule can create energy.
     double hold_tolerance = 0.;
   };
+
+  /**
+   * The force tolerance of a contact whose state check is relaxed by
+   * @p factor (>= 1; chatter or hold): @p factor x 1e-4 of the lighter
+   * block's weight, and at least the contact's force_tolerance (its
+   * round-off floor).
+   */
+  inline double
+  escalated_tolerance(const ContactKinematics &k, const double factor)
+  {
+    return std::max(factor * k.weight_tolerance, k.force_tolerance);
+  }
 
   /**
    * The result of checking one contact after a solve: the new state, the
