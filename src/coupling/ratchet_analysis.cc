@@ -285,8 +285,8 @@ namespace rockdda::coupling
                     "stiffer if the heaviest block needs it). The bonded "
                     "slices and the infill's contacts are penalty springs: "
                     "Block 1's rate converges from 1.18 mm/yr at 10 E to "
-                    "0.74-0.76 at 1e13-2e13 N/m (250-500 E), the value the "
-                    "shipped scenes use. A penalty whose round-off force "
+                    "0.74-0.76 at 1e13-2e13 N/m (250-500 E); default.prm "
+                    "uses 1e13. A penalty whose round-off force "
                     "(p x 1e-12 x size) exceeds 1 % of a free block's "
                     "weight cannot resolve that block (a warning names it): "
                     "about 2.5e13 N/m for the default infill.");
