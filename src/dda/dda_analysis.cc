@@ -849,6 +849,7 @@ namespace rockdda::dda
               static_cast<double>(dda->n_iterations)
                 / static_cast<double>(std::max(1ul, dda->n_steps)),
               "-");
+        s.add("contact_strength_ratio_max", dda->worst_strength_ratio, "-");
         s.add("linear_solves", static_cast<double>(dda->n_solves), "-");
         s.add("solver_iterations",
               static_cast<double>(dda->n_solver_iterations),

@@ -411,11 +411,17 @@ namespace rockdda::dda
     // weight). A contact that has changed state hold_after times cycles in
     // the open-close iteration: it is held (Controls::hold_fraction).
     std::vector<double> factor(contacts.size(), 1.), hold(contacts.size(), 0.);
+    // The normal force each contact's friction was assembled with in the
+    // latest iteration, and their mean over the closed contacts (for the
+    // strength audit of the converged state).
+    std::vector<double> assembled_normal(contacts.size(), 0.);
+    double              mean_normal    = 0.;
     const auto          update_factors = [&]() {
       for (std::size_t c = 0; c < contacts.size(); ++c)
         {
-          factor[c]
-            = flips[c] >= 2 ? std::pow(10., std::min(flips[c] - 1, 2)) : 1.;
+          factor[c] = flips[c] >= 2 ? std::min(std::pow(10., flips[c] - 1),
+                                               max_tolerance_factor)
+                                             : 1.;
           hold[c] = 0.;
           if (flips[c] >= static_cast<int>(ctrl.hold_after) || contacts[c].held)
             {
@@ -432,7 +438,9 @@ namespace rockdda::dda
               const double slip
                 = kin.shear_stiffness * ctrl.hold_fraction
                   * std::min(block_size[g.block_i], block_size[g.block_j]);
-              hold[c] = std::min(slip, escalated_tolerance(kin, 100.));
+              hold[c]
+                = std::min(slip,
+                           escalated_tolerance(kin, max_tolerance_factor));
             }
         }
     };
@@ -453,6 +461,7 @@ namespace rockdda::dda
             ++n_closed;
           }
       const double mean_force = n_closed > 0 ? force_sum / n_closed : 0.;
+      mean_normal             = mean_force;
       std::vector<StateCheck> checks(contacts.size());
       for_each_chunk(chunks(),
                      contacts.size(),
@@ -498,8 +507,9 @@ namespace rockdda::dda
                    > 1e-3 * (std::abs(r.normal_force) + mean_force)
                        + kin.force_tolerance)
             ++friction_changes;
-          ct.normal_force = r.normal_force;
-          ct.shear_force  = r.shear_force;
+          assembled_normal[c] = ct.normal_force;
+          ct.normal_force     = r.normal_force;
+          ct.shear_force      = r.shear_force;
           if (r.changed)
             {
               ++changes;
@@ -628,6 +638,24 @@ namespace rockdda::dda
         return false;
       }
 
+    // No contact beyond its strength by more than its tolerance, whatever
+    // path (chatter, hold, face group) accepted it.
+    double strength_ratio = 0.;
+    {
+      const std::string excess = strength_audit(contacts,
+                                                x,
+                                                factor,
+                                                hold,
+                                                assembled_normal,
+                                                mean_normal,
+                                                strength_ratio);
+      if (!excess.empty())
+        {
+          why = excess;
+          return false;
+        }
+    }
+
     // Largest vertex displacement, relative to each block's allowance.
     double max_d = 0., worst_ratio = 0.;
     int    worst = 0;
@@ -749,6 +777,8 @@ namespace rockdda::dda
     report.iterations = it;
     n_iterations += it;
     report.max_displacement = max_d;
+    report.strength_ratio   = strength_ratio;
+    worst_strength_ratio    = std::max(worst_strength_ratio, strength_ratio);
     report.n_open = report.n_sliding = report.n_locked = 0;
     for (const auto &c : current_contacts)
       (c.state == ContactState::open      ? report.n_open
@@ -802,35 +832,20 @@ namespace rockdda::dda
           any_slides = any_slides || checks[c].state == ContactState::sliding;
         if (members.size() < 2 || !any_slides)
           continue;
-        const geometry::Point u = assembler.kinematics()[members[0]].tangent;
-        double                resultant = 0., strength = 0., tolerance = 0.;
-        double                most = 0., least = 0.;
-        sense.resize(members.size());
-        for (std::size_t m = 0; m < members.size(); ++m)
-          {
-            const int   c   = members[m];
-            const auto &kin = assembler.kinematics()[c];
-            const auto &g   = contacts[c].geometry;
-            sense[m]        = (g.block_i < g.block_j ? 1. : -1.)
-                       * (kin.tangent.dot(u) >= 0. ? 1. : -1.);
-            const double f = sense[m] * kin.shear_stiffness
-                             * assembler.shear_displacement(c, x);
-            most  = std::max(most, f);
-            least = std::min(least, f);
-            resultant += f;
-            strength += shear_strength(contacts[c],
-                                       checks[c].normal_force,
-                                       kin.length,
-                                       scene.joints[contacts[c].joint]);
-            tolerance += std::max(kin.force_tolerance, hold[c]);
-          }
+        const GroupShear gs = group_shear(
+          contacts,
+          x,
+          members,
+          [&](const int c) { return checks[c].normal_force; },
+          hold,
+          sense);
         // Members pulled in opposite senses beyond the tolerance: the face
         // is being stretched or shortened (e.g. by a thermal strain), not
         // dragged as a rigid face, and each member slips on its own (the
         // individual checks stand).
-        if (most > tolerance && least < -tolerance)
+        if (gs.most > gs.tolerance && gs.least < -gs.tolerance)
           continue;
-        const bool slides = std::abs(resultant) > strength + tolerance;
+        const bool slides = std::abs(gs.resultant) > gs.strength + gs.tolerance;
         for (std::size_t m = 0; m < members.size(); ++m)
           {
             StateCheck &r = checks[members[m]];
@@ -839,11 +854,47 @@ namespace rockdda::dda
             else
               {
                 r.state           = ContactState::sliding;
-                r.slide_direction = sense[m] * resultant > 0. ? 1 : -1;
+                r.slide_direction = sense[m] * gs.resultant > 0. ? 1 : -1;
               }
             r.changed = r.state != contacts[members[m]].state;
           }
       }
+  }
+
+
+
+  DdaSystem::GroupShear
+  DdaSystem::group_shear(const std::vector<Contact>       &contacts,
+                         const Eigen::VectorXd            &x,
+                         const std::vector<int>           &members,
+                         const std::function<double(int)> &normal_force,
+                         const std::vector<double>        &hold,
+                         std::vector<double>              &sense) const
+  {
+    GroupShear            gs;
+    const geometry::Point u = assembler.kinematics()[members[0]].tangent;
+    sense.resize(members.size());
+    for (std::size_t m = 0; m < members.size(); ++m)
+      {
+        const int   c   = members[m];
+        const auto &kin = assembler.kinematics()[c];
+        const auto &g   = contacts[c].geometry;
+        sense[m]        = (g.block_i < g.block_j ? 1. : -1.)
+                   * (kin.tangent.dot(u) >= 0. ? 1. : -1.);
+        const double f
+          = sense[m] * kin.shear_stiffness * assembler.shear_displacement(c, x);
+        gs.most  = std::max(gs.most, f);
+        gs.least = std::min(gs.least, f);
+        gs.resultant += f;
+        gs.strength += shear_strength(contacts[c],
+                                      normal_force(c),
+                                      kin.length,
+                                      scene.joints[contacts[c].joint]);
+        gs.tolerance
+          += std::min(std::max(kin.force_tolerance, hold[c]),
+                      escalated_tolerance(kin, max_tolerance_factor));
+      }
+    return gs;
   }
 
 

@@ -17,7 +17,7 @@ namespace rockdda::dda
   namespace
   {
     constexpr char          magic[]        = "rockdda DDA checkpoint";
-    constexpr std::uint32_t format_version = 5;
+    constexpr std::uint32_t format_version = 6;
     using io::BinaryReader;
     using io::BinaryWriter;
 
@@ -147,6 +147,7 @@ namespace rockdda::dda
     w.put(friction_work);
     w.put(load_work);
     w.put<std::uint8_t>(first_detection ? 1 : 0);
+    w.put(worst_strength_ratio);
     return w.bytes;
   }
 
@@ -296,6 +297,7 @@ namespace rockdda::dda
     const double friction = r.get<double>();
     const double loads    = r.get<double>();
     const bool   first    = r.get<std::uint8_t>() != 0;
+    const double strength = r.get<double>();
     if (!r.at_end())
       throw InputError(source + ": the checkpoint has trailing data");
     if (!(std::isfinite(time) && step > 0.))
@@ -311,17 +313,18 @@ namespace rockdda::dda
     clamped_block.resize(block_size.size(), 0);
     current_contacts = std::move(contacts);
     contact_set.store(current_contacts);
-    t                   = time;
-    dt                  = step;
-    n_steps             = steps;
-    n_cuts              = cuts;
-    n_iterations        = iterations;
-    n_solves            = solves;
-    n_solver_iterations = solver_iterations;
-    last_solution       = std::move(x);
-    friction_work       = friction;
-    load_work           = loads;
-    first_detection     = first;
-    accepted_balance    = std::numeric_limits<double>::quiet_NaN();
+    t                    = time;
+    dt                   = step;
+    n_steps              = steps;
+    n_cuts               = cuts;
+    n_iterations         = iterations;
+    n_solves             = solves;
+    n_solver_iterations  = solver_iterations;
+    last_solution        = std::move(x);
+    friction_work        = friction;
+    load_work            = loads;
+    first_detection      = first;
+    worst_strength_ratio = strength;
+    accepted_balance     = std::numeric_limits<double>::quiet_NaN();
   }
 } // namespace rockdda::dda

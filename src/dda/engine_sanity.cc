@@ -3,7 +3,9 @@
  * Physical sanity of a DDA run (issue 11): warnings for parameters outside
  * the plausible range for rock, and the checks of every attempted step
  * (energy, penetration, strain, speed) that cut the step, or stop the run
- * with a diagnosis, instead of accepting a physically impossible state.
+ * with a diagnosis, instead of accepting a physically impossible state; and
+ * the strength audit of every converged attempt (no contact beyond its
+ * strength by more than the tolerance the open-close iteration allowed).
  * The checks and what the user sees are listed in doc/user-guide-checks.md.
  */
 #include <rockdda/dda/block_matrices.h>
@@ -13,7 +15,9 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace rockdda::dda
@@ -251,5 +255,164 @@ namespace rockdda::dda
                    "contact released energy";
       }
     return "";
+  }
+} // namespace rockdda::dda
+
+
+
+namespace rockdda::dda
+{
+  std::string
+  DdaSystem::strength_audit(const std::vector<Contact> &contacts,
+                            const Eigen::VectorXd      &x,
+                            const std::vector<double>  &factor,
+                            const std::vector<double>  &hold,
+                            const std::vector<double>  &assembled_normal,
+                            const double                mean_normal,
+                            double                     &ratio) const
+  {
+    const auto &kinematics = assembler.kinematics();
+    const auto &group      = assembler.groups();
+    ratio                  = 0.;
+    // The worst check so far: contact (or first member of a group), what
+    // it carries, its limit and its tolerance (N/m).
+    struct Worst
+    {
+      int         contact = -1;
+      std::string what;
+      double      force = 0., limit = 0., tolerance = 0.;
+    } worst;
+    const auto judge = [&](const int    c,
+                           const char  *what,
+                           const double force,
+                           const double limit,
+                           const double tolerance) {
+      const double excess = force - limit;
+      const double r      = excess <= 0. ? 0.
+                            : tolerance > 0.
+                              ? excess / tolerance
+                              : std::numeric_limits<double>::infinity();
+      if (r > ratio)
+        {
+          ratio = r;
+          worst = {c, what, force, limit, tolerance};
+        }
+    };
+    // The iteration's tolerances of contact c (check_state): f escalated by
+    // its chatter factor for a sliding contact, max(that, its hold) for an
+    // open or a locked one; never more than max_tolerance_factor x 1e-4 of
+    // the lighter block's weight, or f if that is larger (the round-off
+    // floor: escalated_tolerance).
+    const auto tolerances = [&](const int c) {
+      const double cap
+        = escalated_tolerance(kinematics[c], max_tolerance_factor);
+      const double fc
+        = std::min(escalated_tolerance(kinematics[c], factor[c]), cap);
+      return std::make_pair(fc, std::min(std::max(fc, hold[c]), cap));
+    };
+    // Face groups with a locked member beyond its own strength: judged on
+    // their resultant below.
+    std::vector<int> suspect;
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+      {
+        const int                c     = static_cast<int>(k);
+        const Contact           &ct    = contacts[k];
+        const ContactKinematics &kin   = kinematics[k];
+        const JointMaterial     &joint = scene.joints[ct.joint];
+        const auto [f, f_hold]         = tolerances(c);
+        const double n = -kin.normal_stiffness * assembler.gap(c, x);
+        if (ct.state == ContactState::open)
+          {
+            judge(c, "compression while open", n, 0., f_hold);
+            continue;
+          }
+        const bool   locked = ct.state == ContactState::locked;
+        const double tensile
+          = locked && !ct.broken ? joint.tensile * kin.length : 0.;
+        judge(c, "tension", -n, tensile, locked ? f_hold : f);
+        const double strength = shear_strength(ct, n, kin.length, joint);
+        const double s        = assembler.shear_displacement(c, x);
+        if (locked)
+          {
+            const double shear = std::abs(kin.shear_stiffness * s);
+            if (group[k] >= 0 && shear > strength + f_hold)
+              suspect.push_back(group[k]);
+            else
+              judge(c, "shear while locked", shear, strength, f_hold);
+            continue;
+          }
+        if (frictionless(ct, joint))
+          continue;
+        // Sliding: the friction assembled (from the normal force of the
+        // previous iteration) is the strength at the accepted normal force
+        // within the friction tolerance of the iteration, and it opposes
+        // the slip (a reversal beyond f / k_s locks the contact).
+        const double carried
+          = shear_strength(ct, assembled_normal[k], kin.length, joint);
+        const double mu = std::tan(joint.friction_deg * M_PI / 180.);
+        judge(c,
+              "friction off its strength",
+              std::abs(carried - strength),
+              0.,
+              mu * (1e-3 * (std::abs(n) + mean_normal) + kin.force_tolerance));
+        judge(c,
+              "slip against its friction",
+              -kin.shear_stiffness * s * ct.slide_direction,
+              0.,
+              f);
+      }
+    std::sort(suspect.begin(), suspect.end());
+    suspect.erase(std::unique(suspect.begin(), suspect.end()), suspect.end());
+    const auto         &start  = assembler.group_start();
+    const auto         &member = assembler.group_members();
+    std::vector<int>    members;
+    std::vector<double> sense;
+    for (const int g : suspect)
+      {
+        // The group's locked members, as check_face_groups() takes them.
+        members.clear();
+        for (int k = start[g]; k < start[g + 1]; ++k)
+          if (contacts[member[k]].state == ContactState::locked
+              && !frictionless(contacts[member[k]],
+                               scene.joints[contacts[member[k]].joint]))
+            members.push_back(member[k]);
+        const auto normal = [&](const int c) {
+          return -kinematics[c].normal_stiffness * assembler.gap(c, x);
+        };
+        const GroupShear gs
+          = group_shear(contacts, x, members, normal, hold, sense);
+        // A face pulled in opposite senses is not locked as a group (its
+        // members slip on their own): each member is judged alone.
+        if (members.size() < 2
+            || (gs.most > gs.tolerance && gs.least < -gs.tolerance))
+          for (const int c : members)
+            {
+              const auto &kin = kinematics[c];
+              judge(c,
+                    "shear while locked",
+                    std::abs(kin.shear_stiffness
+                             * assembler.shear_displacement(c, x)),
+                    shear_strength(contacts[c],
+                                   normal(c),
+                                   kin.length,
+                                   scene.joints[contacts[c].joint]),
+                    tolerances(c).second);
+            }
+        else
+          judge(members[0],
+                "resultant shear of its locked face group",
+                std::abs(gs.resultant),
+                gs.strength,
+                gs.tolerance);
+      }
+    if (ratio <= 1.)
+      return std::string();
+    const auto &g = contacts[worst.contact].geometry;
+    return "strength audit: the contact of block "
+           + std::to_string(scene.blocks[g.block_i].id) + " on block "
+           + std::to_string(scene.blocks[g.block_j].id) + " (" + worst.what
+           + ") carries " + num(worst.force) + " N/m against a limit of "
+           + num(worst.limit) + " N/m, beyond its tolerance of "
+           + num(worst.tolerance) + " N/m (" + num(ratio) + " x)";
   }
 } // namespace rockdda::dda

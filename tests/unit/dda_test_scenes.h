@@ -2,7 +2,8 @@
  * @file
  * Small scene-building helpers shared by the DDA verification tests
  * (test_dda.cc, test_dda_contacts.cc): rectangles, rotation, a one-material
- * scene, blocks, fixed blocks, controls and the block-on-incline scene.
+ * scene, blocks, fixed blocks, controls, the block-on-incline scene and
+ * the check that no contact is beyond its strength.
  */
 #ifndef ROCKDDA_TESTS_UNIT_DDA_TEST_SCENES_H
 #define ROCKDDA_TESTS_UNIT_DDA_TEST_SCENES_H
@@ -15,6 +16,8 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <map>
+#include <string>
 
 namespace rockdda::dda::test_scenes
 {
@@ -189,6 +192,90 @@ namespace rockdda::dda::test_scenes
     return dda.centroid_displacement(block).dot(
       Point(std::cos(alpha), -std::sin(alpha)));
   }
+  /// Largest excess of a contact force over its strength + 100 f (N/m,
+  /// <= 0 when every contact is within), with what it was.
+  struct StrengthExcess
+  {
+    double      value = -1e300;
+    std::string what;
+  };
+
+  /// Mohr-Coulomb strength (N/m) of a locked contact with normal force
+  /// @p n on @p joint over the length @p l: an intact joint N tan(phi) + c l
+  /// (tension lowers it, floored at 0), a broken one max(N, 0) tan(phi).
+  inline double
+  contact_strength(const Contact       &c,
+                   const double         n,
+                   const double         l,
+                   const JointMaterial &joint)
+  {
+    const double mu = std::tan(joint.friction_deg * M_PI / 180.);
+    return c.broken ? std::max(n, 0.) * mu
+                    : std::max(0., n * mu + joint.cohesion * l);
+  }
+
+  /**
+   * Contacts within their strength, checked from outside the engine on
+   * the state after the last step (contacts(): normal_force, shear_force;
+   * contact_kinematics(): length, force tolerance f): a closed contact's
+   * tension at most its tensile strength (intact and locked only), a
+   * locked contact alone on its face at most its Mohr-Coulomb strength,
+   * the resultant shear of the locked contacts of a face at most the sum of
+   * their strengths (the face-group rule), each plus 100 f, the largest
+   * tolerance the open-close iteration grants a contact.
+   */
+  inline StrengthExcess
+  strength_excess(const DdaSystem &dda)
+  {
+    const auto    &contacts = dda.contacts();
+    const auto    &kin      = dda.contact_kinematics();
+    const auto    &group    = dda.face_groups();
+    const auto    &joints   = dda.system().joints;
+    StrengthExcess worst;
+    const auto     note = [&](const double value, const std::string &what) {
+      if (value > worst.value)
+        worst = {value, what};
+    };
+    // Face groups: the vector sum of the members' shear forces on the
+    // lower-numbered block (independent of the engine's sign convention).
+    struct Face
+    {
+      Eigen::Vector2d force = Eigen::Vector2d::Zero();
+      double          limit = 0.;
+    };
+    std::map<int, Face> faces;
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+      {
+        const Contact       &c = contacts[k];
+        const JointMaterial &j = joints[c.joint];
+        // The largest tolerance the iteration grants a contact: 100 x
+        // 1e-4 of the lighter block's weight, or its round-off force.
+        const double f = escalated_tolerance(kin[k], 100.);
+        if (c.state == ContactState::open)
+          continue;
+        const bool   locked = c.state == ContactState::locked;
+        const double T = locked && !c.broken ? j.tensile * kin[k].length : 0.;
+        note(-c.normal_force - T - f, "tension");
+        if (!locked)
+          continue;
+        const double S = contact_strength(c, c.normal_force, kin[k].length, j);
+        if (group[k] < 0)
+          note(std::abs(c.shear_force) - S - f,
+               "shear of a locked contact alone on its face");
+        else
+          {
+            Face &face = faces[group[k]];
+            face.force += (c.geometry.block_i < c.geometry.block_j ? 1. : -1.)
+                          * c.shear_force * kin[k].tangent;
+            face.limit += S + f;
+          }
+      }
+    for (const auto &[g, face] : faces)
+      note(face.force.norm() - face.limit,
+           "resultant shear of a face's locked contacts");
+    return worst;
+  }
+
 } // namespace rockdda::dda::test_scenes
 
 #endif

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "dda_test_scenes.h"
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -284,6 +285,14 @@ TEST(RatchetCoupled, NoThermalLoadNoSlip)
   RatchetRun               run(scene, T, f, 0., RatchetControls());
   run.run_cycle();
   EXPECT_LT(std::abs(run.displacement()), 1e-5);
+  // No contact beyond its strength at any accepted step: the engine's audit
+  // (its statistic over every step of the cycle) and, at the end of the
+  // cycle, from the contacts' forces (strength_excess(): tension, a locked
+  // contact alone on its face, a face's resultant, each within its
+  // strength + 100 f, f = 1e-4 of the lighter block's weight).
+  EXPECT_LE(run.dda().worst_strength_ratio, 1.);
+  const auto excess = dda::test_scenes::strength_excess(run.dda());
+  EXPECT_LE(excess.value, 0.) << excess.what;
 }
 
 

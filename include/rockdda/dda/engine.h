@@ -111,6 +111,11 @@ namespace rockdda::dda
     double max_displacement = 0.;
     /// Linear solver iterations (CG) summed over the step.
     unsigned long solver_iterations = 0;
+    /// Strength audit of the accepted state (doc/theory/dda.md): the
+    /// largest excess of a contact's force over its strength, relative to
+    /// the tolerance the open-close iteration allowed that contact (0: every
+    /// contact within its strength; a step above 1 is cut, not accepted).
+    double strength_ratio = 0.;
   };
 
   /**
@@ -322,6 +327,27 @@ namespace rockdda::dda
     /// Open-close iterations of the accepted steps, linear solves of all
     /// attempts (cut ones included) and their CG iterations, so far.
     unsigned long n_iterations = 0, n_solves = 0, n_solver_iterations = 0;
+    /// Largest StepReport::strength_ratio of the accepted steps so far
+    /// (settling steps included; part of the checkpoint): <= 1, since a
+    /// step beyond its contacts' strengths and tolerances is cut.
+    double worst_strength_ratio = 0.;
+
+    /**
+     * Kinematics of each of contacts() as the last accepted step used them
+     * (contact length, springs, force tolerance; Assembler::kinematics())
+     * and its face group (-1: alone on its face; Assembler::groups()).
+     * Empty before the first step of this object (also after restore()).
+     */
+    const std::vector<ContactKinematics> &
+    contact_kinematics() const
+    {
+      return assembler.kinematics();
+    }
+    const std::vector<int> &
+    face_groups() const
+    {
+      return assembler.groups();
+    }
 
     /**
      * The state needed to continue the run bit for bit (block geometry,
@@ -341,6 +367,11 @@ namespace rockdda::dda
     restore(const std::string &bytes, const std::string &source);
 
   private:
+    /// The largest tolerance of a contact's state check, in force
+    /// tolerances: chatter factors stop at it, holds are capped at it, and
+    /// the strength audit never grants more.
+    static constexpr double max_tolerance_factor = 100.;
+
     StepReport
     advance(const double max_length);
     bool
@@ -381,6 +412,50 @@ namespace rockdda::dda
      */
     std::string
     implausible_state(const double energy_before, double &balance) const;
+    /**
+     * Strength audit of a converged attempt with increments @p x, run once
+     * before it is accepted (doc/theory/dda.md, "Strength audit"): every
+     * closed contact's tension within its tensile strength, every locked
+     * contact's shear within its Mohr-Coulomb strength (members of a face
+     * group that the group rule locks: their resultant within the sum of
+     * strengths), every sliding contact's friction the strength at its
+     * normal force and against its slip, every open contact without
+     * compression, each beyond the strength by at most the tolerance the
+     * iteration used for it: the force tolerance x @p factor or the
+     * @p hold (N/m); a sliding contact's friction within the iteration's
+     * friction tolerance of the one assembled from @p assembled_normal
+     * (N/m; @p mean_normal the mean normal force of that iteration). Sets
+     * @p ratio to the largest excess over tolerance (>= 0); returns the
+     * diagnosis naming the blocks if it is above 1, else an empty string.
+     */
+    std::string
+    strength_audit(const std::vector<Contact> &contacts,
+                   const Eigen::VectorXd      &x,
+                   const std::vector<double>  &factor,
+                   const std::vector<double>  &hold,
+                   const std::vector<double>  &assembled_normal,
+                   const double                mean_normal,
+                   double                     &ratio) const;
+    /// Shear forces of the locked members of one face group along a
+    /// common tangent (N/m): their resultant, the sum of their strengths
+    /// and of their tolerances max(force tolerance, hold), and the largest
+    /// and smallest member force (a face pulled in opposite senses).
+    struct GroupShear
+    {
+      double resultant = 0., strength = 0., tolerance = 0.;
+      double most = 0., least = 0.;
+    };
+    /// GroupShear of @p members (indices into @p contacts) for the
+    /// increments @p x, with the normal force of contact c
+    /// @p normal_force(c) (N/m); @p sense gets each member's sign along the
+    /// common tangent.
+    GroupShear
+    group_shear(const std::vector<Contact>       &contacts,
+                const Eigen::VectorXd            &x,
+                const std::vector<int>           &members,
+                const std::function<double(int)> &normal_force,
+                const std::vector<double>        &hold,
+                std::vector<double>              &sense) const;
     /// Mohr-Coulomb on the resultant of each face group (Assembler::groups):
     /// its locked members slide together or not at all (a held member adds
     /// its hold tolerance, N/m, to the group's).
