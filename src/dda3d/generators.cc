@@ -200,6 +200,28 @@ namespace rockdda::dda3d
 
 
 
+  namespace
+  {
+    /// Where the joints' line of intersection of a tetrahedral wedge
+    /// daylights: in the slope face at depth @p height below the crest,
+    /// down the slope's dip line.
+    Point
+    wedge_toe(const double slope_dip_deg,
+              const double slope_dip_direction_deg,
+              const double height,
+              const Point &crest)
+    {
+      const double deg = std::acos(-1.) / 180.;
+      const double b = slope_dip_deg * deg, a = slope_dip_direction_deg * deg;
+      const Point  down(std::cos(b) * std::sin(a),
+                       std::cos(b) * std::cos(a),
+                       -std::sin(b));
+      return crest + (height / std::sin(b)) * down;
+    }
+  } // namespace
+
+
+
   Polyhedron
   make_tetrahedral_wedge(const double joint1_dip_deg,
                          const double joint1_dip_direction_deg,
@@ -213,14 +235,8 @@ namespace rockdda::dda3d
     if (!(height > 0.))
       throw InputError("tetrahedral wedge: height " + std::to_string(height)
                        + " m; valid: > 0");
-    const double deg = std::acos(-1.) / 180.;
-    const double b = slope_dip_deg * deg, a = slope_dip_direction_deg * deg;
-    // The joints' line of intersection daylights in the slope face at
-    // depth @p height below the crest, down the slope's dip line.
-    const Point                  down(std::cos(b) * std::sin(a),
-                     std::cos(b) * std::cos(a),
-                     -std::sin(b));
-    const Point                  toe  = crest + (height / std::sin(b)) * down;
+    const Point toe
+      = wedge_toe(slope_dip_deg, slope_dip_direction_deg, height, crest);
     const double                 L    = 200. * height;
     const Point                  big  = Point::Constant(L);
     Polyhedron                   box  = make_box(crest - big, crest + big);
@@ -236,5 +252,76 @@ namespace rockdda::dda3d
         "daylight in the slope face (no tetrahedron within "
         + std::to_string(L) + " m of the crest)");
     return wedge;
+  }
+
+
+
+  WedgeInTrough
+  make_wedge_in_trough(const double joint1_dip_deg,
+                       const double joint1_dip_direction_deg,
+                       const double joint2_dip_deg,
+                       const double joint2_dip_direction_deg,
+                       const double slope_dip_deg,
+                       const double slope_dip_direction_deg,
+                       const double height,
+                       const double margin,
+                       const Point &crest)
+  {
+    if (!(margin > 0.))
+      throw InputError("wedge in trough: margin " + std::to_string(margin)
+                       + " m; valid: > 0");
+    WedgeInTrough out;
+    out.wedge = make_tetrahedral_wedge(joint1_dip_deg,
+                                       joint1_dip_direction_deg,
+                                       joint2_dip_deg,
+                                       joint2_dip_direction_deg,
+                                       slope_dip_deg,
+                                       slope_dip_direction_deg,
+                                       height,
+                                       crest);
+    out.toe  = wedge_toe(slope_dip_deg, slope_dip_direction_deg, height, crest);
+    Point lo = out.wedge.vertices.front(), hi = lo;
+    for (const auto &v : out.wedge.vertices)
+      {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+      }
+    const Polyhedron box = make_box(lo - Point(margin, margin, 2. * margin),
+                                    hi + Point::Constant(margin));
+    const HalfSpace  below1
+      = half_space_from_dip(joint1_dip_deg, joint1_dip_direction_deg, out.toe);
+    const HalfSpace below2
+      = half_space_from_dip(joint2_dip_deg, joint2_dip_direction_deg, out.toe);
+    // Trough block 1 where joint 1 is the lower plane: n1 . x <= n2 . x.
+    const Point split = (below1.normal - below2.normal).normalized();
+    out.trough[0]     = clip_convex(box, {below1, {split, split.dot(out.toe)}});
+    out.trough[1] = clip_convex(box, {below2, {-split, -split.dot(out.toe)}});
+    return out;
+  }
+
+
+
+  BlockSystem
+  wedge_in_trough_scene(const WedgeInTrough      &w,
+                        const Material           &material,
+                        const dda::JointMaterial &joint)
+  {
+    BlockSystem s;
+    s.materials = {material};
+    s.joints    = {joint};
+    for (const Polyhedron *p : {&w.trough[0], &w.trough[1], &w.wedge})
+      {
+        Block b;
+        b.id         = int(s.blocks.size()) + 1;
+        b.material   = 0;
+        b.polyhedron = *p;
+        s.blocks.push_back(b);
+      }
+    for (const int b : {0, 1})
+      for (const Point &v : s.blocks[b].polyhedron.vertices)
+        s.fixed_points.push_back({b, v, Point::Zero()});
+    s.measurement_points.push_back(
+      {2, w.wedge.moments().centroid, Point::Zero()});
+    return s;
   }
 } // namespace rockdda::dda3d

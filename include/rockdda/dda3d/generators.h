@@ -8,9 +8,12 @@
 #ifndef ROCKDDA_DDA3D_GENERATORS_H
 #define ROCKDDA_DDA3D_GENERATORS_H
 
+#include <rockdda/dda/contact_mechanics.h>
+#include <rockdda/dda3d/block_system.h>
 #include <rockdda/dda3d/polyhedron.h>
 #include <rockdda/geometry/polygon.h>
 
+#include <array>
 #include <vector>
 
 namespace rockdda::dda3d
@@ -84,6 +87,50 @@ namespace rockdda::dda3d
                          const double slope_dip_direction_deg,
                          const double height,
                          const Point &crest = Point::Zero());
+
+  /**
+   * A tetrahedral wedge (make_tetrahedral_wedge()) with the V-shaped trough
+   * it rests in: the two joint planes through the wedge's toe bound two
+   * convex trough blocks below them, split by the plane through the joints'
+   * line of intersection that bisects them ((n1 - n2) . (x - toe) = 0, n1,
+   * n2 the joints' upward normals). The trough fills the wedge's bounding
+   * box widened by @p margin (m, > 0) on every side (and 2 @p margin
+   * below), so that the wedge stays on it for a slide of up to @p margin
+   * in any direction. The wedge touches trough block 1 (2) on joint 1 (2)
+   * only.
+   */
+  struct WedgeInTrough
+  {
+    Polyhedron wedge;
+    /// Trough blocks below joint 1 and joint 2.
+    std::array<Polyhedron, 2> trough;
+    /// The wedge's lowest vertex, where the joints' line daylights (m).
+    Point toe = Point::Zero();
+  };
+
+  /// The wedge and trough of WedgeInTrough (arguments as
+  /// make_tetrahedral_wedge(), @p margin as documented there).
+  WedgeInTrough
+  make_wedge_in_trough(const double joint1_dip_deg,
+                       const double joint1_dip_direction_deg,
+                       const double joint2_dip_deg,
+                       const double joint2_dip_direction_deg,
+                       const double slope_dip_deg,
+                       const double slope_dip_direction_deg,
+                       const double height,
+                       const double margin,
+                       const Point &crest = Point::Zero());
+
+  /**
+   * The scene of @p w: trough blocks (ids 1, 2) clamped by a fixed point at
+   * every vertex, the wedge (id 3) with a measurement point at its
+   * centroid; all of material @p material, every face of joint @p joint.
+   * Gravity is the default.
+   */
+  BlockSystem
+  wedge_in_trough_scene(const WedgeInTrough      &w,
+                        const Material           &material,
+                        const dda::JointMaterial &joint);
 } // namespace rockdda::dda3d
 
 #endif
