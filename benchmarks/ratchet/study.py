@@ -115,7 +115,8 @@ def convergence_sweeps():
          [(n, {(R, "Steps per cycle"): n, (T, "Samples per cycle"): n})
           for n in (12, 24, 48)]),
         ("penalty", "Contact penalty", "N/m",
-         [(p, {(R, "Contact penalty"): p}) for p in (4e11, 1e12, 4e12)]),
+         [(p, {(R, "Contact penalty"): p})
+          for p in (4e11, 1e12, 4e12, 1e13, 2e13)]),
     ]
 
 
@@ -359,6 +360,9 @@ def main():
     ap.add_argument("--allow-failures", action="store_true",
                     help="exit 0 even if runs failed (they are reported)")
     ap.add_argument("--strict", action="store_true")
+    ap.add_argument("--penalty", type=float, default=None,
+                    help="Contact penalty (N/m) of every run but the "
+                    "penalty sweep (default: the base file's)")
     args = ap.parse_args()
     signal.signal(signal.SIGTERM, stop_children)
     signal.signal(signal.SIGINT, stop_children)
@@ -366,6 +370,8 @@ def main():
     base_text = open(BASE_PRM).read()
     base = base_settings(base_text)
     common = {(R, "Cycles"): args.cycles, (R, "Checkpoint cycles"): 0}
+    if args.penalty is not None:
+        common[(R, "Contact penalty")] = args.penalty
 
     folder, rockdda = scratch(args.rockdda, "ratchet-study-", args.keep)
     version = subprocess.run([rockdda, "--version"], stdout=subprocess.PIPE,
