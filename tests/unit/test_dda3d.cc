@@ -1432,3 +1432,72 @@ TEST(Dda3dContacts, HoekBrayWedgeStartsToSlideAtTheLimitFrictionAngle)
   const double rigid = 0.5 * accel(phi_le - 4.) * T * T;
   EXPECT_NEAR(d_lo.norm(), rigid, 0.01 * rigid);
 }
+
+
+
+TEST(Dda3dContacts, LightWedgeOnStiffContactsYieldsAtTheYieldAcceleration)
+{
+  // The shaking-table wedge (joints 51.4/065.8 and 51.4/295.2, height 0.1
+  // m: 0.78 kg, W = 7.7 N; E = 200 GPa), phi = 26.754 deg (k_y = 0.14 g
+  // along the line's trend 000.5), under a constant horizontal inertial
+  // load k_y -+ 0.01 g down the line (loading mode) for 0.3 s after 20
+  // settling steps, at penalties of 1e10 N/m to 1e13 N/m (the thesis's 10
+  // GN/m to 1e3 x). Below k_y the wedge holds (elastic slip only: W /
+  // k_s < 2e-9 m); above it slides at the rigid wedge's acceleration a =
+  // g (|F| - tan(phi) (N1 + N2)) (the closed-form wedge statics, as in
+  // HoekBrayWedgeStartsToSlideAtTheLimitFrictionAngle), within 2 % of
+  // a T^2 / 2 = 3.6 mm. The state check's force tolerance was once
+  // k_n x 1e-12 x the block size: 0.2 N = 2.6 % of W per contact at
+  // 1e12 N/m, and the wedge held at k_y + 0.01 g (slide 0 at 1e12 and
+  // 1e13 N/m).
+  const double phi = 26.754, az = 0.5 * pi / 180., g = 9.80665, T = 0.3;
+  const Point  n1 = analytical::plane_normal(51.4, 65.8),
+              n2  = analytical::plane_normal(51.4, 295.2);
+  Point e         = n1.cross(n2).normalized();
+  if (e.z() > 0.)
+    e = -e;
+  const Point     h(std::sin(az), std::cos(az), 0.);
+  Eigen::Matrix3d A;
+  A << n1, n2, e;
+  const double ky = 0.14;
+  ASSERT_NEAR(
+    analytical::critical_friction_angle_wedge(51.4, 65.8, 51.4, 295.2, 0.5, ky),
+    phi,
+    1e-3);
+  dda::JointMaterial joint;
+  joint.friction_deg      = phi;
+  const BlockSystem scene = wedge_in_trough_scene(
+    make_wedge_in_trough(51.4, 65.8, 51.4, 295.2, 80., 0.5, 0.1, 0.1),
+    {1700., 2e11, 0.25, 1},
+    joint);
+  for (const double p : {1e10, 1e12, 1e13})
+    for (const double dk : {-0.01, 0.01})
+      {
+        const double k = ky + dk;
+        // Rigid wedge: N1 n1 + N2 n2 + F e = -(k h - z).
+        const Point  x = A.partialPivLu().solve(-(k * h - Point::UnitZ()));
+        const double a = std::max(
+          0., g * (std::abs(x[2]) - std::tan(phi * pi / 180.) * (x[0] + x[1])));
+        EngineControls c;
+        c.dt                  = 0.005;
+        c.law.normal_penalty  = p;
+        c.ground_acceleration = [&](double) { return Point(-k * g * h); };
+        Engine engine(scene, c);
+        engine.settle(20);
+        engine.advance_to(T);
+        const Point  d     = engine.displacement(2);
+        const double rigid = 0.5 * a * T * T;
+        std::printf("light wedge, penalty %.0e N/m, k = k_y %+.2f g: slide "
+                    "%.4e m along the line (rigid wedge %.4e m), %.1e m "
+                    "across\n",
+                    p,
+                    dk,
+                    d.dot(e),
+                    rigid,
+                    (d - d.dot(e) * e).norm());
+        if (dk < 0.)
+          EXPECT_LT(d.norm(), 1e-6) << p;
+        else
+          EXPECT_NEAR(d.dot(e), rigid, 0.02 * rigid) << p;
+      }
+}

@@ -80,10 +80,12 @@ namespace rockdda::dda3d
     /// Normal and shear spring (N/m): the penalty, in series with the
     /// joint's stiffness over the contact area (dda::contact_springs()).
     double normal_stiffness = 0., shear_stiffness = 0.;
-    /// Round-off of the gap and shear displacement (m).
+    /// Round-off of the gap and shear displacement (m): the representation
+    /// error of the local coordinates of the contact points.
     double tolerance = 0.;
     /// Force below which a state change is noise (N): 1e-4 of the weight
-    /// of the lighter block, at least the normal spring times tolerance.
+    /// of the lighter block, at least the normal spring times tolerance
+    /// (independent of the penalty otherwise).
     double force_tolerance = 0.;
   };
 
