@@ -45,8 +45,10 @@ main(int argc, char **argv)
                d2 = arg(9, 295.2);
   try
     {
-      const WedgeInTrough w = make_wedge_in_trough(
-        j1, d1, j2, d2, slope_dip, slope_dd, height, height);
+      const WedgeInTrough w
+        = make_wedge_in_trough({j1, d1, j2, d2, slope_dip, slope_dd},
+                               height,
+                               height);
       dda::JointMaterial joint;
       joint.friction_deg = phi;
       const BlockSystem s

@@ -223,28 +223,25 @@ namespace rockdda::dda3d
 
 
   Polyhedron
-  make_tetrahedral_wedge(const double joint1_dip_deg,
-                         const double joint1_dip_direction_deg,
-                         const double joint2_dip_deg,
-                         const double joint2_dip_direction_deg,
-                         const double slope_dip_deg,
-                         const double slope_dip_direction_deg,
-                         const double height,
-                         const Point &crest)
+  make_tetrahedral_wedge(const WedgePlanes &p,
+                         const double       height,
+                         const Point       &crest)
   {
     if (!(height > 0.))
       throw InputError("tetrahedral wedge: height " + std::to_string(height)
                        + " m; valid: > 0");
     const Point toe
-      = wedge_toe(slope_dip_deg, slope_dip_direction_deg, height, crest);
-    const double                 L    = 200. * height;
-    const Point                  big  = Point::Constant(L);
-    Polyhedron                   box  = make_box(crest - big, crest + big);
-    const std::vector<HalfSpace> cuts = {
-      {Point::UnitZ(), crest.z()},
-      half_space_from_dip(slope_dip_deg, slope_dip_direction_deg, crest),
-      half_space_from_dip(joint1_dip_deg, joint1_dip_direction_deg, toe, true),
-      half_space_from_dip(joint2_dip_deg, joint2_dip_direction_deg, toe, true)};
+      = wedge_toe(p.slope_dip_deg, p.slope_dip_direction_deg, height, crest);
+    const double                 L   = 200. * height;
+    const Point                  big = Point::Constant(L);
+    Polyhedron                   box = make_box(crest - big, crest + big);
+    const std::vector<HalfSpace> cuts
+      = {{Point::UnitZ(), crest.z()},
+         half_space_from_dip(p.slope_dip_deg, p.slope_dip_direction_deg, crest),
+         half_space_from_dip(
+           p.joint1_dip_deg, p.joint1_dip_direction_deg, toe, true),
+         half_space_from_dip(
+           p.joint2_dip_deg, p.joint2_dip_direction_deg, toe, true)};
     Polyhedron wedge = clip_convex(box, cuts);
     if (wedge.vertices.size() != 4)
       throw InputError(
@@ -257,29 +254,20 @@ namespace rockdda::dda3d
 
 
   WedgeInTrough
-  make_wedge_in_trough(const double joint1_dip_deg,
-                       const double joint1_dip_direction_deg,
-                       const double joint2_dip_deg,
-                       const double joint2_dip_direction_deg,
-                       const double slope_dip_deg,
-                       const double slope_dip_direction_deg,
-                       const double height,
-                       const double margin,
-                       const Point &crest)
+  make_wedge_in_trough(const WedgePlanes &planes,
+                       const double       height,
+                       const double       margin,
+                       const Point       &crest)
   {
     if (!(margin > 0.))
       throw InputError("wedge in trough: margin " + std::to_string(margin)
                        + " m; valid: > 0");
     WedgeInTrough out;
-    out.wedge = make_tetrahedral_wedge(joint1_dip_deg,
-                                       joint1_dip_direction_deg,
-                                       joint2_dip_deg,
-                                       joint2_dip_direction_deg,
-                                       slope_dip_deg,
-                                       slope_dip_direction_deg,
-                                       height,
-                                       crest);
-    out.toe  = wedge_toe(slope_dip_deg, slope_dip_direction_deg, height, crest);
+    out.wedge = make_tetrahedral_wedge(planes, height, crest);
+    out.toe   = wedge_toe(planes.slope_dip_deg,
+                        planes.slope_dip_direction_deg,
+                        height,
+                        crest);
     Point lo = out.wedge.vertices.front(), hi = lo;
     for (const auto &v : out.wedge.vertices)
       {
@@ -289,9 +277,13 @@ namespace rockdda::dda3d
     const Polyhedron box = make_box(lo - Point(margin, margin, 2. * margin),
                                     hi + Point::Constant(margin));
     const HalfSpace  below1
-      = half_space_from_dip(joint1_dip_deg, joint1_dip_direction_deg, out.toe);
+      = half_space_from_dip(planes.joint1_dip_deg,
+                            planes.joint1_dip_direction_deg,
+                            out.toe);
     const HalfSpace below2
-      = half_space_from_dip(joint2_dip_deg, joint2_dip_direction_deg, out.toe);
+      = half_space_from_dip(planes.joint2_dip_deg,
+                            planes.joint2_dip_direction_deg,
+                            out.toe);
     // Trough block 1 where joint 1 is the lower plane: n1 . x <= n2 . x.
     const Point split = (below1.normal - below2.normal).normalized();
     out.trough[0]     = clip_convex(box, {below1, {split, split.dot(out.toe)}});

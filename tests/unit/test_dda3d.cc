@@ -287,9 +287,11 @@ TEST(Dda3dGeometry, GeneratorsAndConvexCuts)
   // 51.4/295.2), under a slope face 80/000 with a horizontal top: its
   // volume against the tetrahedron of the four planes' corners, found
   // independently by solving the 3x3 systems of each three planes.
-  const double     H     = 0.5;
-  const Polyhedron wedge = make_tetrahedral_wedge(
-    51.4, 65.8, 51.4, 295.2, 80., 0., H, Point(0., 0., 1.));
+  const double     H = 0.5;
+  const Polyhedron wedge
+    = make_tetrahedral_wedge({51.4, 65.8, 51.4, 295.2, 80., 0.},
+                             H,
+                             Point(0., 0., 1.));
   EXPECT_FALSE(polyhedron_defect(wedge));
   ASSERT_EQ(wedge.vertices.size(), 4u);
   std::vector<HalfSpace> planes;
@@ -334,9 +336,10 @@ TEST(Dda3dGeometry, GeneratorsAndConvexCuts)
     zmin = std::min(zmin, v.z());
   EXPECT_NEAR(zmin, 1. - H, 1e-12);
   // Joints that do not daylight: no tetrahedron.
-  EXPECT_THROW(
-    make_tetrahedral_wedge(80., 65.8, 80., 295.2, 40., 0., H, Point::Zero()),
-    InputError);
+  EXPECT_THROW(make_tetrahedral_wedge({80., 65.8, 80., 295.2, 40., 0.},
+                                      H,
+                                      Point::Zero()),
+               InputError);
 }
 
 
@@ -1305,21 +1308,13 @@ namespace
   /// E = 10 GPa) in its clamped trough (wedge_in_trough_scene()), friction
   /// @p phi_deg on both joints.
   BlockSystem
-  wedge_scene(const double j1_dip,
-              const double j1_dd,
-              const double j2_dip,
-              const double j2_dd,
-              const double slope_dip,
-              const double slope_dd,
-              const double phi_deg)
+  wedge_scene(const WedgePlanes &planes, const double phi_deg)
   {
     dda::JointMaterial joint;
     joint.friction_deg = phi_deg;
-    return wedge_in_trough_scene(
-      make_wedge_in_trough(
-        j1_dip, j1_dd, j2_dip, j2_dd, slope_dip, slope_dd, 1., 0.5),
-      {2700., 1e10, 0.25, 1},
-      joint);
+    return wedge_in_trough_scene(make_wedge_in_trough(planes, 1., 0.5),
+                                 {2700., 1e10, 0.25, 1},
+                                 joint);
   }
 } // namespace
 
@@ -1365,7 +1360,7 @@ TEST(Dda3dContacts, HoekBrayWedgeStartsToSlideAtTheLimitFrictionAngle)
   // of 80 steps, 0.2 s).
   const double T = 0.4, g = 9.80665, p = 1e11;
   auto         run = [&](const double phi) {
-    BlockSystem    s = wedge_scene(j1, d1, j2, d2, 65., 185., phi);
+    BlockSystem    s = wedge_scene({j1, d1, j2, d2, 65., 185.}, phi);
     EngineControls c;
     c.dt                 = 0.005;
     c.law.normal_penalty = p;
@@ -1374,7 +1369,7 @@ TEST(Dda3dContacts, HoekBrayWedgeStartsToSlideAtTheLimitFrictionAngle)
     engine.advance_to(T);
     return engine.displacement(2);
   };
-  const BlockSystem probe = wedge_scene(j1, d1, j2, d2, 65., 185., 30.);
+  const BlockSystem probe = wedge_scene({j1, d1, j2, d2, 65., 185.}, 30.);
   const double      W = 2700. * probe.blocks[2].polyhedron.moments().volume * g;
   const double      delta = 100. * W / (0.4 * p);
   auto              accel = [&](const double phi_deg) {
@@ -1467,7 +1462,7 @@ TEST(Dda3dContacts, LightWedgeOnStiffContactsYieldsAtTheYieldAcceleration)
   dda::JointMaterial joint;
   joint.friction_deg      = phi;
   const BlockSystem scene = wedge_in_trough_scene(
-    make_wedge_in_trough(51.4, 65.8, 51.4, 295.2, 80., 0.5, 0.1, 0.1),
+    make_wedge_in_trough({51.4, 65.8, 51.4, 295.2, 80., 0.5}, 0.1, 0.1),
     {1700., 2e11, 0.25, 1},
     joint);
   for (const double p : {1e10, 1e12, 1e13})

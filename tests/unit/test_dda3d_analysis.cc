@@ -644,7 +644,7 @@ TEST(Dda3dSeismic,
   dda::JointMaterial joint;
   joint.friction_deg      = phi;
   const BlockSystem scene = wedge_in_trough_scene(
-    make_wedge_in_trough(51.4, 65.8, 51.4, 295.2, 80., az, 0.1, 0.1),
+    make_wedge_in_trough({51.4, 65.8, 51.4, 295.2, 80., az}, 0.1, 0.1),
     {1700., 2e11, 0.25, 1},
     joint);
   const double mass = 1700. * scene.blocks[2].polyhedron.moments().volume;

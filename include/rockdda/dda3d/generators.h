@@ -71,6 +71,17 @@ namespace rockdda::dda3d
   clip_convex(const Polyhedron &convex, const std::vector<HalfSpace> &cuts);
 
   /**
+   * The planes of a Hoek-Bray wedge: two joints and the slope face, each
+   * as dip and dip direction (degrees).
+   */
+  struct WedgePlanes
+  {
+    double joint1_dip_deg = 0., joint1_dip_direction_deg = 0.;
+    double joint2_dip_deg = 0., joint2_dip_direction_deg = 0.;
+    double slope_dip_deg = 0., slope_dip_direction_deg = 0.;
+  };
+
+  /**
    * The Hoek-Bray tetrahedral wedge: the block above two joint planes
    * (dip, dip direction; through the crest point @p crest) and below the
    * slope face and the horizontal top surface, both through @p crest. The
@@ -79,14 +90,9 @@ namespace rockdda::dda3d
    * block.
    */
   Polyhedron
-  make_tetrahedral_wedge(const double joint1_dip_deg,
-                         const double joint1_dip_direction_deg,
-                         const double joint2_dip_deg,
-                         const double joint2_dip_direction_deg,
-                         const double slope_dip_deg,
-                         const double slope_dip_direction_deg,
-                         const double height,
-                         const Point &crest = Point::Zero());
+  make_tetrahedral_wedge(const WedgePlanes &planes,
+                         const double       height,
+                         const Point       &crest = Point::Zero());
 
   /**
    * A tetrahedral wedge (make_tetrahedral_wedge()) with the V-shaped trough
@@ -111,15 +117,10 @@ namespace rockdda::dda3d
   /// The wedge and trough of WedgeInTrough (arguments as
   /// make_tetrahedral_wedge(), @p margin as documented there).
   WedgeInTrough
-  make_wedge_in_trough(const double joint1_dip_deg,
-                       const double joint1_dip_direction_deg,
-                       const double joint2_dip_deg,
-                       const double joint2_dip_direction_deg,
-                       const double slope_dip_deg,
-                       const double slope_dip_direction_deg,
-                       const double height,
-                       const double margin,
-                       const Point &crest = Point::Zero());
+  make_wedge_in_trough(const WedgePlanes &planes,
+                       const double       height,
+                       const double       margin,
+                       const Point       &crest = Point::Zero());
 
   /**
    * The scene of @p w: trough blocks (ids 1, 2) clamped by a fixed point at
