@@ -381,10 +381,9 @@ namespace rockdda::dda
         };
         const GroupShear gs
           = group_shear(contacts, x, members, normal, hold, sense);
-        // A face pulled in opposite senses is not locked as a group (its
-        // members slip on their own): each member is judged alone.
-        if (members.size() < 2
-            || (gs.most > gs.tolerance && gs.least < -gs.tolerance))
+        // A stretched face is not locked as a group (its members slip on
+        // their own): each member is judged alone.
+        if (members.size() < 2 || gs.stretched)
           for (const int c : members)
             {
               const auto &kin = kinematics[c];

@@ -438,12 +438,15 @@ namespace rockdda::dda
                    double                     &ratio) const;
     /// Shear forces of the locked members of one face group along a
     /// common tangent (N/m): their resultant, the sum of their strengths
-    /// and of their tolerances max(force tolerance, hold), and the largest
-    /// and smallest member force (a face pulled in opposite senses).
+    /// and of their tolerances max(force tolerance, hold), and whether the
+    /// face is stretched: its members pulled in opposite senses beyond
+    /// that tolerance while a block of the face carries an imposed strain
+    /// (eigenstrain, e.g. thermal). A stretched face is not locked as a
+    /// group: each member slips on its own.
     struct GroupShear
     {
       double resultant = 0., strength = 0., tolerance = 0.;
-      double most = 0., least = 0.;
+      bool   stretched = false;
     };
     /// GroupShear of @p members (indices into @p contacts) for the
     /// increments @p x, with the normal force of contact c
