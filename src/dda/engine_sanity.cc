@@ -66,65 +66,65 @@ namespace rockdda::dda
             + num(pga / 100. * scene.seismic.g / 9.80665)
             + " m/s^2 = " + num(pga / 100. / 9.80665) + " g (check Units)");
       }
-    // Penetration of the heaviest block resting on one contact under its
-    // own weight, against 1e-3 of its size.
-    double worst = 0.;
-    int    block = -1;
-    double need  = 0.;
+    // Both ends of the penalty against each block's weight W, in one pass:
+    // - too soft: the heaviest block resting on one contact under its own
+    //   weight sinks by W / p, against 1e-3 of its size;
+    // - too stiff: the force of a round-off gap (round_off_tolerance(), 1e-12
+    //   of a free block's size) exceeds 1 % of W. Its contact states are then
+    //   decided by round-off: the tolerances of the open-close iteration
+    //   cannot grow in units of its weight (an infill wedge hung on one
+    //   contact at 40 x its strength before they were floored instead of
+    //   multiplied).
+    struct Worst
+    {
+      double ratio = 0., need = 0.;
+      int    block = -1;
+      void
+      note(const double r, const int b, const double n)
+      {
+        if (r > ratio)
+          {
+            ratio = r;
+            block = b;
+            need  = n;
+          }
+      }
+    } soft, stiff;
+    const double penalty = ctrl.law.normal_penalty;
     for (std::size_t b = 0; b < scene.blocks.size(); ++b)
       {
         const auto  &blk = scene.blocks[b];
         const double weight
           = scene.materials[blk.material].density * blk.polygon.area() * g;
-        const double ratio = weight / ctrl.law.normal_penalty / block_size[b];
-        if (ratio > worst)
-          {
-            worst = ratio;
-            block = static_cast<int>(b);
-            need  = weight / (1e-3 * block_size[b]);
-          }
+        const int i = static_cast<int>(b);
+        soft.note(weight / penalty / block_size[b],
+                  i,
+                  weight / (1e-3 * block_size[b]));
+        const double round_off = round_off_tolerance(block_size[b],
+                                                     geometry::Point::Zero(),
+                                                     geometry::Point::Zero());
+        if (!clamped_block[b] && weight > 0.)
+          stiff.note(penalty * round_off / weight,
+                     i,
+                     1e-2 * weight / round_off);
       }
-    if (block >= 0 && worst > 1e-3)
+    if (soft.block >= 0 && soft.ratio > 1e-3)
       warning_list.push_back(
-        "contact penalty " + num(ctrl.law.normal_penalty) + " N/m lets block "
-        + std::to_string(scene.blocks[block].id) + " sink " + num(worst * 100.)
+        "contact penalty " + num(penalty) + " N/m lets block "
+        + std::to_string(scene.blocks[soft.block].id) + " sink "
+        + num(soft.ratio * 100.)
         + " % of its size into a contact under its own weight; use at "
           "least "
-        + num(need) + " N/m (10 to 100 x E is usual)");
-    // The other end: a penalty so stiff that the round-off of a contact's
-    // gap (1e-12 of the block's size) carries more than 1 % of a free
-    // block's weight. Its contact states are then decided by round-off:
-    // the tolerances of the open-close iteration cannot grow in units of
-    // its weight (an infill wedge hung on one contact at 40 x its strength
-    // before they were floored instead of multiplied).
-    worst = 0.;
-    block = -1;
-    for (std::size_t b = 0; b < scene.blocks.size(); ++b)
-      {
-        if (clamped_block[b])
-          continue;
-        const auto  &blk = scene.blocks[b];
-        const double weight
-          = scene.materials[blk.material].density * blk.polygon.area() * g;
-        const double ratio = weight > 0. ? ctrl.law.normal_penalty * 1e-12
-                                             * block_size[b] / weight
-                                         : 0.;
-        if (ratio > worst)
-          {
-            worst = ratio;
-            block = static_cast<int>(b);
-            need  = 1e-2 * weight / (1e-12 * block_size[b]);
-          }
-      }
-    if (block >= 0 && worst > 1e-2)
+        + num(soft.need) + " N/m (10 to 100 x E is usual)");
+    if (stiff.block >= 0 && stiff.ratio > 1e-2)
       warning_list.push_back(
-        "contact penalty " + num(ctrl.law.normal_penalty)
+        "contact penalty " + num(penalty)
         + " N/m resolves the contact forces of block "
-        + std::to_string(scene.blocks[block].id) + " only to "
-        + num(worst * 100.)
+        + std::to_string(scene.blocks[stiff.block].id) + " only to "
+        + num(stiff.ratio * 100.)
         + " % of its weight (the force of a round-off gap, 1e-12 x its "
           "size): its contact states are decided by round-off; use at most "
-        + num(need) + " N/m");
+        + num(stiff.need) + " N/m");
     // Joint stiffness against the penalty in series with it: the penalty
     // adds k l / (p + k l) to a contact's compliance. A contact's length is
     // at most the smaller of its two blocks' sizes, so at most the second
