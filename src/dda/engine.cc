@@ -415,14 +415,27 @@ namespace rockdda::dda
     // latest iteration, and their mean over the closed contacts (for the
     // strength audit of the converged state).
     std::vector<double> assembled_normal(contacts.size(), 0.);
-    double              mean_normal    = 0.;
-    const auto          update_factors = [&]() {
+    double              mean_normal = 0.;
+    // Relaxed friction iteration (Irons & Tuck 1969; Kuttler & Wall 2008):
+    // once the states have settled, each sliding contact's friction is
+    // assembled with N_a + omega (N - N_a), where N_a is the normal force
+    // the friction was assembled with and N the force the solve produced.
+    // omega follows Aitken's rule over the residuals N - N_a of successive
+    // friction-only iterations. A wedge of small taper couples its friction
+    // to its normal force with a gain of about -mu / taper: the plain fixed
+    // point (omega = 1) then oscillates with growing amplitude, the relaxed
+    // one converges (omega ~ 1 / (1 + mu / taper)).
+    std::vector<double> residual(contacts.size(), 0.),
+      previous_residual(contacts.size(), 0.);
+    double     omega          = 1.;
+    bool       have_residual  = false;
+    const auto update_factors = [&]() {
       for (std::size_t c = 0; c < contacts.size(); ++c)
         {
           factor[c] = flips[c] >= 2 ? std::min(std::pow(10., flips[c] - 1),
                                                max_tolerance_factor)
-                                             : 1.;
-          hold[c] = 0.;
+                                    : 1.;
+          hold[c]   = 0.;
           if (flips[c] >= static_cast<int>(ctrl.hold_after) || contacts[c].held)
             {
               // An elastic slip or penetration of hold_fraction x the
@@ -443,6 +456,33 @@ namespace rockdda::dda
                            escalated_tolerance(kin, max_tolerance_factor));
             }
         }
+    };
+    // Aitken's relaxation of the friction forces of the contacts that kept
+    // sliding (see above); a state change restarts it from omega = 1.
+    const auto relax_friction = [&]() {
+      if (changes > 0 || friction_changes == 0)
+        {
+          omega         = 1.;
+          have_residual = false;
+          return;
+        }
+      if (have_residual)
+        {
+          double dot = 0., den = 0.;
+          for (std::size_t c = 0; c < contacts.size(); ++c)
+            {
+              const double d = residual[c] - previous_residual[c];
+              dot += previous_residual[c] * d;
+              den += d * d;
+            }
+          if (den > 0.)
+            omega = std::clamp(-omega * dot / den, 0.01, 2.);
+        }
+      for (std::size_t c = 0; c < contacts.size(); ++c)
+        if (residual[c] != 0.)
+          contacts[c].normal_force = assembled_normal[c] + omega * residual[c];
+      std::swap(previous_residual, residual);
+      have_residual = true;
     };
     // Checks every contact against the increments x: new states, forces
     // and the counts of state and friction changes.
@@ -508,8 +548,12 @@ namespace rockdda::dda
                        + kin.force_tolerance)
             ++friction_changes;
           assembled_normal[c] = ct.normal_force;
-          ct.normal_force     = r.normal_force;
-          ct.shear_force      = r.shear_force;
+          residual[c]
+            = keeps_sliding && !frictionless(ct, scene.joints[ct.joint])
+                ? r.normal_force - ct.normal_force
+                : 0.;
+          ct.normal_force = r.normal_force;
+          ct.shear_force  = r.shear_force;
           if (r.changed)
             {
               ++changes;
@@ -537,6 +581,7 @@ namespace rockdda::dda
           if (r.state == ContactState::sliding)
             ct.slide_direction = r.slide_direction;
         }
+      relax_friction();
     };
     while (state_iterations < ctrl.max_iterations
            && it < 2 * ctrl.max_iterations)

@@ -186,3 +186,95 @@ TEST(DdaOpenClose, LineSearchKeepsThePhysicsOfFullSteps)
   EXPECT_GT(with, 0.);
   EXPECT_NEAR(with, without, 0.05 * without);
 }
+
+
+
+/**
+ * A wedge of taper theta slides into a V-notch under its weight W in
+ * static steps, until it stops. Exact answer of the rigid wedge at the
+ * friction limit (friction up the faces): each face carries
+ * N = W / (2 (sin(theta) + mu cos(theta))). The friction iteration couples
+ * a sliding face's friction to its normal force with the gain
+ * -mu / tan(theta) (vertical equilibrium 2 N_new sin(theta) +
+ * 2 mu N_assembled cos(theta) = W, less the step's inertia term), 1.6 to 19
+ * here. Tolerance: the friction iteration converges to 1e-3 of the normal
+ * force plus the force tolerance (1e-4 W), so 2e-3 N.
+ */
+class SmallTaperWedge
+    : public ::testing::TestWithParam<std::tuple<double, double>>
+{};
+
+TEST_P(SmallTaperWedge, SettlesWithTheLimitEquilibriumNormalForce)
+{
+  const auto [theta_deg, phi_deg] = GetParam();
+  const double theta              = theta_deg * M_PI / 180.;
+  const double mu                 = std::tan(phi_deg * M_PI / 180.);
+  const double H = 2., w0 = 0.5, L = 3., t = std::tan(theta);
+  const auto   half = [&](const double y) { return w0 + y * t; };
+  BlockSystem  s    = one_material_scene(2700., 1e10, 0.25, phi_deg);
+  const int    left = add_block(
+    s,
+    polygon({Point(-L, 0.), Point(-w0, 0.), Point(-half(H), H), Point(-L, H)}));
+  const int right = add_block(
+    s, polygon({Point(w0, 0.), Point(L, 0.), Point(L, H), Point(half(H), H)}));
+  // The wedge touches both faces from y = 0.5 m up, and stands 0.5 m
+  // above the notch.
+  const double yb = 0.5, yt = H + 0.5;
+  const int    wedge = add_block(s,
+                              polygon({Point(-half(yb), yb),
+                                          Point(half(yb), yb),
+                                          Point(half(yt), yt),
+                                          Point(-half(yt), yt)}));
+  fix_block(s, left);
+  fix_block(s, right);
+  const double W = 2700. * g_earth * s.blocks[wedge].polygon.area();
+
+  Controls c       = controls(1e-3, 0., 1e11);
+  c.max_iterations = 30;
+  DdaSystem dda(s, c);
+  // Static steps relax towards the equilibrium (by ~0.7 per step here):
+  // until no vertex moves by 1e-12 of the notch's height.
+  int steps = 0;
+  for (; steps < 1000; ++steps)
+    {
+      StepReport r;
+      ASSERT_NO_THROW(r = dda.step()) << "step " << steps + 1;
+      if (r.max_displacement < 1e-12 * H && r.cuts == 0)
+        break;
+    }
+  ASSERT_LT(steps, 1000) << "no equilibrium";
+
+  double n_left = 0., n_right = 0.;
+  int    sliding = 0;
+  for (const auto &ct : dda.contacts())
+    {
+      const auto &g = ct.geometry;
+      if (ct.state == ContactState::open
+          || (g.block_i != wedge && g.block_j != wedge))
+        continue;
+      const int other = g.block_i == wedge ? g.block_j : g.block_i;
+      (other == left ? n_left : n_right) += ct.normal_force;
+      sliding += ct.state == ContactState::sliding;
+    }
+  const double exact = W / (2. * (std::sin(theta) + mu * std::cos(theta)));
+  std::printf("theta %.0f deg, phi %.0f deg (gain -%.1f): N left %.6e, right "
+              "%.6e, exact %.6e N/m; %d sliding contacts\n",
+              theta_deg,
+              phi_deg,
+              mu / t,
+              n_left,
+              n_right,
+              exact,
+              sliding);
+  EXPECT_NEAR(n_left, exact, 2e-3 * exact);
+  EXPECT_NEAR(n_right, exact, 2e-3 * exact);
+  // Friction acts up the faces: the wedge went down.
+  EXPECT_LT(dda.centroid_displacement(wedge).y(), 0.);
+}
+
+INSTANTIATE_TEST_SUITE_P(GainsFromOneToTwenty,
+                         SmallTaperWedge,
+                         ::testing::Values(std::make_tuple(20., 30.),
+                                           std::make_tuple(10., 35.),
+                                           std::make_tuple(5., 30.),
+                                           std::make_tuple(3., 45.)));

@@ -239,6 +239,51 @@ TEST(RatchetCoupled, NarrowCrackReachesEquilibriumEverySample)
 
 
 
+// At the converged penalty (1e13 N/m, the default scene's) a narrow crack
+// (50 mm over 5 mm) and a deep infill (9 m down, where the crack is 2.5x
+// narrower than at 6 m) jam the light wedge between the block and the
+// cliff at a taper of a few milliradians: its sliding contacts' friction
+// couples to their normal force with a gain of order mu / taper, and the
+// plain fixed point of the friction iteration oscillated until the step was
+// cut below its minimum ("1 sliding contact whose friction force has not
+// converged", both stopped in cycle 1; doc/theory/dda.md, "Relaxed
+// friction"). Each must now reach equilibrium in every sample of two cycles
+// with no contact beyond its strength (the audit's ratio <= 1) and no
+// backward ratchet beyond the equilibrium tolerance.
+TEST(RatchetCoupled, SmallTaperWedgesConvergeAtTheConvergedPenalty)
+{
+  for (const bool deep : {false, true})
+    {
+      RatchetMaterials m;
+      SeasonalForcing  f;
+      RatchetGeometry  g;
+      if (deep)
+        g.infill_top_depth = 9.;
+      else
+        {
+          g.crack_top_width    = 0.05;
+          g.crack_bottom_width = 0.005;
+        }
+      RatchetControls c;
+      c.penalty                      = 1e13;
+      const RatchetScene       scene = make_ratchet_scene(g, m);
+      PeriodicBlockTemperature T(scene.heat_blocks, f, cheap_heat());
+      RatchetRun               run(scene, T, f, 8e-6, c);
+      for (int k = 0; k < 2; ++k)
+        {
+          CycleRecord r;
+          ASSERT_NO_THROW(r = run.run_cycle())
+            << (deep ? "deep infill" : "narrow crack") << ", cycle " << k + 1;
+          EXPECT_LE(r.stationary_samples, 2u)
+            << (deep ? "deep infill" : "narrow crack") << ", cycle " << r.cycle;
+        }
+      EXPECT_LE(run.dda().worst_strength_ratio, 1.);
+      EXPECT_GT(run.displacement(), -1e-8 * g.block.height);
+    }
+}
+
+
+
 // The automatic pseudo time step is the quasi-static limit and scale-free:
 // 2 M / dt^2 = 1e-9 p for the heaviest slice, so dt grows as the square
 // root of the slice's mass over the penalty.
