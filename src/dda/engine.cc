@@ -417,14 +417,14 @@ namespace rockdda::dda
     std::vector<double> assembled_normal(contacts.size(), 0.);
     double              mean_normal = 0.;
     // Relaxed friction iteration (Irons & Tuck 1969; Kuttler & Wall 2008):
-    // once the states have settled, each sliding contact's friction is
-    // assembled with N_a + omega (N - N_a), where N_a is the normal force
-    // the friction was assembled with and N the force the solve produced.
-    // omega follows Aitken's rule over the residuals N - N_a of successive
-    // friction-only iterations. A wedge of small taper couples its friction
-    // to its normal force with a gain of about -mu / taper: the plain fixed
-    // point (omega = 1) then oscillates with growing amplitude, the relaxed
-    // one converges (omega ~ 1 / (1 + mu / taper)).
+    // once the states have settled, the friction of each sliding contact
+    // whose force has not converged is assembled with N_a + omega (N - N_a),
+    // N_a the normal force it was assembled with and N the force the solve
+    // produced. omega follows Aitken's rule over the residuals N - N_a of
+    // successive friction-only iterations. A wedge of small taper couples its
+    // friction to its normal force with a gain of about -mu / taper: the plain
+    // fixed point (omega = 1) can then oscillate with growing amplitude; the
+    // relaxed one converges (omega ~ 1 / (1 + mu / taper)).
     std::vector<double> residual(contacts.size(), 0.),
       previous_residual(contacts.size(), 0.);
     double     omega          = 1.;
@@ -542,16 +542,18 @@ namespace rockdda::dda
           // time step resolves the contact vibration.
           const bool keeps_sliding = ct.state == ContactState::sliding
                                      && r.state == ContactState::sliding;
-          if (keeps_sliding
+          const bool unconverged
+            = keeps_sliding
               && std::abs(r.normal_force - ct.normal_force)
                    > 1e-3 * (std::abs(r.normal_force) + mean_force)
-                       + kin.force_tolerance)
-            ++friction_changes;
+                       + kin.force_tolerance;
+          friction_changes += unconverged;
           assembled_normal[c] = ct.normal_force;
-          residual[c]
-            = keeps_sliding && !frictionless(ct, scene.joints[ct.joint])
-                ? r.normal_force - ct.normal_force
-                : 0.;
+          // Only the unconverged contacts are relaxed (and define omega):
+          // the others take their new force as it is.
+          residual[c] = unconverged && !frictionless(ct, scene.joints[ct.joint])
+                          ? r.normal_force - ct.normal_force
+                          : 0.;
           ct.normal_force = r.normal_force;
           ct.shear_force  = r.shear_force;
           if (r.changed)

@@ -344,15 +344,29 @@ TEST(JointStiffness, ZeroStiffnessIsBitForBitTheRigidJoint)
   compliant.shear_stiffness  = 1e9;
   unused.joints.push_back(compliant);
   ASSERT_TRUE(any_joint_stiffness(unused.joints));
+  const std::vector<double> reference = run_recorded_scene(left_out);
+  ASSERT_EQ(reference.size(), recorded.size());
   for (const auto &[name, scene] :
-       {std::pair<std::string, BlockSystem>{"fields left out", left_out},
-        {"fields 0", zero},
+       {std::pair<std::string, BlockSystem>{"fields 0", zero},
         {"unused compliant joint", unused}})
     {
       const std::vector<double> v = run_recorded_scene(scene);
-      ASSERT_EQ(v.size(), recorded.size()) << name;
+      ASSERT_EQ(v.size(), reference.size()) << name;
       for (std::size_t k = 0; k < v.size(); ++k)
-        EXPECT_EQ(v[k], recorded[k]) << name << ", value " << k;
+        EXPECT_EQ(v[k], reference[k]) << name << ", value " << k;
+    }
+  // The recorded run predates the relaxed friction iteration, which moves
+  // the accepted friction forces within the iteration's tolerance (1e-3 of
+  // the normal force; measured 3e-8 m and 3e-5 relative): vertices within
+  // 1e-6 of the 5 m scene, energies
+  // within 1e-3 of the balance's scale, the same number of steps.
+  double scale = 0.;
+  for (std::size_t k = 24; k < 28; ++k)
+    scale = std::max(scale, std::abs(recorded[k]));
+  for (std::size_t k = 0; k < recorded.size(); ++k)
+    {
+      const double tolerance = k < 24 ? 5e-6 : k < 28 ? 1e-3 * scale : 0.;
+      EXPECT_NEAR(reference[k], recorded[k], tolerance) << "value " << k;
     }
 }
 
