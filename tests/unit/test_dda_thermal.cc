@@ -498,3 +498,96 @@ TEST(DdaThermal, WedgeRatchetAdvancesByTheBackFacesRetreat)
     }
   EXPECT_NEAR(mean, exact, 0.1 * exact);
 }
+
+
+
+namespace
+{
+  /// Slip per cycle (m, down the slope) of a block L x H resting with
+  /// @p n + 1 base vertices on a fixed incline of dip @p theta (rad),
+  /// friction @p phi_deg, heated uniformly to the in-plane free strain
+  /// @p eps and cooled back in static steps, over @p cycles cycles.
+  std::vector<double>
+  moseley_creep(const int    n,
+                const double theta,
+                const double phi_deg,
+                const double eps,
+                const int    cycles)
+  {
+    const double L = 10., H = 1.;
+    BlockSystem  s = one_material_scene(2700., 1e10, 0.25, phi_deg);
+    const int    base
+      = add_block(s, rotated(rectangle(-2., -1., L + 4., 1.), -theta));
+    fix_block(s, base);
+    Polygon block;
+    for (int k = 0; k <= n; ++k)
+      block.vertices.emplace_back(k * L / n, 0.);
+    block.vertices.emplace_back(L, H);
+    block.vertices.emplace_back(0., H);
+    const int blk    = add_block(s, rotated(block, -theta));
+    Controls  c      = controls(1., 0., 1e11);
+    c.max_iterations = 30;
+    DdaSystem dda(s, c);
+    dda.settle(50);
+    const auto equilibrate = [&](const double strain) {
+      std::vector<Eigen::Vector3d> e(dda.system().blocks.size(),
+                                     Eigen::Vector3d::Zero());
+      e[blk] = Eigen::Vector3d(strain, strain, 0.);
+      dda.set_eigenstrains(e);
+      for (int k = 0; k < 5000; ++k)
+        {
+          const StepReport r = dda.step();
+          if (r.max_displacement <= 1e-10 * L && r.cuts == 0)
+            return;
+        }
+      ADD_FAILURE() << "no equilibrium";
+    };
+    std::vector<double> out;
+    const Point         down(std::cos(theta), -std::sin(theta));
+    double              last = 0.;
+    for (int k = 0; k < cycles; ++k)
+      {
+        for (int j = 1; j <= 20; ++j)
+          equilibrate(eps * 0.5 * (1. - std::cos(M_PI * j / 10.)));
+        const double x = dda.centroid_displacement(blk).dot(down);
+        out.push_back(x - last);
+        last = x;
+      }
+    return out;
+  }
+} // namespace
+
+
+
+// Thermal creep of a block on a slope (Moseley 1855): a block that expands
+// and contracts on a Coulomb base creeps downslope although limit
+// equilibrium says it is stable. Expanding, it stays put at the point
+// where the friction of the parts moving up and down balances gravity,
+// a = L (1 - t) / 2 from the heel with t = tan(theta) / mu; contracting, at
+// b = L (1 + t) / 2: its centre moves down by eps (b - a) = eps L t per
+// cycle. This is the creep of Block 1 without infill in the coupled DDA
+// (benchmarks/ratchet/README.md). Here 15 deg, 40 deg, eps = 1e-4, a 10 m
+// block on 81 base vertices: 3.19e-4 m per cycle. Tolerance: each sticking
+// point is quantised to the vertex spacing L / 80 (2 eps L / 80 per cycle,
+// 8 %), plus 3 % for the base pressure's gradient from gravity's moment
+// (eccentricity tan(theta) H / 2 = 0.13 m). A flat base has no creep
+// (t = 0: the block expands about its centre).
+TEST(DdaThermal, BlockOnASlopeCreepsByMoseleysRule)
+{
+  const double              eps = 1e-4, L = 10.;
+  const int                 n     = 80;
+  const double              theta = 15. * M_PI / 180.;
+  const double              t = std::tan(theta) / std::tan(40. * M_PI / 180.);
+  const std::vector<double> slip = moseley_creep(n, theta, 40., eps, 2);
+  for (std::size_t k = 0; k < slip.size(); ++k)
+    {
+      std::printf("cycle %zu: slip %.4e m, Moseley %.4e m\n",
+                  k + 1,
+                  slip[k],
+                  eps * L * t);
+      EXPECT_NEAR(slip[k], eps * L * t, 2. * eps * L / n + 0.03 * eps * L * t);
+    }
+  const double flat = moseley_creep(n, 0., 40., eps, 1)[0];
+  std::printf("flat base: slip %.3e m\n", flat);
+  EXPECT_LT(std::abs(flat), 1e-3 * eps * L);
+}
