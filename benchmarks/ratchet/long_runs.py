@@ -41,9 +41,9 @@ SETTINGS = [
     ("slices 8", {(R, "Slices"): 8}),
     ("steps 12", {(R, "Steps per cycle"): 12, (T, "Samples per cycle"): 12}),
     ("steps 48", {(R, "Steps per cycle"): 48, (T, "Samples per cycle"): 48}),
-    ("penalty 1e12", {(R, "Contact penalty"): 1e12}),
     ("penalty 4e12", {(R, "Contact penalty"): 4e12}),
-    ("pseudo step 200 s", {(R, "Pseudo time step"): 200}),
+    ("penalty 2e13", {(R, "Contact penalty"): 2e13}),
+    ("pseudo step 20 s", {(R, "Pseudo time step"): 20}),
 ]
 
 
