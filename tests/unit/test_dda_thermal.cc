@@ -506,13 +506,15 @@ namespace
   /// Slip per cycle (m, down the slope) of a block L x H resting with
   /// @p n + 1 base vertices on a fixed incline of dip @p theta (rad),
   /// friction @p phi_deg, heated uniformly to the in-plane free strain
-  /// @p eps and cooled back in static steps, over @p cycles cycles.
+  /// @p eps and cooled back in static steps, over @p cycles cycles; and in
+  /// @p friction the energy ledger's friction work of each cycle (J/m).
   std::vector<double>
-  moseley_creep(const int    n,
-                const double theta,
-                const double phi_deg,
-                const double eps,
-                const int    cycles)
+  moseley_creep(const int            n,
+                const double         theta,
+                const double         phi_deg,
+                const double         eps,
+                const int            cycles,
+                std::vector<double> &friction)
   {
     const double L = 10., H = 1.;
     BlockSystem  s = one_material_scene(2700., 1e10, 0.25, phi_deg);
@@ -543,8 +545,10 @@ namespace
       ADD_FAILURE() << "no equilibrium";
     };
     std::vector<double> out;
-    const Point         down(std::cos(theta), -std::sin(theta));
-    double              last = 0.;
+    friction.clear();
+    double      last_friction = dda.energy().friction;
+    const Point down(std::cos(theta), -std::sin(theta));
+    double      last = 0.;
     for (int k = 0; k < cycles; ++k)
       {
         for (int j = 1; j <= 20; ++j)
@@ -552,6 +556,8 @@ namespace
         const double x = dda.centroid_displacement(blk).dot(down);
         out.push_back(x - last);
         last = x;
+        friction.push_back(dda.energy().friction - last_friction);
+        last_friction = dda.energy().friction;
       }
     return out;
   }
@@ -578,16 +584,27 @@ TEST(DdaThermal, BlockOnASlopeCreepsByMoseleysRule)
   const int                 n     = 80;
   const double              theta = 15. * M_PI / 180.;
   const double              t = std::tan(theta) / std::tan(40. * M_PI / 180.);
-  const std::vector<double> slip = moseley_creep(n, theta, 40., eps, 2);
+  std::vector<double>       work;
+  const std::vector<double> slip = moseley_creep(n, theta, 40., eps, 2, work);
+  // Friction work per cycle: each half slides every point by eps |x - a|
+  // (or |x - b|) against mu p, p = N / L: mu N eps L (1 + t^2) / 2 with
+  // N = W cos(theta). Same tolerance as the slip (the sticking points).
+  const double N = 2700. * g_earth * L * 1. * std::cos(theta);
+  const double exact_work
+    = std::tan(40. * M_PI / 180.) * N * eps * L * (1. + t * t) / 2.;
   for (std::size_t k = 0; k < slip.size(); ++k)
     {
-      std::printf("cycle %zu: slip %.4e m, Moseley %.4e m\n",
+      std::printf("cycle %zu: slip %.4e m, Moseley %.4e m; friction work "
+                  "%.4e J/m, exact %.4e J/m\n",
                   k + 1,
                   slip[k],
-                  eps * L * t);
+                  eps * L * t,
+                  work[k],
+                  exact_work);
       EXPECT_NEAR(slip[k], eps * L * t, 2. * eps * L / n + 0.03 * eps * L * t);
+      EXPECT_NEAR(work[k], exact_work, (4. / n + 0.03) * exact_work);
     }
-  const double flat = moseley_creep(n, 0., 40., eps, 1)[0];
+  const double flat = moseley_creep(n, 0., 40., eps, 1, work)[0];
   std::printf("flat base: slip %.3e m\n", flat);
   EXPECT_LT(std::abs(flat), 1e-3 * eps * L);
 }
