@@ -72,9 +72,6 @@ namespace rockdda::coupling
   declare_block1_keys(dealii::ParameterHandler &prm, const std::string &name)
   {
     using io::DoubleInterval;
-    const Block1Geometry  g;
-    const Block1Materials m;
-    const auto num = [](const double x) { return io::format_number(x, 12); };
     io::declare(prm,
                 "Distance",
                 "1000",
