@@ -4,6 +4,7 @@
  * system read from a block file, with optional seismic input.
  */
 #include <rockdda/dda/analyses.h>
+#include <rockdda/dda/analysis_parameters.h>
 #include <rockdda/dda/block_file.h>
 #include <rockdda/dda/engine.h>
 #include <rockdda/dda/hdf5_output.h>
@@ -111,31 +112,8 @@ namespace rockdda::dda
       declare_parameters(dealii::ParameterHandler &prm) const override
       {
         seismic::GroundMotionInput::declare_parameters(prm);
-        prm.enter_subsection("DDA");
-        io::declare(prm,
-                    "Block file",
-                    "",
-                    dealii::Patterns::Anything(),
-                    "-",
-                    "Scene file (doc/block-file-format-dda.md): materials, "
-                    "joints, blocks, fixed, load and measurement points. "
-                    "Relative to this parameter file; $VAR is expanded.");
-        io::declare(prm,
-                    "End time",
-                    "1",
-                    io::DoubleInterval::positive(),
-                    "s",
-                    "Simulated duration, > 0.");
-        io::declare(prm,
-                    "Time step",
-                    "0.001",
-                    io::DoubleInterval::positive(),
-                    "s",
-                    "Largest (and initial) time step, > 0. Steps are cut "
-                    "when the open-close iteration does not converge or a "
-                    "vertex moves too far, and grow back afterwards. End "
-                    "time / Time step (the planned steps) must be at most "
-                    "1e8.");
+        prm.enter_subsection(AnalysisParameters<2>::section());
+        AnalysisParameters<2>::declare_parameters(prm);
         io::declare(prm,
                     "Minimum time step",
                     "0",
@@ -143,23 +121,6 @@ namespace rockdda::dda
                     "s",
                     "The run stops with a diagnosis if a step must be cut "
                     "below this; 0 = 1e-6 x Time step.");
-        io::declare(prm,
-                    "Dynamic control",
-                    "1",
-                    Double(0., 1.),
-                    "-",
-                    "Fraction of the velocity carried into the next step: "
-                    "0 static relaxation, 1 fully dynamic.");
-        io::declare(prm,
-                    "Maximum open-close iterations",
-                    "12",
-                    Integer(1, 100),
-                    "-",
-                    "Open-close iterations that change contact states "
-                    "before the time step is cut; iterations that only "
-                    "update friction forces may add as many again. A step "
-                    "is accepted only when the states and the friction "
-                    "forces have converged.");
         io::declare(prm,
                     "Line search",
                     "true",
@@ -203,16 +164,6 @@ namespace rockdda::dda
                     "time and costs extra iterations on large walls. No "
                     "effect with the direct solver.");
         io::declare(prm,
-                    "Maximum displacement ratio",
-                    "0.01",
-                    Double(0., 1.),
-                    "-",
-                    "Largest vertex displacement per step as a fraction "
-                    "of the domain size (twice the largest distance of a "
-                    "vertex from the mean vertex); a block's own limit is "
-                    "also at most 0.05 x its size. The contact search "
-                    "distance of a block is 2.5 times its limit.");
-        io::declare(prm,
                     "Contact penalty",
                     "auto",
                     dealii::Patterns::Anything(),
@@ -228,23 +179,6 @@ namespace rockdda::dda
                     "each contact's length l: keep the penalty at 100 x "
                     "k l or more for the joint's own stiffness within 1 % "
                     "(doc/theory/dda.md, Joint stiffness).");
-        io::declare(prm,
-                    "Shear penalty ratio",
-                    "0.4",
-                    io::DoubleInterval::positive(),
-                    "-",
-                    "Shear penalty / normal penalty, > 0 (in series with "
-                    "a joint's shear stiffness, if it has one).");
-        io::declare(prm,
-                    "Fixed point penalty",
-                    "0",
-                    Double(0.),
-                    "N/m",
-                    "Stiffness of the springs of fixed points of a block "
-                    "held by one or two of them; 0 = 10 x the contact "
-                    "penalty. A block with three or more fixed points that "
-                    "are not collinear is clamped (its motion prescribed, "
-                    "no spring).");
         io::declare(prm,
                     "Linear solver",
                     "automatic",
@@ -302,20 +236,6 @@ namespace rockdda::dda
           "at multiples of this interval (steps land on them, as on output "
           "times) and at the End time");
         io::declare(prm,
-                    "Settling steps",
-                    "0",
-                    Integer(0, 100000),
-                    "-",
-                    "Static steps under gravity before t = 0 (no seismic "
-                    "input, time not advanced); the settled state is the "
-                    "reference for displacements.");
-        io::declare(prm,
-                    "Gravity",
-                    "9.80665",
-                    Double(0.),
-                    "m/s^2",
-                    "Gravitational acceleration, acting towards -y.");
-        io::declare(prm,
                     "Seismic input",
                     "none",
                     Selection("none|inertial|displacement"),
@@ -333,13 +253,6 @@ namespace rockdda::dda
                     "so that the foundation ends at rest (the drift is in "
                     "log.txt).");
         io::declare(prm,
-                    "Output interval",
-                    "0.1",
-                    Double(0.),
-                    "s",
-                    "Spacing of snapshots (see Snapshot format); 0 = no "
-                    "snapshots.");
-        io::declare(prm,
                     "Snapshot format",
                     "vtu",
                     Selection("vtu|hdf5"),
@@ -353,12 +266,6 @@ namespace rockdda::dda
                     "4-6x faster to write than the zlib-compressed VTU "
                     "and 4-5x larger: 1.1 kB per block with its contacts). "
                     "Same fields in both; see doc/user-guide.md.");
-        io::declare(prm,
-                    "Statistics interval",
-                    "0",
-                    Double(0.),
-                    "s",
-                    "Spacing of rows in statistics.csv; 0 = every step.");
         prm.leave_subsection();
       }
 
@@ -366,18 +273,19 @@ namespace rockdda::dda
       parse_parameters(dealii::ParameterHandler &prm,
                        const std::string        &prm_file) override
       {
-        prm.enter_subsection("DDA");
-        const std::string file = prm.get("Block file");
-        end_time               = prm.get_double("End time");
+        prm.enter_subsection(AnalysisParameters<2>::section());
+        AnalysisParameters<2> shared;
+        shared.parse_parameters(prm, prm_file);
+        end_time = shared.end_time;
         Controls c;
-        c.time_step      = prm.get_double("Time step");
-        c.min_time_step  = prm.get_double("Minimum time step");
-        c.dynamic        = prm.get_double("Dynamic control");
-        c.max_iterations = prm.get_integer("Maximum open-close iterations");
-        c.line_search    = prm.get_bool("Line search");
-        c.hold_fraction  = prm.get_double("Hold fraction");
-        c.inexact_factor = prm.get_double("Inexact solve factor");
-        c.max_displacement_ratio = prm.get_double("Maximum displacement ratio");
+        c.time_step              = shared.time_step;
+        c.min_time_step          = prm.get_double("Minimum time step");
+        c.dynamic                = shared.dynamic;
+        c.max_iterations         = shared.max_open_close;
+        c.line_search            = prm.get_bool("Line search");
+        c.hold_fraction          = prm.get_double("Hold fraction");
+        c.inexact_factor         = prm.get_double("Inexact solve factor");
+        c.max_displacement_ratio = shared.max_displacement_ratio;
         {
           const std::string p   = prm.get("Contact penalty");
           char             *end = nullptr;
@@ -392,8 +300,8 @@ namespace rockdda::dda
                              + "'; valid: 'auto' or a stiffness >= 0 N/m "
                                "(0 = auto)");
         }
-        c.law.shear_ratio        = prm.get_double("Shear penalty ratio");
-        c.fixed_penalty          = prm.get_double("Fixed point penalty");
+        c.law.shear_ratio        = shared.shear_ratio;
+        c.fixed_penalty          = shared.fixed_penalty;
         const std::string solver = prm.get("Linear solver");
         c.solver.type            = solver == "direct"      ? SolverType::direct
                                    : solver == "iterative" ? SolverType::iterative
@@ -411,62 +319,29 @@ namespace rockdda::dda
                              "needs a run under MPI (mpirun -np N rockdda "
                              "FILE.prm); valid here: automatic, direct, "
                              "iterative");
-        c.solver.tolerance        = prm.get_double("Solver tolerance");
-        c.solver.threads          = prm.get_integer("Threads");
-        c.solver.preconditioner   = prm.get("Preconditioner") == "block-jacobi"
-                                      ? Preconditioner::block_jacobi
-                                      : Preconditioner::block_dilu;
-        settling_steps            = prm.get_integer("Settling steps");
-        checkpoint_interval       = prm.get_double("Checkpoint interval");
-        resume                    = prm.get_bool("Resume");
-        const double      gravity = prm.get_double("Gravity");
-        const std::string mode    = prm.get("Seismic input");
-        output_interval           = prm.get_double("Output interval");
-        hdf5_snapshots            = prm.get("Snapshot format") == "hdf5";
-        statistics_interval       = prm.get_double("Statistics interval");
+        c.solver.tolerance      = prm.get_double("Solver tolerance");
+        c.solver.threads        = prm.get_integer("Threads");
+        c.solver.preconditioner = prm.get("Preconditioner") == "block-jacobi"
+                                    ? Preconditioner::block_jacobi
+                                    : Preconditioner::block_dilu;
+        checkpoint_interval     = prm.get_double("Checkpoint interval");
+        resume                  = prm.get_bool("Resume");
+        const std::string mode  = prm.get("Seismic input");
+        hdf5_snapshots          = prm.get("Snapshot format") == "hdf5";
+        settling_steps          = shared.settling_steps;
+        output_interval         = shared.output_interval;
+        statistics_interval     = shared.statistics_interval;
+        const double gravity    = shared.gravity;
         prm.leave_subsection();
 
-        io::require(
-          end_time > 0., prm_file, "DDA/End time", end_time, "end time > 0 s");
-        io::require(
-          c.time_step > 0., prm_file, "DDA/Time step", c.time_step, "dt > 0 s");
-        {
-          // The planned step count (cuts add more): an absurd one is a
-          // mistake in the keys, not a run to start.
-          const double n = io::planned_steps(0., end_time, c.time_step);
-          if (n > io::max_planned_steps)
-            throw InputError(
-              prm_file
-              + ": keys 'DDA/End time' = " + io::format_number(end_time)
-              + " s and 'DDA/Time step' = " + io::format_number(c.time_step)
-              + " s plan " + io::format_number(n, 4)
-              + " time steps (End time / Time step); at most "
-              + io::format_number(io::max_planned_steps, 3)
-              + " are allowed: raise the time step or shorten the run");
-        }
-        io::require(c.law.shear_ratio > 0.,
-                    prm_file,
-                    "DDA/Shear penalty ratio",
-                    c.law.shear_ratio,
-                    "> 0");
-        io::require(c.max_displacement_ratio > 0.,
-                    prm_file,
-                    "DDA/Maximum displacement ratio",
-                    c.max_displacement_ratio,
-                    "0 < ratio <= 1");
         io::require(c.solver.tolerance > 0. && c.solver.tolerance < 1.,
                     prm_file,
                     "DDA/Solver tolerance",
                     c.solver.tolerance,
                     "0 < tolerance < 1");
-        if (file.empty())
-          throw InputError(prm_file
-                           + ": key 'DDA/Block file' is empty; "
-                             "give the scene's block file");
-        const std::string path
-          = io::resolve_path(file, prm_file, "DDA/Block file");
-        BlockSystem scene = read_block_file(path);
-        scene.gravity     = geometry::Point(0., -gravity);
+        const std::string &path  = shared.block_file;
+        BlockSystem        scene = read_block_file(path);
+        scene.gravity            = geometry::Point(0., -gravity);
         if (c.law.normal_penalty == 0.)
           c.law.normal_penalty = automatic_penalty(scene, gravity);
         if (mode != "none")

@@ -5,6 +5,7 @@
  * (doc/block-file-format-dda3d.md), with optional seismic input in the
  * thesis's loading or displacement mode (Bakun-Mazor 2011, Sec. 4.6-4.7).
  */
+#include <rockdda/dda/analysis_parameters.h>
 #include <rockdda/dda/block_system.h>
 #include <rockdda/dda/vtu_output.h>
 #include <rockdda/dda3d/analyses.h>
@@ -57,31 +58,8 @@ namespace rockdda::dda3d
       declare_parameters(dealii::ParameterHandler &prm) const override
       {
         seismic::GroundMotionInput::declare_parameters(prm);
-        prm.enter_subsection("DDA 3d");
-        io::declare(prm,
-                    "Block file",
-                    "",
-                    dealii::Patterns::Anything(),
-                    "-",
-                    "Scene file (doc/block-file-format-dda3d.md): materials, "
-                    "joints, polyhedral blocks, fixed, load and measurement "
-                    "points, initial velocities. Relative to this parameter "
-                    "file; $VAR is expanded.");
-        io::declare(prm,
-                    "End time",
-                    "1",
-                    io::DoubleInterval::positive(),
-                    "s",
-                    "Simulated duration, > 0.");
-        io::declare(prm,
-                    "Time step",
-                    "0.001",
-                    io::DoubleInterval::positive(),
-                    "s",
-                    "Largest (and initial) time step, > 0. A step is cut by "
-                    "3 when the open-close iteration does not converge or a "
-                    "vertex moves too far, and grows back by 1.3 after good "
-                    "steps. End time / Time step must be at most 1e8.");
+        prm.enter_subsection(dda::AnalysisParameters<3>::section());
+        dda::AnalysisParameters<3>::declare_parameters(prm);
         io::declare(prm,
                     "Minimum time step ratio",
                     "1e-6",
@@ -89,30 +67,6 @@ namespace rockdda::dda3d
                     "-",
                     "The run stops with a diagnosis when a step must be cut "
                     "below this fraction of the Time step; 0 < ratio <= 1.");
-        io::declare(prm,
-                    "Dynamic control",
-                    "1",
-                    Double(0., 1.),
-                    "-",
-                    "Fraction of the velocity carried into the next step, in "
-                    "[0, 1]: 0 static relaxation, 1 fully dynamic.");
-        io::declare(prm,
-                    "Maximum open-close iterations",
-                    "12",
-                    Integer(1, 100),
-                    "-",
-                    "Open-close iterations that change contact states before "
-                    "the step is cut, in [1, 100]; iterations that only "
-                    "update friction may add as many again.");
-        io::declare(prm,
-                    "Maximum displacement ratio",
-                    "0.01",
-                    io::DoubleInterval(0., true, 1., false),
-                    "-",
-                    "Largest vertex displacement per step as a fraction of "
-                    "its block's size, 0 < ratio <= 1; a step that moves a "
-                    "vertex further is cut. The contact distance is 2.5 x "
-                    "this.");
         io::declare(prm,
                     "Contact penalty",
                     "1e10",
@@ -122,41 +76,6 @@ namespace rockdda::dda3d
                     "a joint's stiffness over the contact area, if the joint "
                     "has one). A block of weight W on n contacts sinks by "
                     "W / (n p).");
-        io::declare(prm,
-                    "Shear penalty ratio",
-                    "0.4",
-                    io::DoubleInterval::positive(),
-                    "-",
-                    "Shear penalty / normal penalty, > 0.");
-        io::declare(prm,
-                    "Fixed point penalty",
-                    "0",
-                    Double(0.),
-                    "N/m",
-                    "Spring of a fixed point of a block held by one or two "
-                    "of them, >= 0; 0 = 10 x the contact penalty. A block "
-                    "with three or more fixed points that are not collinear "
-                    "is clamped (its motion prescribed: at rest, or the "
-                    "ground's in the displacement mode).");
-        io::declare(prm,
-                    "Settling steps",
-                    "0",
-                    Integer(0, 100000),
-                    "-",
-                    "Static steps (dynamic control 0) under gravity before "
-                    "t = 0, in [0, 100000], without seismic input; the "
-                    "settled state is the reference for displacements. "
-                    "Blocks given touching start with zero penetration and, "
-                    "without settling, bounce on their contact springs "
-                    "(amplitude W / k_n, undamped by Shi's scheme), which "
-                    "modulates the friction for the whole run.");
-        io::declare(prm,
-                    "Gravity",
-                    "9.80665",
-                    Double(0.),
-                    "m/s^2",
-                    "Gravitational acceleration, >= 0, acting towards -z "
-                    "(x east, y north, z up).");
         io::declare(prm,
                     "Seismic input",
                     "none",
@@ -201,20 +120,6 @@ namespace rockdda::dda3d
                     "deg",
                     "Direction (clockwise from north, 0 to 360) of the "
                     "horizontal record of the Ground motion section.");
-        io::declare(prm,
-                    "Output interval",
-                    "0.1",
-                    Double(0.),
-                    "s",
-                    "Spacing of the VTU snapshots of the blocks "
-                    "(blocks-NNNNN.vtu, series blocks.pvd), >= 0; 0 = none.");
-        io::declare(prm,
-                    "Statistics interval",
-                    "0",
-                    Double(0.),
-                    "s",
-                    "Spacing of rows in statistics.csv, >= 0; 0 = every "
-                    "step.");
         prm.leave_subsection();
       }
 
@@ -222,68 +127,38 @@ namespace rockdda::dda3d
       parse_parameters(dealii::ParameterHandler &prm,
                        const std::string        &prm_file) override
       {
-        prm.enter_subsection("DDA 3d");
-        const std::string file   = prm.get("Block file");
-        end_time                 = prm.get_double("End time");
-        c.dt                     = prm.get_double("Time step");
-        c.min_dt_ratio           = prm.get_double("Minimum time step ratio");
-        c.dynamic                = prm.get_double("Dynamic control");
-        c.max_open_close         = prm.get_integer("Maximum open-close "
-                                                   "iterations");
-        c.max_displacement_ratio = prm.get_double("Maximum displacement "
-                                                  "ratio");
-        c.law.normal_penalty     = prm.get_double("Contact penalty");
-        c.law.shear_ratio        = prm.get_double("Shear penalty ratio");
-        c.fixed_penalty          = prm.get_double("Fixed point penalty");
-        const double gravity     = prm.get_double("Gravity");
-        settling_steps           = prm.get_integer("Settling steps");
-        output_interval          = prm.get_double("Output interval");
-        statistics_interval      = prm.get_double("Statistics interval");
+        prm.enter_subsection(dda::AnalysisParameters<3>::section());
+        dda::AnalysisParameters<3> shared;
+        shared.parse_parameters(prm, prm_file);
+        c.min_dt_ratio       = prm.get_double("Minimum time step ratio");
+        c.law.normal_penalty = prm.get_double("Contact penalty");
         prm.leave_subsection();
-        const std::string s = "DDA 3d/";
-        io::require(end_time > 0., prm_file, s + "End time", end_time, "> 0 s");
-        io::require(c.dt > 0., prm_file, s + "Time step", c.dt, "> 0 s");
-        {
-          const double n = io::planned_steps(0., end_time, c.dt);
-          if (n > io::max_planned_steps)
-            throw InputError(
-              prm_file
-              + ": keys 'DDA 3d/End time' = " + io::format_number(end_time)
-              + " s and 'DDA 3d/Time step' = " + io::format_number(c.dt)
-              + " s plan " + io::format_number(n, 4) + " time steps; at most "
-              + io::format_number(io::max_planned_steps, 3)
-              + " are allowed: raise the time step or shorten the run");
-        }
+        end_time                  = shared.end_time;
+        c.dt                      = shared.time_step;
+        c.dynamic                 = shared.dynamic;
+        c.max_open_close          = shared.max_open_close;
+        c.max_displacement_ratio  = shared.max_displacement_ratio;
+        c.law.shear_ratio         = shared.shear_ratio;
+        c.fixed_penalty           = shared.fixed_penalty;
+        settling_steps            = shared.settling_steps;
+        output_interval           = shared.output_interval;
+        statistics_interval       = shared.statistics_interval;
+        const double      gravity = shared.gravity;
+        const std::string s       = shared.section() + "/";
         io::require(c.min_dt_ratio > 0. && c.min_dt_ratio <= 1.,
                     prm_file,
                     s + "Minimum time step ratio",
                     c.min_dt_ratio,
-                    "0 < ratio <= 1");
-        io::require(c.max_displacement_ratio > 0.
-                      && c.max_displacement_ratio <= 1.,
-                    prm_file,
-                    s + "Maximum displacement ratio",
-                    c.max_displacement_ratio,
                     "0 < ratio <= 1");
         io::require(c.law.normal_penalty > 0.,
                     prm_file,
                     s + "Contact penalty",
                     c.law.normal_penalty,
                     "> 0 N/m");
-        io::require(c.law.shear_ratio > 0.,
-                    prm_file,
-                    s + "Shear penalty ratio",
-                    c.law.shear_ratio,
-                    "> 0");
-        if (file.empty())
-          throw InputError(prm_file
-                           + ": key 'DDA 3d/Block file' is empty; give the "
-                             "scene's block file");
-        const std::string path
-          = io::resolve_path(file, prm_file, "DDA 3d/Block file");
-        BlockSystem scene = read_block_file(path);
-        scene.gravity     = Point(0., 0., -gravity);
-        seismic           = parse_seismic_input(
+        const std::string &path  = shared.block_file;
+        BlockSystem        scene = read_block_file(path);
+        scene.gravity            = Point(0., 0., -gravity);
+        seismic                  = parse_seismic_input(
           prm, prm_file, end_time, c.dt, gravity > 0. ? gravity : 9.80665);
         if (seismic.mode == SeismicInput3d::Mode::loading)
           c.ground_acceleration = seismic.acceleration;

@@ -1,0 +1,83 @@
+/**
+ * @file
+ * The run controls that the 2D and the 3D DDA analyses ("dda", "dda3d")
+ * share: declared, read and checked once over the dimension.
+ */
+#ifndef ROCKDDA_DDA_ANALYSIS_PARAMETERS_H
+#define ROCKDDA_DDA_ANALYSIS_PARAMETERS_H
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace rockdda::dda
+{
+  /**
+   * The keys of the DDA analyses that mean the same in 2D and in 3D, in the
+   * section of the analysis of dimension @p dim ("DDA" for 2, "DDA 3d" for
+   * 3): the block file, the end time, the time step, the dynamic control,
+   * the iteration and displacement limits of a step, the shear and fixed
+   * point penalties, the settling steps, gravity and the output spacings.
+   * Each analysis declares and reads its own keys (contact penalty, minimum
+   * time step, seismic input, solver, ...) in the same section, between
+   * declare_parameters() / parse_parameters() calls of this class. Where
+   * the engines differ (the size a displacement ratio refers to, the
+   * direction of gravity, the snapshot files), the help text says so for
+   * each dimension.
+   */
+  template <int dim>
+  struct AnalysisParameters
+  {
+    static_assert(dim == 2 || dim == 3, "DDA is 2D or 3D");
+
+    /// The scene's block file, resolved against the parameter file.
+    std::string block_file;
+    /// Simulated duration (s), > 0.
+    double end_time = 1.;
+    /// Largest (and initial) time step (s), > 0.
+    double time_step = 1e-3;
+    /// Dynamic control parameter (-), in [0, 1].
+    double dynamic = 1.;
+    /// State-changing open-close iterations before a cut, in [1, 100].
+    unsigned int max_open_close = 12;
+    /// Largest vertex displacement per step / size (-), in (0, 1].
+    double max_displacement_ratio = 0.01;
+    /// Shear penalty / normal penalty (-), > 0.
+    double shear_ratio = 0.4;
+    /// Spring of fixed points (N/m), >= 0; 0: 10 x the contact penalty.
+    double fixed_penalty = 0.;
+    /// Static steps under gravity before t = 0, in [0, 100000].
+    unsigned int settling_steps = 0;
+    /// Gravitational acceleration (m/s^2), >= 0.
+    double gravity = 9.80665;
+    /// Spacing of snapshots (s), >= 0; 0: none.
+    double output_interval = 0.1;
+    /// Spacing of rows of statistics.csv (s), >= 0; 0: every step.
+    double statistics_interval = 0.;
+
+    /// The analysis's section: "DDA" (2D) or "DDA 3d" (3D).
+    static std::string
+    section();
+
+    /**
+     * Declare the shared keys in the subsection the caller has entered
+     * (section()).
+     */
+    static void
+    declare_parameters(dealii::ParameterHandler &prm);
+
+    /**
+     * Read the shared keys from the subsection the caller has entered
+     * (section()) of parameter file @p prm_file, and check them: the end
+     * time and the time step > 0 and at most io::max_planned_steps steps,
+     * the displacement ratio in (0, 1], the shear ratio > 0, a block file
+     * given (resolved against @p prm_file). Throws InputError naming the
+     * file and the key otherwise.
+     */
+    void
+    parse_parameters(dealii::ParameterHandler &prm,
+                     const std::string        &prm_file);
+  };
+} // namespace rockdda::dda
+
+#endif

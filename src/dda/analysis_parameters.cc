@@ -1,0 +1,201 @@
+/**
+ * @file
+ * The run controls shared by the 2D and 3D DDA analyses.
+ */
+#include <rockdda/dda/analysis_parameters.h>
+#include <rockdda/io/error.h>
+#include <rockdda/io/parameters.h>
+
+namespace rockdda::dda
+{
+  template <int dim>
+  std::string
+  AnalysisParameters<dim>::section()
+  {
+    return dim == 2 ? "DDA" : "DDA 3d";
+  }
+
+
+
+  template <int dim>
+  void
+  AnalysisParameters<dim>::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    using dealii::Patterns::Double;
+    using dealii::Patterns::Integer;
+    io::declare(prm,
+                "Block file",
+                "",
+                dealii::Patterns::Anything(),
+                "-",
+                dim == 2
+                  ? "Scene file (doc/block-file-format-dda.md): materials, "
+                    "joints, blocks, fixed, load and measurement points. "
+                    "Relative to this parameter file; $VAR is expanded."
+                  : "Scene file (doc/block-file-format-dda3d.md): materials, "
+                    "joints, polyhedral blocks, fixed, load and measurement "
+                    "points, initial velocities. Relative to this parameter "
+                    "file; $VAR is expanded.");
+    io::declare(prm,
+                "End time",
+                "1",
+                io::DoubleInterval::positive(),
+                "s",
+                "Simulated duration, > 0.");
+    io::declare(prm,
+                "Time step",
+                "0.001",
+                io::DoubleInterval::positive(),
+                "s",
+                "Largest (and initial) time step, > 0. A step is cut by 3 "
+                "when the open-close iteration does not converge or a vertex "
+                "moves too far, and grows back by 1.3 after good steps. End "
+                "time / Time step (the planned steps) must be at most 1e8.");
+    io::declare(prm,
+                "Dynamic control",
+                "1",
+                Double(0., 1.),
+                "-",
+                "Fraction of the velocity carried into the next step, in "
+                "[0, 1]: 0 static relaxation, 1 fully dynamic.");
+    io::declare(prm,
+                "Maximum open-close iterations",
+                "12",
+                Integer(1, 100),
+                "-",
+                "Open-close iterations that change contact states before the "
+                "time step is cut, in [1, 100]; iterations that only update "
+                "friction forces may add as many again. A step is accepted "
+                "only when the states and the friction forces have "
+                "converged.");
+    // The engines measure a step's displacement differently (2D: against
+    // the domain, with a cap per block; 3D: against each block).
+    io::declare(prm,
+                "Maximum displacement ratio",
+                "0.01",
+                io::DoubleInterval(0., true, 1., false),
+                "-",
+                std::string("Largest vertex displacement per step as a "
+                            "fraction of ")
+                  + (dim == 2
+                       ? "the domain size (twice the largest distance of a "
+                         "vertex from the mean vertex), 0 < ratio <= 1; a "
+                         "block's own limit is also at most 0.05 x its size. "
+                         "The contact search distance of a block is 2.5 "
+                         "times its limit."
+                       : "its block's size, 0 < ratio <= 1; a step that "
+                         "moves a vertex further is cut. The contact "
+                         "distance is 2.5 x this."));
+    io::declare(prm,
+                "Shear penalty ratio",
+                "0.4",
+                io::DoubleInterval::positive(),
+                "-",
+                "Shear penalty / normal penalty, > 0 (in series with a "
+                "joint's shear stiffness, if it has one).");
+    io::declare(prm,
+                "Fixed point penalty",
+                "0",
+                Double(0.),
+                "N/m",
+                "Stiffness of the springs of fixed points of a block held by "
+                "one or two of them, >= 0; 0 = 10 x the contact penalty. A "
+                "block with three or more fixed points that are not "
+                "collinear is clamped (its motion prescribed, no spring: at "
+                "rest, or the ground's in the displacement mode).");
+    io::declare(prm,
+                "Settling steps",
+                "0",
+                Integer(0, 100000),
+                "-",
+                "Static steps (dynamic control 0) under gravity before t = "
+                "0, in [0, 100000], without seismic input and without "
+                "advancing the time; the settled state is the reference for "
+                "displacements. Blocks given touching start with zero "
+                "penetration and, without settling, bounce on their contact "
+                "springs (amplitude W / k_n, undamped by Shi's scheme).");
+    io::declare(prm,
+                "Gravity",
+                "9.80665",
+                Double(0.),
+                "m/s^2",
+                dim == 2 ? "Gravitational acceleration, >= 0, acting towards "
+                           "-y."
+                         : "Gravitational acceleration, >= 0, acting towards "
+                           "-z (x east, y north, z up).");
+    io::declare(prm,
+                "Output interval",
+                "0.1",
+                Double(0.),
+                "s",
+                dim == 2 ? "Spacing of snapshots (see Snapshot format), >= 0; "
+                           "0 = no snapshots."
+                         : "Spacing of the VTU snapshots of the blocks "
+                           "(blocks-NNNNN.vtu, series blocks.pvd), >= 0; 0 = "
+                           "no snapshots.");
+    io::declare(prm,
+                "Statistics interval",
+                "0",
+                Double(0.),
+                "s",
+                "Spacing of rows in statistics.csv, >= 0; 0 = every step.");
+  }
+
+
+
+  template <int dim>
+  void
+  AnalysisParameters<dim>::parse_parameters(dealii::ParameterHandler &prm,
+                                            const std::string        &prm_file)
+  {
+    const std::string s    = section() + "/";
+    const std::string file = prm.get("Block file");
+    end_time               = prm.get_double("End time");
+    time_step              = prm.get_double("Time step");
+    dynamic                = prm.get_double("Dynamic control");
+    max_open_close         = prm.get_integer("Maximum open-close iterations");
+    max_displacement_ratio = prm.get_double("Maximum displacement ratio");
+    shear_ratio            = prm.get_double("Shear penalty ratio");
+    fixed_penalty          = prm.get_double("Fixed point penalty");
+    settling_steps         = prm.get_integer("Settling steps");
+    gravity                = prm.get_double("Gravity");
+    output_interval        = prm.get_double("Output interval");
+    statistics_interval    = prm.get_double("Statistics interval");
+
+    io::require(end_time > 0., prm_file, s + "End time", end_time, "> 0 s");
+    io::require(time_step > 0., prm_file, s + "Time step", time_step, "> 0 s");
+    {
+      // The planned step count (cuts add more): an absurd one is a mistake
+      // in the keys, not a run to start.
+      const double n = io::planned_steps(0., end_time, time_step);
+      if (n > io::max_planned_steps)
+        throw InputError(prm_file + ": keys '" + s + "End time' = "
+                         + io::format_number(end_time) + " s and '" + s
+                         + "Time step' = " + io::format_number(time_step)
+                         + " s plan " + io::format_number(n, 4)
+                         + " time steps (End time / Time step); at most "
+                         + io::format_number(io::max_planned_steps, 3)
+                         + " are allowed: raise the time step or shorten the "
+                           "run");
+    }
+    io::require(max_displacement_ratio > 0. && max_displacement_ratio <= 1.,
+                prm_file,
+                s + "Maximum displacement ratio",
+                max_displacement_ratio,
+                "0 < ratio <= 1");
+    io::require(shear_ratio > 0.,
+                prm_file,
+                s + "Shear penalty ratio",
+                shear_ratio,
+                "> 0");
+    if (file.empty())
+      throw InputError(prm_file + ": key '" + s
+                       + "Block file' is empty; give the scene's block file");
+    block_file = io::resolve_path(file, prm_file, s + "Block file");
+  }
+
+
+
+  template struct AnalysisParameters<2>;
+  template struct AnalysisParameters<3>;
+} // namespace rockdda::dda
