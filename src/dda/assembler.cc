@@ -61,8 +61,9 @@ namespace rockdda::dda
   Assembler::weight_tolerance_of(const int block_i, const int block_j) const
   {
     // Force scale: 1e-4 of the weight of the lighter block.
-    return 1e-4 * std::min(mass[block_i](0, 0), mass[block_j](0, 0))
-           * params.body_acceleration.norm();
+    return contact_weight_tolerance(std::min(mass[block_i](0, 0),
+                                             mass[block_j](0, 0)),
+                                    params.body_acceleration.norm());
   }
 
 
@@ -72,8 +73,9 @@ namespace rockdda::dda
                                 const int                block_i,
                                 const int                block_j) const
   {
-    return std::max(weight_tolerance_of(block_i, block_j),
-                    k.normal_stiffness * k.tolerance);
+    return contact_force_tolerance(weight_tolerance_of(block_i, block_j),
+                                   k.normal_stiffness,
+                                   k.tolerance);
   }
 
 

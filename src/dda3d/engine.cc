@@ -420,9 +420,10 @@ namespace rockdda::dda3d
             // of the input coordinates, which were rounded at their global
             // magnitude (the local origin's) before the exact shift.
             const double round_off
-              = 1e-12 * std::min(size[g.i], size[g.j])
-                + 4. * std::numeric_limits<double>::epsilon()
-                    * (g.p.norm() + g.q.norm() + 2. * origin_.norm());
+              = dda::round_off_tolerance(std::min(size[g.i], size[g.j]),
+                                         g.p,
+                                         g.q)
+                + dda::coordinate_round_off(origin_, origin_);
             c.state
               = g.gap <= round_off ? ContactState::locked : ContactState::open;
             c.broken = !first_detection;
@@ -513,18 +514,21 @@ namespace rockdda::dda3d
           = dda::contact_springs(ctrl.law, system.joints[c.joint], c.area);
         K.normal_stiffness = springs.normal;
         K.shear_stiffness  = springs.shear;
-        // The representation error of the local coordinates the gap and
-        // the shear displacement are measured from. No floor relative to
-        // the block size: times the spring it would let a locked contact
-        // carry k_n 1e-12 L beyond its strength, a force that grows with
-        // the penalty (0.2 N, 2.6 % of the shaking-table wedge's weight
-        // per contact at 1e12 N/m: the wedge stuck).
-        K.tolerance = 4. * std::numeric_limits<double>::epsilon()
-                      * (g.p.norm() + g.q.norm());
-        K.force_tolerance
-          = std::max(1e-4 * std::min(mass[g.i], mass[g.j]) * body_accel,
-                     K.normal_stiffness * K.tolerance);
-        c.state_at_start = c.state;
+        // The shared rule of both engines (dda/contact_mechanics.h) with
+        // the representation error of the local coordinates the gap and
+        // the shear displacement are measured from as the round-off. No
+        // floor relative to the block size: times the spring it would let
+        // a locked contact carry k_n 1e-12 L beyond its strength, a force
+        // that grows with the penalty (0.2 N, 2.6 % of the shaking-table
+        // wedge's weight per contact at 1e12 N/m: the wedge stuck).
+        K.tolerance = dda::coordinate_round_off(g.p, g.q);
+        K.weight_tolerance
+          = dda::contact_weight_tolerance(std::min(mass[g.i], mass[g.j]),
+                                          body_accel);
+        K.force_tolerance = dda::contact_force_tolerance(K.weight_tolerance,
+                                                         K.normal_stiffness,
+                                                         K.tolerance);
+        c.state_at_start  = c.state;
       }
     // Sliding directions in each contact's tangent basis.
     std::vector<Eigen::Vector2d> dir(contacts.size(), Eigen::Vector2d::Zero());
@@ -702,10 +706,13 @@ namespace rockdda::dda3d
             const double          g = K.g0 + K.en.dot(Db[i]) + K.hn.dot(Db[j]);
             const Eigen::Vector2d s
               = K.s0 + K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j];
-            const double f = K.force_tolerance
-                             * (changes[k] >= 3   ? 100.
-                                : changes[k] >= 2 ? 10.
-                                                  : 1.);
+            // Chatter: 10 x and 100 x the weight part after two and three
+            // changes; the round-off part stays a floor.
+            const double f = dda::escalated_tolerance(K.weight_tolerance,
+                                                      K.force_tolerance,
+                                                      changes[k] >= 3   ? 100.
+                                                      : changes[k] >= 2 ? 10.
+                                                                        : 1.);
             auto r = check_state(c, K, dir[k], g, s, f, system.joints[c.joint]);
             if (r.changed && r.state == ContactState::sliding)
               r.direction = group_direction(k, r.direction);

@@ -84,7 +84,7 @@ namespace rockdda::dda
   inline double
   escalated_tolerance(const ContactKinematics &k, const double factor)
   {
-    return std::max(factor * k.weight_tolerance, k.force_tolerance);
+    return escalated_tolerance(k.weight_tolerance, k.force_tolerance, factor);
   }
 
   /**
@@ -128,21 +128,6 @@ namespace rockdda::dda
    */
   double
   automatic_penalty(const BlockSystem &scene, const double g);
-
-  /**
-   * Round-off of a contact's gap and shear displacement (m): 1e-12 of the
-   * smaller block's size @p scale plus the representation error of the
-   * local coordinates of the points @p P and @p Q that it is measured from.
-   */
-  inline double
-  round_off_tolerance(const double           scale,
-                      const geometry::Point &P,
-                      const geometry::Point &Q)
-  {
-    return 1e-12 * scale
-           + 4. * std::numeric_limits<double>::epsilon()
-               * (P.norm() + Q.norm());
-  }
 
 } // namespace rockdda::dda
 

@@ -81,12 +81,18 @@ namespace rockdda::dda3d
     /// joint's stiffness over the contact area (dda::contact_springs()).
     double normal_stiffness = 0., shear_stiffness = 0.;
     /// Round-off of the gap and shear displacement (m): the representation
-    /// error of the local coordinates of the contact points.
+    /// error of the local coordinates of the contact points
+    /// (dda::coordinate_round_off()).
     double tolerance = 0.;
-    /// Force below which a state change is noise (N): 1e-4 of the weight
-    /// of the lighter block, at least the normal spring times tolerance
-    /// (independent of the penalty otherwise).
+    /// Force below which a state change is noise (N;
+    /// dda::contact_force_tolerance()): weight_tolerance, at least the
+    /// normal spring times tolerance (independent of the penalty
+    /// otherwise).
     double force_tolerance = 0.;
+    /// 1e-4 of the weight of the lighter block (N;
+    /// dda::contact_weight_tolerance()): the part of force_tolerance that
+    /// grows for a chattering contact (dda::escalated_tolerance()).
+    double weight_tolerance = 0.;
   };
 
   /// Result of the Mohr-Coulomb check of one contact after a solve.
