@@ -4,7 +4,9 @@
  */
 #include <rockdda/dda/analysis_parameters.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/output.h>
 #include <rockdda/io/parameters.h>
+#include <rockdda/io/progress.h>
 
 namespace rockdda::dda
 {
