@@ -50,6 +50,7 @@ namespace rockdda::coupling
                          ? ctrl.pseudo_time_step
                          : quasi_static_time_step(scene, c.law.normal_penalty);
     c.time_step      = pseudo_time_step;
+    c.solver.threads = ctrl.threads;
     engine           = std::make_unique<dda::DdaSystem>(scene.blocks, c);
     heat_map         = scene.heat_map;
     double height    = 0.;
@@ -354,6 +355,95 @@ namespace rockdda::coupling
         else
           ++r.n_locked;
       }
+    return r;
+  }
+
+
+
+  EpisodeRecord
+  RatchetRun::run_episode(const seismic::Record &record,
+                          const EpisodeControls &ec)
+  {
+    require_in_range(ec.time_step > 0. && std::isfinite(ec.time_step),
+                     ec.time_step_key,
+                     ec.time_step,
+                     "> 0 s");
+    require_in_range(ec.rest_time >= 0. && std::isfinite(ec.rest_time),
+                     ec.rest_time_key,
+                     ec.rest_time,
+                     ">= 0 s");
+    EpisodeRecord r;
+    // The thermal time of the end of the last cycle: the eigenstrains stay
+    // those set there (or at settling, before the first cycle).
+    const double thermal_time = n_cycles * forcing.period;
+    const double d0 = displacement(), a0 = aperture();
+    const auto   top = [this]() {
+      return fragments.empty() ? 0.
+                                 : engine->system()
+                                   .blocks[fragments.back()]
+                                   .polygon.bounding_box()[3];
+    };
+    const double      top0        = top();
+    const std::size_t n_fragments = fragments.size();
+
+    // The dynamic steps under the record.
+    dda::SeismicInput input;
+    input.mode                 = dda::SeismicInput::Mode::inertial;
+    input.record               = record;
+    input.g                    = ec.g;
+    input.direction            = engine->system().seismic.direction;
+    const double        start  = engine->time();
+    const double        end    = start + record.duration() + ec.rest_time;
+    const unsigned long steps0 = engine->n_steps, cuts0 = engine->n_cuts;
+    engine->set_time_step(ec.time_step);
+    engine->set_dynamic(1.);
+    engine->set_seismic_input(input, start);
+    const dda::EnergyLedger e0 = engine->energy();
+    while (engine->time() < end - 1e-3 * ec.time_step)
+      {
+        engine->run_until(std::min(end, engine->time() + ec.time_step));
+        for (const int b : scene.block_slices)
+          r.max_rotation
+            = std::max(r.max_rotation,
+                       std::abs(engine->system().blocks[b].rotation));
+      }
+    const dda::EnergyLedger e1 = engine->energy();
+    r.energy_gain              = e1.balance() - e0.balance();
+    r.energy_scale             = e1.scale();
+    r.dynamic_steps            = engine->n_steps - steps0;
+    r.dynamic_cuts             = engine->n_cuts - cuts0;
+    r.dynamic_slip             = displacement() - d0;
+
+    // Back to static steps at the run's pseudo time step: the step grows
+    // back from the dynamic one (static steps, the inertia term shrinking),
+    // then the scene is brought to equilibrium as at a sample.
+    engine->set_seismic_input(dda::SeismicInput(), engine->time());
+    engine->set_dynamic(0.);
+    engine->set_time_step(pseudo_time_step);
+    CycleRecord back;
+    for (unsigned int k = 0; engine->time_step() < pseudo_time_step; ++k)
+      {
+        if (k >= ctrl.max_steps_per_sample)
+          throw dda::DdaFailure(
+            "after an earthquake in cycle " + std::to_string(n_cycles)
+            + ": the static step did not grow back to the pseudo time step "
+              "within "
+            + std::to_string(ctrl.max_steps_per_sample) + " steps");
+        const dda::StepReport s = engine->step();
+        ++back.steps;
+        back.cuts += s.cuts;
+      }
+    equilibrate(thermal_time, back);
+    r.static_steps = back.steps;
+    r.static_cuts  = back.cuts;
+    r.slip         = displacement() - d0;
+    r.aperture     = aperture() - a0;
+    if (n_fragments > 0)
+      r.infill_descent = top0 - top();
+    // The next cycle's permanent displacement is the thermal one alone.
+    last_displacement = displacement();
+    supply(thermal_time);
+    r.fragments = static_cast<unsigned int>(fragments.size());
     return r;
   }
 

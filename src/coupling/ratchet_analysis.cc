@@ -12,8 +12,10 @@
 #include <rockdda/coupling/analyses.h>
 #include <rockdda/coupling/calibrate_analysis.h>
 #include <rockdda/coupling/compare_analysis.h>
+#include <rockdda/coupling/earthquakes.h>
 #include <rockdda/coupling/earthquakes_analysis.h>
 #include <rockdda/coupling/ratchet.h>
+#include <rockdda/coupling/ratchet_earthquakes.h>
 #include <rockdda/io/checkpoint.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/interrupt.h>
@@ -398,6 +400,121 @@ namespace rockdda::coupling
                     "Block mean temperatures recorded per period; later "
                     "cycles reuse them (the field is periodic).");
         prm.leave_subsection();
+
+        prm.enter_subsection("Ratchet earthquakes");
+        io::declare(prm,
+                    "Catalogues",
+                    "0",
+                    Integer(0, 10000),
+                    "-",
+                    "Seeded Gutenberg-Richter catalogues over the run's "
+                    "'Ratchet/Cycles' years (one cycle is one year), 0 to "
+                    "10000; each runs as one coupled history in which its "
+                    "earthquakes hit the same evolving DDA state between "
+                    "cycles (dynamic steps under the event's motion, then "
+                    "static thermal cycling from the state the quake left). "
+                    "0 = no earthquakes: the thermal run alone.");
+        io::declare(prm,
+                    "Seed",
+                    "1",
+                    Integer(0, std::numeric_limits<int>::max()),
+                    "-",
+                    "Seed of the first catalogue, 0 to 2147483647; "
+                    "catalogue i (1-based) uses seed + i - 1.");
+        io::declare(prm,
+                    "Recurrence interval",
+                    "300",
+                    DoubleInterval::positive(),
+                    "yr",
+                    "Mean interval between events of at least the minimum "
+                    "magnitude, > 0 yr (thesis 5.6.2: 300 yr for Mw >= 6). "
+                    "A shorter interval accelerates the catalogue (more "
+                    "events within a window of a few hundred cycles); the "
+                    "magnitudes keep their distribution.");
+        io::declare(prm,
+                    "b-value",
+                    "1",
+                    DoubleInterval(0., true, 5., false),
+                    "-",
+                    "Gutenberg-Richter b-value, 0 < b <= 5 (a warning "
+                    "outside the tectonic range, one half to two).");
+        io::declare(prm,
+                    "Minimum magnitude",
+                    "6",
+                    Double(3., 8.5),
+                    "-",
+                    "Smallest moment magnitude of the catalogue, 3 to 8.5.");
+        io::declare(prm,
+                    "Maximum magnitude",
+                    "7.5",
+                    Double(3., 8.5),
+                    "-",
+                    "Largest moment magnitude of the catalogue, 3 to 8.5, "
+                    "above the minimum.");
+        io::declare(prm,
+                    "Distance",
+                    "1000",
+                    Double(0., 1e6),
+                    "m",
+                    "Joyner-Boore distance of every event, 0 to 1e6 m "
+                    "(thesis: 1 km, the upper bound).");
+        io::declare(prm,
+                    "Masada site amplification",
+                    "true",
+                    Bool(),
+                    "-",
+                    "Amplify the synthetic motions by the Masada site "
+                    "response (true) or not (false: rock).");
+        io::declare(prm,
+                    "Minimum PGA",
+                    "0",
+                    Double(0., 10.),
+                    "g",
+                    "Events whose site-amplified PGA is below this do not "
+                    "run, 0 to 10 g; 0 = every event runs (the infill may "
+                    "move below the block's yield acceleration).");
+        io::declare(prm,
+                    "Time step",
+                    "0.005",
+                    DoubleInterval(0., true, 1., false),
+                    "s",
+                    "Time step of the dynamic DDA steps of an earthquake, "
+                    "0 < dt <= 1 s (the calibrated 0.005 s of the "
+                    "'calibrate' analysis); the contact penalty stays "
+                    "'Ratchet/Contact penalty'.");
+        io::declare(prm,
+                    "Rest time",
+                    "2",
+                    Double(0., 100.),
+                    "s",
+                    "Dynamic steps after the end of each record, 0 to 100 "
+                    "s, in which a sliding block stops before the run "
+                    "returns to static steps (which drop any motion left).");
+        io::declare(prm,
+                    "Earthquakes alone",
+                    "true",
+                    Bool(),
+                    "-",
+                    "Also run each catalogue's events on the scene without "
+                    "thermal cycles and on Block 1 alone (no cliff, no "
+                    "infill: the 'compare' analysis' seismic runs), the "
+                    "seismic parts of 'combined against thermal + "
+                    "seismic'.");
+        io::declare(prm,
+                    "Block 1 penalty",
+                    "1e11",
+                    DoubleInterval::positive(),
+                    "N/m",
+                    "Contact penalty of the runs of Block 1 alone, > 0 "
+                    "(the 'compare' analysis: 100 GN/m).");
+        io::declare(prm,
+                    "Threads",
+                    "0",
+                    Integer(0, 1024),
+                    "-",
+                    "Runs at once, 0 to 1024 (0: one per core); each DDA "
+                    "solver uses one thread.");
+        prm.leave_subsection();
       }
 
       void
@@ -461,6 +578,29 @@ namespace rockdda::coupling
         resume                        = prm.get_bool("Resume");
         prm.leave_subsection();
 
+        prm.enter_subsection("Ratchet earthquakes");
+        quakes.catalogues        = prm.get_integer("Catalogues");
+        quakes.first_seed        = prm.get_integer("Seed");
+        quakes.gr.recurrence     = prm.get_double("Recurrence interval");
+        quakes.gr.b_value        = prm.get_double("b-value");
+        quakes.gr.min_magnitude  = prm.get_double("Minimum magnitude");
+        quakes.gr.max_magnitude  = prm.get_double("Maximum magnitude");
+        quakes.distance          = prm.get_double("Distance");
+        quakes.masada_site       = prm.get_bool("Masada site amplification");
+        quakes.minimum_pga       = prm.get_double("Minimum PGA");
+        quakes.episode.time_step = prm.get_double("Time step");
+        quakes.episode.rest_time = prm.get_double("Rest time");
+        quakes.quakes_on_scene   = prm.get_bool("Earthquakes alone");
+        quakes.block1_penalty    = prm.get_double("Block 1 penalty");
+        quakes.threads           = prm.get_integer("Threads");
+        prm.leave_subsection();
+        io::require(quakes.catalogues == 0
+                      || quakes.gr.max_magnitude > quakes.gr.min_magnitude,
+                    prm_file,
+                    "Ratchet earthquakes/Maximum magnitude",
+                    quakes.gr.max_magnitude,
+                    "> 'Minimum magnitude' and <= 8.5");
+
         heat.material.density = materials.rock.density;
         skin
           = std::sqrt(0.5 * heat.material.diffusivity() * 0.5 * forcing.period);
@@ -470,6 +610,19 @@ namespace rockdda::coupling
           scene = make_ratchet_scene(geometry, materials);
         });
         file = prm_file;
+      }
+
+      std::vector<std::string>
+      warnings() const override
+      {
+        std::vector<std::string> w;
+        if (quakes.catalogues > 0
+            && (quakes.gr.b_value < 0.5 || quakes.gr.b_value > 2.))
+          w.push_back("key 'Ratchet earthquakes/b-value' = "
+                      + io::format_number(quakes.gr.b_value, 4)
+                      + " is outside 0.5-2, the range of b-values of "
+                        "tectonic seismicity (Gutenberg & Richter 1944)");
+        return w;
       }
 
       bool
@@ -694,6 +847,8 @@ namespace rockdda::coupling
                  + io::format_number(1e3 * rate / years, 5) + " mm/yr, heat "
                  + io::format_number(heat_seconds, 3) + " s, DDA "
                  + io::format_number(dda_seconds, 3) + " s");
+        if (quakes.catalogues > 0 && !context.stopped_early)
+          run_earthquakes(context, temperature, table);
         io::run_plot_script(context.output,
                             context.log,
                             "plot_ratchet_cycles.py",
@@ -701,6 +856,171 @@ namespace rockdda::coupling
       }
 
     private:
+      /**
+       * The earthquake catalogues inside the ratchet
+       * (run_ratchet_earthquakes()): per catalogue the coupled history,
+       * the thermal run alone (@p thermal, the cycles' table: column 2 is
+       * the displacement) and the earthquakes alone, written to
+       * earthquake_events.csv, earthquake_histories.csv and
+       * earthquake_yearly.csv, with their spreads in the summary and
+       * ratchet_earthquakes.png.
+       */
+      void
+      run_earthquakes(io::RunContext                 &context,
+                      const PeriodicBlockTemperature &temperature,
+                      const io::Table                &thermal)
+      {
+        auto              &log   = context.log;
+        const unsigned int n     = thermal.n_rows();
+        const double       alone = n > 0 ? thermal.row(n - 1)[2] : 0.;
+        Block1Geometry     b1;
+        static_cast<analytical::Block1Section &>(b1) = geometry.block;
+        Block1Materials b1m;
+        b1m.rock         = materials.rock;
+        b1m.friction_deg = materials.bedding_friction_deg;
+        log.line("earthquakes: " + std::to_string(quakes.catalogues)
+                 + " catalogues over " + std::to_string(n)
+                 + " cycles (one a year), Mw "
+                 + io::format_number(quakes.gr.min_magnitude, 3) + "-"
+                 + io::format_number(quakes.gr.max_magnitude, 3)
+                 + ", one every " + io::format_number(quakes.gr.recurrence, 4)
+                 + " yr on average, at " + io::format_number(quakes.distance, 4)
+                 + " m");
+        const RatchetEarthquakeResult r = run_ratchet_earthquakes(
+          scene, temperature, forcing, alpha, controls, n, b1, b1m, quakes);
+        io::Table events;
+        for (const auto &[name, unit] :
+             std::vector<std::pair<std::string, std::string>>{
+               {"catalogue", "-"},
+               {"time", "yr"},
+               {"magnitude", "-"},
+               {"motion_seed", "-"},
+               {"pga", "g"},
+               {"runs", "-"},
+               {"coupled_slip", "m"},
+               {"coupled_dynamic_slip", "m"},
+               {"coupled_aperture", "m"},
+               {"coupled_infill_descent", "m"},
+               {"coupled_energy_gain", "J/m"},
+               {"coupled_dynamic_steps", "-"},
+               {"alone_slip", "m"},
+               {"block1_slip", "m"},
+               {"block1_analytical", "m"}})
+          events.add_column(name, unit);
+        for (const auto &q : r.quakes)
+          events.add_row({static_cast<double>(q.catalogue + 1),
+                          q.event.time,
+                          q.event.magnitude,
+                          static_cast<double>(q.event.motion_seed),
+                          q.pga,
+                          q.runs ? 1. : 0.,
+                          q.coupled.slip,
+                          q.coupled.dynamic_slip,
+                          q.coupled.aperture,
+                          q.coupled.infill_descent,
+                          q.coupled.energy_gain,
+                          static_cast<double>(q.coupled.dynamic_steps),
+                          q.alone.slip,
+                          q.block1,
+                          q.block1_analytical});
+        context.output.write("earthquake_events.csv", events.csv());
+
+        io::Table per, yearly;
+        for (const auto &[name, unit] :
+             std::vector<std::pair<std::string, std::string>>{
+               {"catalogue", "-"},
+               {"events", "-"},
+               {"episodes", "-"},
+               {"coupled", "m"},
+               {"thermal", "m"},
+               {"coupled_episodes", "m"},
+               {"quakes_scene", "m"},
+               {"quakes_block1", "m"},
+               {"coupled_over_sum_scene", "-"},
+               {"coupled_over_sum_block1", "-"},
+               {"wall_time", "s"}})
+          per.add_column(name, unit);
+        yearly.add_column("catalogue", "-");
+        yearly.add_column("year", "-");
+        yearly.add_column("displacement", "m");
+        for (unsigned int y = 0; y < n; ++y)
+          yearly.add_row({0., y + 1., thermal.row(y)[2]});
+        std::vector<double> ratio_scene, ratio_block1, coupled, quake_sum;
+        unsigned int        failed = 0;
+        for (const auto &h : r.histories)
+          {
+            const double rs = h.coupled / (alone + h.quakes_scene);
+            const double rb = h.coupled / (alone + h.quakes_block1);
+            per.add_row({h.catalogue + 1.,
+                         static_cast<double>(h.events),
+                         static_cast<double>(h.episodes),
+                         h.coupled,
+                         alone,
+                         h.coupled_episodes,
+                         h.quakes_scene,
+                         h.quakes_block1,
+                         rs,
+                         rb,
+                         h.wall_time});
+            for (std::size_t y = 0; y < h.yearly.size(); ++y)
+              yearly.add_row({h.catalogue + 1., y + 1., h.yearly[y]});
+            if (!h.failure.empty())
+              {
+                ++failed;
+                log.line("catalogue " + std::to_string(h.catalogue + 1) + ": "
+                         + h.failure);
+                continue;
+              }
+            ratio_scene.push_back(rs);
+            ratio_block1.push_back(rb);
+            coupled.push_back(h.coupled);
+            quake_sum.push_back(h.quakes_scene);
+          }
+        context.output.write("earthquake_histories.csv", per.csv());
+        context.output.write("earthquake_yearly.csv", yearly.csv());
+        const Spread sc = spread(coupled), sq = spread(quake_sum),
+                     rs = spread(ratio_scene), rb = spread(ratio_block1);
+        context.summary.add("quake_catalogues", quakes.catalogues, "-");
+        context.summary.add("quake_events",
+                            static_cast<double>(r.quakes.size()),
+                            "-");
+        context.summary.add("quake_failed_catalogues", failed, "-");
+        context.summary.add("quake_thermal_only", alone, "m");
+        context.summary.add("quake_coupled_median", sc.median, "m");
+        context.summary.add("quake_alone_scene_median", sq.median, "m");
+        context.summary.add("quake_coupled_over_sum_median", rs.median, "-");
+        context.summary.add("quake_coupled_over_sum_p16", rs.p16, "-");
+        context.summary.add("quake_coupled_over_sum_p84", rs.p84, "-");
+        context.summary.add("quake_coupled_over_sum_block1_median",
+                            rb.median,
+                            "-");
+        context.summary.add("quake_concurrent_runs", r.threads, "-");
+        context.summary.add("quake_motion_seconds", r.motion_seconds, "s");
+        context.summary.add("quake_dda_seconds", r.dda_seconds, "s");
+        log.line(
+          "earthquakes: " + std::to_string(r.quakes.size()) + " events in "
+          + std::to_string(quakes.catalogues) + " catalogues, "
+          + std::to_string(failed) + " failed; thermal alone "
+          + io::format_number(alone, 4) + " m, coupled (median) "
+          + io::format_number(sc.median, 4) + " m, earthquakes alone on "
+          + "the scene " + io::format_number(sq.median, 4)
+          + " m; coupled / (thermal + seismic) "
+          + io::format_number(rs.median, 4) + " ("
+          + io::format_number(rs.p16, 4) + "-" + io::format_number(rs.p84, 4)
+          + "), with Block 1 alone as the seismic part "
+          + io::format_number(rb.median, 4) + "; DDA "
+          + io::format_number(r.dda_seconds, 4) + " s on "
+          + std::to_string(r.threads) + " threads");
+        if (failed > 0)
+          throw dda::DdaFailure(std::to_string(failed)
+                                + " catalogue(s) failed (see the log and "
+                                  "earthquake_histories.csv)");
+        io::run_plot_script(context.output,
+                            context.log,
+                            "plot_ratchet_earthquakes.py",
+                            {"ratchet_earthquakes.png"});
+      }
+
       /// Width of the infill at its mid-height (m).
       double
       infill_width() const
@@ -737,16 +1057,17 @@ namespace rockdda::coupling
         return f;
       }
 
-      RatchetGeometry  geometry;
-      RatchetMaterials materials;
-      SeasonalForcing  forcing;
-      HeatControls     heat;
-      RatchetControls  controls;
-      RatchetScene     scene;
-      double           alpha = 8e-6, refinement_factor = 1., skin = 0.;
-      unsigned int     cycles = 10, checkpoint_cycles = 0;
-      bool             resume = false;
-      std::string      file;
+      RatchetGeometry          geometry;
+      RatchetMaterials         materials;
+      SeasonalForcing          forcing;
+      HeatControls             heat;
+      RatchetControls          controls;
+      RatchetEarthquakeOptions quakes;
+      RatchetScene             scene;
+      double                   alpha = 8e-6, refinement_factor = 1., skin = 0.;
+      unsigned int             cycles = 10, checkpoint_cycles = 0;
+      bool                     resume = false;
+      std::string              file;
     };
   } // namespace
 

@@ -247,8 +247,10 @@ namespace rockdda::dda
 
 
   GroundMotionIntegral::GroundMotionIntegral(const seismic::Record &record,
-                                             const double           g)
+                                             const double           g,
+                                             const double           start)
       : dt(record.dt)
+      , t0(start)
   {
     const std::size_t n = record.acceleration.size();
     a.resize(n);
@@ -266,8 +268,9 @@ namespace rockdda::dda
 
 
   double
-  GroundMotionIntegral::acceleration(const double t) const
+  GroundMotionIntegral::acceleration(const double time) const
   {
+    const double t = time - t0;
     if (a.empty() || t < 0. || dt <= 0.)
       return 0.;
     const double      s = t / dt;
@@ -281,8 +284,9 @@ namespace rockdda::dda
 
 
   double
-  GroundMotionIntegral::displacement(const double t) const
+  GroundMotionIntegral::displacement(const double time) const
   {
+    const double t = time - t0;
     if (a.empty() || t <= 0. || dt <= 0.)
       return 0.;
     const std::size_t k = static_cast<std::size_t>(t / dt);

@@ -1204,4 +1204,70 @@ namespace rockdda::dda
     const Block &b = scene.blocks[block];
     return block_moments(b.polygon).centroid - b.initial_centroid;
   }
+
+
+
+  void
+  DdaSystem::set_dynamic(const double dynamic)
+  {
+    if (!(dynamic >= 0. && dynamic <= 1.))
+      throw InputError("dynamic control " + num(dynamic)
+                       + "; valid: 0 <= k <= 1");
+    if (ctrl.dynamic == 0. && dynamic > 0.)
+      {
+        for (auto &b : scene.blocks)
+          b.velocity.setZero();
+        // The kinetic energy changed: the sanity check's reference balance
+        // is recomputed at the next step.
+        accepted_balance = std::numeric_limits<double>::quiet_NaN();
+      }
+    ctrl.dynamic = dynamic;
+  }
+
+
+
+  void
+  DdaSystem::set_seismic_input(SeismicInput input, const double start)
+  {
+    if (input.mode == SeismicInput::Mode::displacement)
+      throw InputError("a seismic input in displacement mode cannot start "
+                       "during a run (its fixed points move from their "
+                       "anchors at t = 0); use the inertial mode");
+    if (!std::isfinite(start))
+      throw InputError("seismic input start " + num(start)
+                       + " s; valid: finite");
+    const double dn = input.direction.norm();
+    if (!(dn > 0.) || !std::isfinite(dn))
+      throw InputError("the seismic direction has no length");
+    input.direction /= dn;
+    if (input.mode != SeismicInput::Mode::none
+        && !input.record.acceleration.empty() && !(input.record.dt > 0.))
+      throw InputError("seismic record '" + input.record.name + "': time step "
+                       + num(input.record.dt) + " s; valid: dt > 0");
+    if (!input.vertical_record.acceleration.empty())
+      {
+        const double vn = input.vertical.norm();
+        if (!(vn > 0.) || !std::isfinite(vn))
+          throw InputError("the vertical seismic direction has no length");
+        input.vertical /= vn;
+        if (!(input.vertical_record.dt > 0.))
+          throw InputError("vertical seismic record '"
+                           + input.vertical_record.name + "': time step "
+                           + num(input.vertical_record.dt)
+                           + " s; valid: dt > 0");
+      }
+    scene.seismic   = std::move(input);
+    ground          = GroundMotionIntegral();
+    ground_vertical = GroundMotionIntegral();
+    if (scene.seismic.mode != SeismicInput::Mode::none)
+      {
+        ground
+          = GroundMotionIntegral(scene.seismic.record, scene.seismic.g, start);
+        if (!scene.seismic.vertical_record.acceleration.empty())
+          ground_vertical = GroundMotionIntegral(scene.seismic.vertical_record,
+                                                 scene.seismic.g,
+                                                 start);
+      }
+    speed_bound += ground.peak_velocity() + ground_vertical.peak_velocity();
+  }
 } // namespace rockdda::dda

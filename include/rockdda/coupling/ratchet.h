@@ -10,6 +10,7 @@
 #include <rockdda/coupling/ratchet_scene.h>
 #include <rockdda/coupling/thermal_load.h>
 #include <rockdda/dda/engine.h>
+#include <rockdda/seismic/record.h>
 
 #include <memory>
 #include <string>
@@ -38,6 +39,51 @@ namespace rockdda::coupling
     /// Temperature samples per cycle at which the DDA is brought to
     /// equilibrium (a divisor of the heat table's samples is exact).
     unsigned int steps_per_cycle = 24;
+    /// Threads of the DDA's linear solver (dda::SolverOptions::threads;
+    /// 0: the default). Concurrent runs use 1.
+    int threads = 0;
+  };
+
+  /// How RatchetRun::run_episode() runs an earthquake (SI).
+  struct EpisodeControls
+  {
+    /// Time step of the dynamic steps (s), > 0 (the calibrated 0.005 s of
+    /// the 'calibrate' analysis).
+    double time_step = 0.005;
+    /// Dynamic steps after the end of the record (s), >= 0: the ground at
+    /// rest, the block decelerates and stops on its bedding plane before
+    /// the run returns to static steps (which drop any motion left).
+    double rest_time = 2.;
+    /// Gravitational acceleration converting the record's g to m/s^2.
+    double g = 9.80665;
+    /// Key names in the errors.
+    std::string time_step_key = "Ratchet earthquakes/Time step";
+    std::string rest_time_key = "Ratchet earthquakes/Rest time";
+  };
+
+  /// What one earthquake did to a ratchet run (SI; along the bedding
+  /// plane, + downslope).
+  struct EpisodeRecord
+  {
+    /// Change of RatchetRun::displacement() over the dynamic steps, and
+    /// over the whole episode (dynamic steps, the return to static steps
+    /// and the new equilibrium: the infill dropping into the opening).
+    double dynamic_slip = 0., slip = 0.;
+    /// Change of the crack aperture at the top over the episode (m).
+    double aperture = 0.;
+    /// Descent of the newest infill fragment over the episode (m).
+    double infill_descent = 0.;
+    /// Largest |rotation| of a block slice during the dynamic steps (rad).
+    double max_rotation = 0.;
+    /// Energy ledger over the dynamic steps (J/m): change of
+    /// dda::EnergyLedger::balance() (<= 0 up to round-off: the time
+    /// integration only dissipates) and the energy in play at the end.
+    double energy_gain = 0., energy_scale = 0.;
+    /// Dynamic steps and cuts; static steps and cuts of the return.
+    unsigned long dynamic_steps = 0, dynamic_cuts = 0;
+    unsigned long static_steps = 0, static_cuts = 0;
+    /// Infill fragments in the crack after the episode.
+    unsigned int fragments = 0;
   };
 
   /// What one cycle did (SI; displacement down the bedding plane).
@@ -94,6 +140,24 @@ namespace rockdda::coupling
     /// Run the next cycle; @p samples (optional) receives its samples.
     CycleRecord
     run_cycle(std::vector<SampleRecord> *samples = nullptr);
+
+    /**
+     * An earthquake between two cycles (after cycles() of them), on the
+     * same DDA state: the engine switches to dynamic steps of
+     * EpisodeControls::time_step with @p record (g, positive towards +x,
+     * the scene's downslope-horizontal direction) as an inertial load on
+     * every block (dda::DdaSystem::set_seismic_input()) until the record's
+     * end plus the rest time, the eigenstrains held at those of the end of
+     * the last cycle; then it returns to static steps at the pseudo time
+     * step (the blocks at rest; the step grows back from the dynamic one by
+     * dda::Controls::growth), brings the scene to equilibrium (the infill
+     * drops into what the quake opened) and applies the supply rule. The
+     * next run_cycle() resumes the thermal cycling from this state. Throws
+     * InputError naming the key for a time step <= 0 or a rest time < 0,
+     * dda::DdaFailure if DDA cannot continue.
+     */
+    EpisodeRecord
+    run_episode(const seismic::Record &record, const EpisodeControls &controls);
 
     /// Block displacement down the bedding plane since the start (m): the
     /// mean of its base corners' displacements (the slip).

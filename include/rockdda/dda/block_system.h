@@ -217,8 +217,13 @@ namespace rockdda::dda
   {
   public:
     GroundMotionIntegral() = default;
-    /// Integrate @p record (g) with @p g (m/s^2).
-    GroundMotionIntegral(const seismic::Record &record, const double g);
+    /// Integrate @p record (g) with @p g (m/s^2). The record starts at
+    /// time @p start (s): the ground is at rest before it (a seismic
+    /// episode of a run that has been going on; DdaSystem::
+    /// set_seismic_input()).
+    GroundMotionIntegral(const seismic::Record &record,
+                         const double           g,
+                         const double           start = 0.);
     /// Acceleration (m/s^2) at t; 0 outside the record.
     double
     acceleration(const double t) const;
@@ -243,7 +248,7 @@ namespace rockdda::dda
     }
 
   private:
-    double              dt = 0.;
+    double              dt = 0., t0 = 0.;
     std::vector<double> a, v, u;
   };
 

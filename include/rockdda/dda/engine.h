@@ -290,6 +290,30 @@ namespace rockdda::dda
     void
     set_time_step(const double time_step);
 
+    /**
+     * Switch the steps between static (0) and dynamic (1) from the next
+     * step on (Controls::dynamic; InputError outside [0, 1]), e.g. a
+     * seismic episode within a quasi-static run. Going from static to
+     * dynamic starts every block at rest: the velocities of static steps
+     * are increments over the pseudo time step, not motion.
+     */
+    void
+    set_dynamic(const double dynamic);
+
+    /**
+     * Replace the seismic input from the next step on; its records start
+     * at the engine time @p start (s) (GroundMotionIntegral), the ground at
+     * rest before. Only SeismicInput::Mode::none and inertial: a
+     * displacement-mode record would move the fixed points from their
+     * anchors at t = 0 (InputError). The directions are normalised as at
+     * construction (InputError for a zero one or a vertical record with
+     * dt <= 0); the speed bound of the sanity checks grows by the records'
+     * peak ground velocities. The energy ledger goes on (the inertial
+     * load's work enters load_work).
+     */
+    void
+    set_seismic_input(SeismicInput input, const double start);
+
     /// Kinetic energy sum 1/2 v^T M v (J/m).
     double
     kinetic_energy() const;
