@@ -399,13 +399,22 @@ namespace rockdda::coupling
     engine->set_dynamic(1.);
     engine->set_seismic_input(input, start);
     const dda::EnergyLedger e0 = engine->energy();
-    while (engine->time() < end - 1e-3 * ec.time_step)
+    try
       {
-        engine->run_until(std::min(end, engine->time() + ec.time_step));
-        for (const int b : scene.block_slices)
-          r.max_rotation
-            = std::max(r.max_rotation,
-                       std::abs(engine->system().blocks[b].rotation));
+        while (engine->time() < end - 1e-3 * ec.time_step)
+          {
+            engine->run_until(std::min(end, engine->time() + ec.time_step));
+            for (const int b : scene.block_slices)
+              r.max_rotation
+                = std::max(r.max_rotation,
+                           std::abs(engine->system().blocks[b].rotation));
+          }
+      }
+    catch (const dda::DdaFailure &x)
+      {
+        throw dda::DdaFailure("dynamic steps of an earthquake, "
+                              + io::format_number(engine->time() - start, 4)
+                              + " s into its record: " + x.what());
       }
     const dda::EnergyLedger e1 = engine->energy();
     r.energy_gain              = e1.balance() - e0.balance();
@@ -421,19 +430,27 @@ namespace rockdda::coupling
     engine->set_dynamic(0.);
     engine->set_time_step(pseudo_time_step);
     CycleRecord back;
-    for (unsigned int k = 0; engine->time_step() < pseudo_time_step; ++k)
+    try
       {
-        if (k >= ctrl.max_steps_per_sample)
-          throw dda::DdaFailure(
-            "after an earthquake in cycle " + std::to_string(n_cycles)
-            + ": the static step did not grow back to the pseudo time step "
-              "within "
-            + std::to_string(ctrl.max_steps_per_sample) + " steps");
-        const dda::StepReport s = engine->step();
-        ++back.steps;
-        back.cuts += s.cuts;
+        for (unsigned int k = 0; engine->time_step() < pseudo_time_step; ++k)
+          {
+            if (k >= ctrl.max_steps_per_sample)
+              throw dda::DdaFailure(
+                "after an earthquake in cycle " + std::to_string(n_cycles)
+                + ": the static step did not grow back to the pseudo time step "
+                  "within "
+                + std::to_string(ctrl.max_steps_per_sample) + " steps");
+            const dda::StepReport s = engine->step();
+            ++back.steps;
+            back.cuts += s.cuts;
+          }
+        equilibrate(thermal_time, back);
       }
-    equilibrate(thermal_time, back);
+    catch (const dda::DdaFailure &x)
+      {
+        throw dda::DdaFailure("return to static steps after an earthquake: "
+                              + std::string(x.what()));
+      }
     r.static_steps = back.steps;
     r.static_cuts  = back.cuts;
     r.slip         = displacement() - d0;

@@ -23,6 +23,7 @@
 #include <rockdda/io/plot.h>
 #include <rockdda/io/progress.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -924,6 +925,27 @@ namespace rockdda::coupling
                           q.block1,
                           q.block1_analytical});
         context.output.write("earthquake_events.csv", events.csv());
+        // Physics of the episodes: the ledger's largest gain over the
+        // dynamic steps relative to the energy in play (the integration
+        // only dissipates), and the smallest slip (upslope < 0).
+        double       gain       = -std::numeric_limits<double>::infinity();
+        double       least_slip = std::numeric_limits<double>::infinity();
+        unsigned int episodes   = 0;
+        for (const auto &q : r.quakes)
+          if (q.runs && q.coupled.dynamic_steps > 0)
+            {
+              ++episodes;
+              gain       = std::max(gain,
+                              q.coupled.energy_gain
+                                / std::max(q.coupled.energy_scale, 1e-300));
+              least_slip = std::min(least_slip, q.coupled.slip);
+            }
+        context.summary.add("quake_episodes", episodes, "-");
+        if (episodes > 0)
+          {
+            context.summary.add("quake_episode_energy_gain_max", gain, "-");
+            context.summary.add("quake_episode_slip_min", least_slip, "m");
+          }
 
         io::Table per, yearly;
         for (const auto &[name, unit] :
@@ -1011,10 +1033,14 @@ namespace rockdda::coupling
           + io::format_number(rb.median, 4) + "; DDA "
           + io::format_number(r.dda_seconds, 4) + " s on "
           + std::to_string(r.threads) + " threads");
+        // A catalogue whose DDA stopped is recorded (its row in
+        // earthquake_histories.csv, NaN) and left out of the spreads, as the
+        // 'compare' analysis does with its failed runs.
         if (failed > 0)
-          throw dda::DdaFailure(std::to_string(failed)
-                                + " catalogue(s) failed (see the log and "
-                                  "earthquake_histories.csv)");
+          log.record("WARNING: " + std::to_string(failed) + " of "
+                     + std::to_string(quakes.catalogues)
+                     + " catalogue(s) stopped (DDA could not continue; see "
+                       "above); the spreads are over the others");
         io::run_plot_script(context.output,
                             context.log,
                             "plot_ratchet_earthquakes.py",

@@ -3,6 +3,7 @@
 #include <rockdda/coupling/earthquakes.h>
 #include <rockdda/coupling/ratchet_earthquakes.h>
 #include <rockdda/io/error.h>
+#include <rockdda/io/output.h>
 
 #include <chrono>
 #include <cmath>
@@ -134,15 +135,36 @@ namespace rockdda::coupling
                     ++k;
                   for (unsigned int y = 0; y < cycles; ++y)
                     {
-                      run.run_cycle();
+                      try
+                        {
+                          run.run_cycle();
+                        }
+                      catch (const dda::DdaFailure &x)
+                        {
+                          throw dda::DdaFailure("thermal cycle "
+                                                + std::to_string(y + 1) + ": "
+                                                + x.what());
+                        }
                       for (; k < result.quakes.size()
                              && result.quakes[k].catalogue == c
                              && result.quakes[k].event.time < y + 1.;
                            ++k)
                         if (result.quakes[k].runs)
                           {
-                            result.quakes[k].coupled
-                              = run.run_episode(records[k], o.episode);
+                            try
+                              {
+                                result.quakes[k].coupled
+                                  = run.run_episode(records[k], o.episode);
+                              }
+                            catch (const dda::DdaFailure &x)
+                              {
+                                throw dda::DdaFailure(
+                                  "earthquake after cycle "
+                                  + std::to_string(y + 1) + " (Mw "
+                                  + io::format_number(
+                                    result.quakes[k].event.magnitude, 3)
+                                  + "): " + x.what());
+                              }
                             h.coupled_episodes += result.quakes[k].coupled.slip;
                           }
                       h.yearly.push_back(run.displacement());
