@@ -414,7 +414,9 @@ namespace rockdda::coupling
                     "earthquakes hit the same evolving DDA state between "
                     "cycles (dynamic steps under the event's motion, then "
                     "static thermal cycling from the state the quake left). "
-                    "0 = no earthquakes: the thermal run alone.");
+                    "0 = no earthquakes: the thermal run alone. The "
+                    "histories run after the thermal run and are not "
+                    "checkpointed ('Resume' reruns them).");
         io::declare(prm,
                     "Seed",
                     "1",
