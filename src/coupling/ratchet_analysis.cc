@@ -6,7 +6,10 @@
  * tension crack with infill and the cliff. Writes the per-cycle permanent
  * and cumulative displacement, the crack aperture, the infill's descent and
  * the contact states, the within-cycle loop, the steady ratchet rate next
- * to the analytical (Pasten 2012) estimate, and plots.
+ * to the analytical (Pasten 2012) estimate, and plots. With 'Ratchet
+ * earthquakes/Catalogues' > 0 it then runs seeded earthquake catalogues on
+ * the same evolving DDA state (run_ratchet_earthquakes(), issue 15 item 3)
+ * against this thermal run and the earthquakes alone.
  */
 #include <rockdda/analytical/ratchet.h>
 #include <rockdda/coupling/analyses.h>
