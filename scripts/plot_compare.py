@@ -12,7 +12,6 @@ displacement against time: the thermal history alone and the combined
 history (median and 16-84 % over the catalogues; histories.csv), with each
 catalogue's seismic total at the end.
 """
-import csv
 import os
 import sys
 
@@ -20,12 +19,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-
-
-def table(path):
-    with open(path) as f:
-        rows = list(csv.reader(f))
-    return [dict(zip(rows[0], (float(x) for x in r))) for r in rows[1:]]
+from rockdda_csv import table  # noqa: E402
 
 
 def main():

@@ -12,7 +12,6 @@ against the sum of the thermal run alone and the earthquakes alone (on the
 scene without cycles, and on Block 1 alone), with the 1:1 line
 (earthquake_histories.csv).
 """
-import csv
 import os
 import sys
 
@@ -20,13 +19,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-
-
-def table(path):
-    """Rows of a rockdda CSV as dicts keyed by the header (name_unit)."""
-    with open(path) as f:
-        rows = list(csv.reader(f))
-    return [dict(zip(rows[0], (float(x) for x in r))) for r in rows[1:]]
+from rockdda_csv import table  # noqa: E402
 
 
 def main():

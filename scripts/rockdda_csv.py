@@ -1,7 +1,8 @@
 """Reading rockdda's CSV tables in the plot scripts (one copy).
 
 read(path) -> (header, rows of floats), skipping blank lines and lines that
-start with '#'; column(header, rows, prefix) -> the values of the first
+start with '#'; table(path) -> the rows as dicts keyed by the header;
+column(header, rows, prefix) -> the values of the first
 column named prefix or prefix_<unit> (rockdda's headers are name_unit), or
 exits with the list of columns.
 """
@@ -21,3 +22,9 @@ def column(header, data, prefix):
         if name == prefix or name.startswith(prefix + "_"):
             return [r[i] for r in data]
     raise SystemExit(f"no column {prefix!r} in {header}")
+
+
+def table(path):
+    """Rows of a rockdda CSV as dicts keyed by the header (name_unit)."""
+    header, data = read(path)
+    return [dict(zip(header, r)) for r in data]

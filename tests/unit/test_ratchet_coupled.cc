@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "dda_test_scenes.h"
+#include "ratchet_test_helpers.h"
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -20,41 +21,8 @@
 
 using namespace rockdda;
 using namespace rockdda::coupling;
-
-namespace
-{
-  /// A cheap heat solution for the tests: one Crank-Nicolson step per
-  /// sample (15 days), degree 1 (the mechanics is what is tested).
-  HeatControls
-  cheap_heat()
-  {
-    HeatControls h;
-    h.degree            = 1;
-    h.time_step         = 31557600. / 24.;
-    h.spin_up_cycles    = 3;
-    h.samples_per_cycle = 24;
-    return h;
-  }
-
-  /// Expect an InputError whose message names @p key.
-  template <typename F>
-  void
-  expect_error_naming(F &&f, const std::string &key)
-  {
-    try
-      {
-        f();
-        ADD_FAILURE() << "no error for " << key;
-      }
-    catch (const InputError &e)
-      {
-        EXPECT_NE(std::string(e.what()).find(key), std::string::npos)
-          << e.what();
-      }
-  }
-} // namespace
-
-
+using test_helpers::cheap_heat;
+using test_helpers::expect_error_naming;
 
 TEST(RatchetCoupled, BadInputNamesTheKey)
 {

@@ -14,29 +14,19 @@
 
 #include <gtest/gtest.h>
 
+#include "ratchet_test_helpers.h"
 #include <cmath>
 #include <string>
 #include <vector>
 
 using namespace rockdda;
 using namespace rockdda::coupling;
+using test_helpers::cheap_heat;
+using test_helpers::expect_error_naming;
 
 namespace
 {
   constexpr double pi = 3.14159265358979323846;
-
-  /// The cheap heat solution of test_ratchet_coupled: one Crank-Nicolson
-  /// step per sample, degree 1 (the mechanics is what is tested).
-  HeatControls
-  cheap_heat()
-  {
-    HeatControls h;
-    h.degree            = 1;
-    h.time_step         = 31557600. / 24.;
-    h.spin_up_cycles    = 3;
-    h.samples_per_cycle = 24;
-    return h;
-  }
 
   /// Block 1's horizontal yield acceleration (g) for the scene's
   /// materials: tan(phi - eta).
@@ -77,21 +67,6 @@ namespace
     return f;
   }
 
-  template <typename F>
-  void
-  expect_error_naming(F &&f, const std::string &key)
-  {
-    try
-      {
-        f();
-        ADD_FAILURE() << "no error for " << key;
-      }
-    catch (const InputError &e)
-      {
-        EXPECT_NE(std::string(e.what()).find(key), std::string::npos)
-          << e.what();
-      }
-  }
 } // namespace
 
 
