@@ -87,22 +87,7 @@ namespace rockdda::dda
         domain = std::max(domain, 2. * (p - mean).norm());
     if (!(domain > 0.) || !std::isfinite(domain))
       throw InputError("the scene's blocks have no extent");
-    const double dn = scene.seismic.direction.norm();
-    if (!(dn > 0.) || !std::isfinite(dn))
-      throw InputError("the seismic direction has no length");
-    scene.seismic.direction /= dn;
-    if (!scene.seismic.vertical_record.acceleration.empty())
-      {
-        const double vn = scene.seismic.vertical.norm();
-        if (!(vn > 0.) || !std::isfinite(vn))
-          throw InputError("the vertical seismic direction has no length");
-        scene.seismic.vertical /= vn;
-        if (!(scene.seismic.vertical_record.dt > 0.))
-          throw InputError(
-            "vertical seismic record '" + scene.seismic.vertical_record.name
-            + "': time step " + num(scene.seismic.vertical_record.dt)
-            + " s; valid: dt > 0");
-      }
+    install_seismic_input(std::move(scene.seismic), 0.);
     if (!(ctrl.time_step > 0.) || !std::isfinite(ctrl.time_step))
       throw InputError("time step " + num(ctrl.time_step)
                        + " s; valid: dt > 0");
@@ -141,12 +126,6 @@ namespace rockdda::dda
         block_size.push_back(dda::block_size(b.polygon));
         allowed_step.push_back(allowed_displacement_for(block_size.back()));
       }
-    if (scene.seismic.mode != SeismicInput::Mode::none)
-      ground = GroundMotionIntegral(scene.seismic.record, scene.seismic.g);
-    if (scene.seismic.mode != SeismicInput::Mode::none
-        && !scene.seismic.vertical_record.acceleration.empty())
-      ground_vertical
-        = GroundMotionIntegral(scene.seismic.vertical_record, scene.seismic.g);
     clamped_block  = clamped_blocks(scene);
     n_scene_blocks = scene.blocks.size();
     add_plausibility_warnings();
@@ -457,8 +436,8 @@ namespace rockdda::dda
             }
         }
     };
-    // Aitken's relaxation of the friction forces of the contacts that kept
-    // sliding (see above); a state change restarts it from omega = 1.
+    // Aitken's relaxation of the unconverged sliding contacts' friction
+    // (see above); a state change restarts it from omega = 1.
     const auto relax_friction = [&]() {
       if (changes > 0 || friction_changes == 0)
         {
@@ -1227,15 +1206,8 @@ namespace rockdda::dda
 
 
   void
-  DdaSystem::set_seismic_input(SeismicInput input, const double start)
+  DdaSystem::install_seismic_input(SeismicInput input, const double start)
   {
-    if (input.mode == SeismicInput::Mode::displacement)
-      throw InputError("a seismic input in displacement mode cannot start "
-                       "during a run (its fixed points move from their "
-                       "anchors at t = 0); use the inertial mode");
-    if (!std::isfinite(start))
-      throw InputError("seismic input start " + num(start)
-                       + " s; valid: finite");
     const double dn = input.direction.norm();
     if (!(dn > 0.) || !std::isfinite(dn))
       throw InputError("the seismic direction has no length");
@@ -1268,6 +1240,21 @@ namespace rockdda::dda
                                                  scene.seismic.g,
                                                  start);
       }
+  }
+
+
+
+  void
+  DdaSystem::set_seismic_input(SeismicInput input, const double start)
+  {
+    if (input.mode == SeismicInput::Mode::displacement)
+      throw InputError("a seismic input in displacement mode cannot start "
+                       "during a run (its fixed points move from their "
+                       "anchors at t = 0); use the inertial mode");
+    if (!std::isfinite(start))
+      throw InputError("seismic input start " + num(start)
+                       + " s; valid: finite");
+    install_seismic_input(std::move(input), start);
     speed_bound += ground.peak_velocity() + ground_vertical.peak_velocity();
   }
 } // namespace rockdda::dda

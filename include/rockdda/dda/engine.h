@@ -396,6 +396,15 @@ namespace rockdda::dda
     /// the strength audit never grants more.
     static constexpr double max_tolerance_factor = 100.;
 
+    /**
+     * Check and normalise @p input's directions and record time steps
+     * (InputError naming what is wrong), make it the scene's seismic input
+     * and integrate its records from the engine time @p start (s): the
+     * constructor's and set_seismic_input()'s common part.
+     */
+    void
+    install_seismic_input(SeismicInput input, const double start);
+
     StepReport
     advance(const double max_length);
     bool
