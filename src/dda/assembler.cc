@@ -29,19 +29,23 @@ namespace rockdda::dda
     ContactKinematics      k;
     k.tangent                  = E / l;
     k.edge_length              = l;
-    const geometry::Point P0   = Q0 + c.xi * E;
     const geometry::Point Pref = Q0 + xi_ref * E;
+    // Both springs join the vertex to the material point of block j that
+    // coincides with it: the pair of forces acts at one point, so contacts
+    // exert no net moment and a rigid rotation of the two blocks together
+    // does not stretch them. (Block j's point taken at the projection P0
+    // and the shear reference Pref, a gap g away along the normal, made the
+    // shear pair a couple g F_s: a free triangulated beam turned as a rigid
+    // body by 8e-8 rad per static step.) The gap and the shear offset s0
+    // are still measured from the projection and Pref.
     const auto Ti = displacement_matrix(block_moments_[c.block_i].centroid, P);
-    const auto Tj0
-      = displacement_matrix(block_moments_[c.block_j].centroid, P0);
-    const auto Tjr
-      = displacement_matrix(block_moments_[c.block_j].centroid, Pref);
-    k.g0 = c.gap;
-    k.en = Ti.transpose() * c.normal;
-    k.hn = -(Tj0.transpose() * c.normal);
-    k.s0 = k.tangent.dot(P - Pref);
-    k.es = Ti.transpose() * k.tangent;
-    k.hs = -(Tjr.transpose() * k.tangent);
+    const auto Tj = displacement_matrix(block_moments_[c.block_j].centroid, P);
+    k.g0          = c.gap;
+    k.en          = Ti.transpose() * c.normal;
+    k.hn          = -(Tj.transpose() * c.normal);
+    k.s0          = k.tangent.dot(P - Pref);
+    k.es          = Ti.transpose() * k.tangent;
+    k.hs          = -(Tj.transpose() * k.tangent);
     // Round-off of this contact: relative to the smaller block, plus the
     // representation error of the coordinates in the local frame.
     k.tolerance = round_off_tolerance(

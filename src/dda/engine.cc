@@ -7,6 +7,7 @@
 #include <rockdda/dda/block_matrices.h>
 #include <rockdda/dda/contact_law.h>
 #include <rockdda/dda/engine.h>
+#include <rockdda/dda/logarithmic_strain.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
 
@@ -952,10 +953,21 @@ namespace rockdda::dda
         block.velocity = (2. / h) * D - ctrl.dynamic * block.velocity;
         const Eigen::Matrix3d C
           = elasticity_matrix(scene.materials[block.material]);
-        // The eigenstrain change of the step is not elastic strain.
-        Eigen::Vector3d sigma
-          = block.stress + C * (D.segment<3>(3) - eigenstrain_step(block));
-        block.applied_eigenstrain = block.eigenstrain;
+        // The stress adds the logarithmic strain of the step's stretch
+        // I + E, less that of the eigenstrain's ratio (1 + e) / (1 + a), which
+        // is not elastic (doc/theory/dda.md, "Strain update"): the stress is
+        // then a function of the block's shape and its eigenstrain, whatever
+        // the path.
+        Eigen::Matrix2d E;
+        E << D[3], 0.5 * D[5], 0.5 * D[5], D[4];
+        const Eigen::Matrix2d L = logarithmic_strain_increment<2>(E);
+        const Eigen::Vector3d h(L(0, 0), L(1, 1), 2. * L(0, 1));
+        const Eigen::Vector3d de = eigenstrain_step(block);
+        const Eigen::Vector3d h_star(std::log1p(de[0]),
+                                     std::log1p(de[1]),
+                                     de[2]);
+        Eigen::Vector3d       sigma = block.stress + C * (h - h_star);
+        block.applied_eigenstrain   = block.eigenstrain;
         // Rotate the accumulated stress and strain with the block.
         const double    cr = std::cos(D[2]), sr = std::sin(D[2]);
         Eigen::Matrix2d R;
@@ -967,7 +979,7 @@ namespace rockdda::dda
           return Eigen::Vector3d(Sr(0, 0), Sr(1, 1), Sr(0, 1) / shear_factor);
         };
         block.stress = rotate(sigma, 1.);
-        block.strain = rotate(block.strain + D.segment<3>(3), 0.5);
+        block.strain = rotate(block.strain + h, 0.5);
         block.rotation += D[2];
       }
     for (auto &f : scene.fixed_points)

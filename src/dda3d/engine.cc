@@ -4,6 +4,7 @@
  * checks, the open-close iteration with step cutting, and the energy
  * ledger (Shi 1988, 2001; doc/theory/dda3d.md).
  */
+#include <rockdda/dda/logarithmic_strain.h>
 #include <rockdda/dda3d/engine.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
@@ -494,7 +495,9 @@ namespace rockdda::dda3d
       tb.col(0) = K.t1;
       tb.col(1) = K.t2;
       K.Es = displacement_matrix(moments[g.i].centroid, g.p).transpose() * tb;
-      K.Hs = -displacement_matrix(moments[g.j].centroid, r).transpose() * tb;
+      // Block j's material point at the vertex, as in 2D
+      // (dda/assembler.cc): the force pair acts at one point.
+      K.Hs = -displacement_matrix(moments[g.j].centroid, g.p).transpose() * tb;
       K.s0 = tb.transpose() * (g.p - r);
     };
     for (std::size_t k = 0; k < contacts.size(); ++k)
@@ -505,7 +508,7 @@ namespace rockdda::dda3d
         K.g0          = g.gap;
         K.en = displacement_matrix(moments[g.i].centroid, g.p).transpose()
                * g.normal;
-        K.hn = -displacement_matrix(moments[g.j].centroid, g.q).transpose()
+        K.hn = -displacement_matrix(moments[g.j].centroid, g.p).transpose()
                * g.normal;
         K.t1 = perpendicular(g.normal);
         K.t2 = g.normal.cross(K.t1);
@@ -834,9 +837,18 @@ namespace rockdda::dda3d
             m.point = move_point(c, Db[b], m.point);
         const Matrix6 C = elasticity_matrix(system.materials[block.material]);
         const Eigen::Matrix3d R = rotation_matrix(rotation_vector(Db[b]));
-        const Vector6         e = Db[b].tail<6>();
-        block.stress            = rotate_voigt(block.stress + C * e, R, 1.);
-        block.strain            = rotate_voigt(block.strain + e, R, 0.5);
+        // The logarithmic strain of the step's stretch, as in 2D
+        // (dda/logarithmic_strain.h): the stress is a function of the shape.
+        const Vector6   d = Db[b].tail<6>();
+        Eigen::Matrix3d E;
+        E << d[0], 0.5 * d[3], 0.5 * d[5], 0.5 * d[3], d[1], 0.5 * d[4],
+          0.5 * d[5], 0.5 * d[4], d[2];
+        const Eigen::Matrix3d L = dda::logarithmic_strain_increment<3>(E);
+        Vector6               e;
+        e << L(0, 0), L(1, 1), L(2, 2), 2. * L(0, 1), 2. * L(1, 2),
+          2. * L(0, 2);
+        block.stress = rotate_voigt(block.stress + C * e, R, 1.);
+        block.strain = rotate_voigt(block.strain + e, R, 0.5);
         // A clamped block moves with its prescribed motion: its velocity
         // is the step's mean.
         block.velocity

@@ -281,10 +281,16 @@ TEST(DdaThermal, ConfinedBlockDevelopsThermalStress)
       const double p       = 1000. * e_plane;
       DdaSystem    dda(s, quasi_static(p));
       heat_uniformly(dda, {0, 1, 0}, 6);
-      const double sigma_0
-        = plane_strain ? -young * alpha * dT / (1. - nu) : -young * alpha * dT;
-      const double series = sigma_0 / (1. + e_plane * H / (p * L));
-      const auto  &stress = dda.system().blocks[b].stress;
+      // The stress takes the eigenstrain as the logarithmic strain
+      // log(1 + e) of the free stretch 1 + e (e = alpha dT, or (1 + nu)
+      // alpha dT in plane strain; doc/theory/dda.md, "Strain update"):
+      // sigma_0 = -E' log(1 + e) = -E alpha dT (1 - e / 2 + ...) in plane
+      // stress, -E alpha dT / (1 - nu) (...) in plane strain, the linear
+      // results to 4e-5.
+      const double free_strain = (plane_strain ? 1. + nu : 1.) * alpha * dT;
+      const double sigma_0     = -e_plane * std::log1p(free_strain);
+      const double series      = sigma_0 / (1. + e_plane * H / (p * L));
+      const auto  &stress      = dda.system().blocks[b].stress;
       EXPECT_NEAR(stress[0], sigma_0, 0.01 * std::abs(sigma_0));
       EXPECT_NEAR(stress[0], series, 1e-6 * std::abs(sigma_0));
       EXPECT_NEAR(stress[1], 0., 1e-6 * std::abs(sigma_0));
@@ -298,6 +304,55 @@ TEST(DdaThermal, ConfinedBlockDevelopsThermalStress)
       EXPECT_LE(e.balance(), 2. * (1. + nu) * alpha * dT * e.scale());
       EXPECT_GT(e.strain, 0.);
     }
+}
+
+
+
+// A block confined between two fixed frictionless walls (x held, y free)
+// under a cycled eigenstrain e(t) (24 static steps per cycle, amplitude
+// 1e-3, 40 cycles): its height follows e (1 + nu) (plane stress) and returns
+// to the same value at the end of every cycle. The elastic (Poisson) part of
+// each step's strain is not a thermal ratio: with the stress adding the
+// increments d themselves, a cycle returned the stress to its start while
+// the shape, a product of the stretches 1 + d, shrank by
+// 1 - sum d^2 / 2 - sum a d (a the thermal ratios), (nu + nu^2 / 2) sum de^2
+// ~ 1e-7 of the height per cycle (measured: 2.9e-5 m from cycle 1 to 40;
+// the ratchet's crack closed by 1.6e-9 m a year so). With the stress adding
+// log(1 + d), it is a function of the shape, and the shape returns with it:
+// asserted 1e-12 of the height between cycles 1 and 40.
+TEST(DdaThermal, ConfinedCycledBlockDoesNotDrift)
+{
+  const double L = 7., H = 15.;
+  BlockSystem  s           = weightless_scene(false);
+  s.joints[0].friction_deg = 0.;
+  const int w1             = add_block(s, rectangle(-1., -1., 1., H + 2.));
+  const int b              = add_block(s, rectangle(0., 0., L, H));
+  const int w2             = add_block(s, rectangle(L, -1., 1., H + 2.));
+  fix_block(s, w1);
+  fix_block(s, w2);
+  DdaSystem    dda(s, quasi_static(1000. * young));
+  const double amplitude = 1e-3;
+  const auto   height    = [&]() {
+    const auto &p = dda.system().blocks[b].polygon.vertices;
+    return 0.5 * ((p[3] - p[0]).norm() + (p[2] - p[1]).norm());
+  };
+  double first_cycle = 0., last_cycle = 0., swing = 0.;
+  for (int k = 1; k <= 24 * 40; ++k)
+    {
+      const double e = amplitude * std::sin(2. * M_PI * k / 24.);
+      dda.set_eigenstrains({Eigen::Vector3d::Zero(),
+                            thermal_eigenstrain(s.materials[0], e),
+                            Eigen::Vector3d::Zero()});
+      dda.step();
+      if (k == 6)
+        swing = height() / H - 1.;
+      if (k == 24)
+        first_cycle = height();
+      last_cycle = height();
+    }
+  // The quarter cycle's height: (1 + nu) e less the walls' compliance.
+  EXPECT_NEAR(swing, (1. + nu) * amplitude, 1e-3 * amplitude);
+  EXPECT_LT(std::abs(last_cycle - first_cycle), 1e-12 * H);
 }
 
 
@@ -332,7 +387,12 @@ TEST(DdaThermal, TriangulatedBeamBendsByAlphaGradT)
       s.joints[0].tensile   = 1e12;
       for (const auto &t : triangles)
         add_block(s, polygon({t[0], t[1], t[2]}));
-      DdaSystem                    dda(s, quasi_static(100. * young));
+      // The direct solver: CG's residual (1e-8) does not resolve the rigid
+      // modes, whose only stiffness here is the inertia term 2 M / dt^2,
+      // 1e-11 of the contacts'.
+      Controls c    = quasi_static(100. * young);
+      c.solver.type = SolverType::direct;
+      DdaSystem                    dda(s, c);
       std::vector<Eigen::Vector3d> e;
       for (const auto &t : triangles)
         e.push_back(thermal_eigenstrain(
@@ -341,14 +401,48 @@ TEST(DdaThermal, TriangulatedBeamBendsByAlphaGradT)
             * ((t[0].y() + t[1].y() + t[2].y()) / 3. - 0.5 * h)));
       dda.set_eigenstrains(e);
       // Four static steps: the beam has bent after the second (later steps
-      // change the curvature by < 1e-6 of it). It then turns as a rigid
-      // body, by 8e-8 rad per step for n = 4, under the small net moment
-      // of the force pairs of its sliding node contacts (each pair acts at
-      // the vertex and at its projection on the edge, which the
-      // penetration separates): the fitted parabola's linear term takes
-      // that rotation, the curvature does not see it.
+      // change the curvature by < 1e-6 of it). No force but the contacts'
+      // acts on the free beam, so in a static step the inertia terms
+      // (2 / dt^2) M_b D_b balance the contacts' net force and moment. Each
+      // contact's two forces act at one point (the vertex), so the moment of
+      // sum_b M_b D_b about any point is zero up to the solve's round-off,
+      // eps x the condition 1e11 of the rigid modes: measured 2e-6 to 4e-5
+      // of the bending step's scale in that step, 1e-10 after it; asserted
+      // 1e-4 and, summed over the three later steps, 1e-6. (With block j's
+      // point at the vertex's projection on the edge, a gap away, each shear
+      // pair was a couple: the beam turned as a rigid body by 8e-8 rad per
+      // step for n = 4, a moment of 2.5e-3, 6e-4, 1.6e-4 of the bending
+      // step's scale in every later step for n = 4, 8, 16.)
+      double bending_scale = 0., later = 0.;
       for (int k = 0; k < 4; ++k)
-        dda.step();
+        {
+          std::vector<BlockMoments> start;
+          Point                     C = Point::Zero();
+          for (const auto &b : dda.system().blocks)
+            {
+              start.push_back(block_moments(b.polygon));
+              C += start.back().centroid / double(s.blocks.size());
+            }
+          dda.step();
+          double moment = 0., scale = 0.;
+          for (std::size_t b = 0; b < start.size(); ++b)
+            {
+              const Vector6 f = mass_matrix(start[b], s.materials[0].density)
+                                * dda.last_increments().segment<6>(6 * b);
+              const Point r = start[b].centroid - C;
+              moment += r.x() * f[1] - r.y() * f[0] + f[2];
+              scale += std::abs(r.x() * f[1]) + std::abs(r.y() * f[0])
+                       + std::abs(f[2]);
+            }
+          if (k == 0)
+            {
+              bending_scale = scale;
+              EXPECT_LT(std::abs(moment), 1e-4 * scale) << "n = " << n;
+            }
+          else
+            later += std::abs(moment);
+        }
+      EXPECT_LT(later, 1e-6 * bending_scale) << "n = " << n;
       std::vector<double> x, v;
       for (std::size_t b = 0; b < s.blocks.size(); ++b)
         for (std::size_t m = 0; m < 3; ++m)
@@ -459,25 +553,32 @@ namespace
 // expand backwards past the wedge: all of its expansion goes forward, and
 // its centre advances by the retreat. The slip per cycle is alpha dT L / 2
 // less the elastic shortening by the force that drags the block over its
-// base (mu W L / (2 E H) = 4 um, 2.6 %); the static path splits each
-// contraction between the two ends only to within a few per cent, hence
-// 10 %. The slip equals the wedge's descent times the taper (kinematics,
-// 2 %), it does not depend on the penalty (10 and 100 x E) or on where
-// the scene sits, nothing slips without the wedge, and no cycle creates
-// energy.
+// base (mu W L / (2 E H) = 4 um, 2.6 %), and never more than the retreat.
+// The first three cycles are the wedge's seating (the block lags the wedge
+// by up to 7e-6 m and catches up); from the fourth on the slip equals the
+// wedge's descent times the taper (kinematics: measured within 1.2e-7 m,
+// asserted 0.5 % of the retreat). The static path splits each contraction
+// between the two ends only to within a few per cent (cycles of 1.53-1.57e-4
+// m, and at 100 E one of 0.98e-4 in ten), hence 10 % for the mean. It does
+// not depend on the penalty (10 and 100 x E) or on where the scene sits,
+// nothing slips without the wedge, and no cycle creates energy.
 TEST(DdaThermal, WedgeRatchetAdvancesByTheBackFacesRetreat)
 {
   const double exact = alpha * 10. * 4. / 2.;
   for (const double penalty : {10. * young, 100. * young})
     {
-      const auto cycles = minimal_ratchet(true, penalty, 4);
+      const auto cycles = minimal_ratchet(true, penalty, 7);
       double     mean   = 0.;
-      for (std::size_t k = 1; k < cycles.size(); ++k)
+      for (std::size_t k = 0; k < cycles.size(); ++k)
         {
           const auto &c = cycles[k];
-          mean += c.slip / (cycles.size() - 1);
-          EXPECT_NEAR(c.slip, c.descent_x_taper, 0.02 * exact) << k;
           EXPECT_LE(c.ledger_gain, 1e-9 * c.scale) << k;
+          if (k < 3)
+            continue;
+          mean += c.slip / (cycles.size() - 3);
+          EXPECT_NEAR(c.slip, c.descent_x_taper, 0.005 * exact) << k;
+          EXPECT_GT(c.slip, 0.) << k;
+          EXPECT_LT(c.slip, exact * (1. + 1e-3)) << k;
         }
       EXPECT_NEAR(mean, exact, 0.1 * exact) << penalty;
     }
@@ -489,12 +590,12 @@ TEST(DdaThermal, WedgeRatchetAdvancesByTheBackFacesRetreat)
   // frictional block splits its contraction between its two ends in the
   // static path is that sensitive (measured: cycle 1 agrees to 5e-4, cycle
   // 2 differs by 8 %). So the ratchet law, not the sequence, is compared.
-  const auto utm  = minimal_ratchet(true, 10. * young, 4, Point(5e5, 4e6));
+  const auto utm  = minimal_ratchet(true, 10. * young, 7, Point(5e5, 4e6));
   double     mean = 0.;
-  for (std::size_t k = 1; k < utm.size(); ++k)
+  for (std::size_t k = 3; k < utm.size(); ++k)
     {
-      mean += utm[k].slip / (utm.size() - 1);
-      EXPECT_NEAR(utm[k].slip, utm[k].descent_x_taper, 0.02 * exact) << k;
+      mean += utm[k].slip / (utm.size() - 3);
+      EXPECT_NEAR(utm[k].slip, utm[k].descent_x_taper, 0.005 * exact) << k;
     }
   EXPECT_NEAR(mean, exact, 0.1 * exact);
 }

@@ -234,6 +234,13 @@ namespace rockdda::dda
     {
       return current_contacts;
     }
+    /// The block increments D of the last accepted step (6 per block, about
+    /// the centroids at the start of that step; empty before the first).
+    const Eigen::VectorXd &
+    last_increments() const
+    {
+      return last_solution;
+    }
     double
     time() const
     {
