@@ -5,7 +5,8 @@
 # BUILD_DIR holds rockdda (already built; this script does not build). Works
 # from any working directory (ctest -L long runs it from this folder with
 # the absolute build directory). Writes results.csv, cycles.csv, results.md
-# and ratchet-study.png next to this script; about 5 minutes on 2 cores
+# and ratchet-study.png (and stability.csv / .md, stability.py) next to this
+# script; about 7 minutes on 2 cores
 # (one simulation at a time; --jobs 2 runs two). Exit status 1 if a run
 # fails or the binary lacks the 'ratchet' analysis.
 set -euo pipefail
@@ -22,4 +23,6 @@ if ! grep -q 'Infill top depth' <<<"$params"; then
   echo "run.sh: $rockdda has no 'ratchet' analysis (rebuild it)" >&2
   exit 1
 fi
+# The no-infill control's long-run stability (10,000 cycles, ~2 min).
+/usr/bin/python3 "$here/stability.py" "$rockdda" --out "$here"
 exec /usr/bin/python3 "$here/study.py" "$rockdda" --out "$here" "$@"

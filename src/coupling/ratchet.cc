@@ -346,6 +346,8 @@ namespace rockdda::coupling
       r.infill_descent = -engine->centroid_displacement(scene.infill)[1];
     supply(n_cycles * forcing.period);
     r.fragments = static_cast<unsigned int>(fragments.size());
+    const dda::EnergyLedger energy = engine->energy();
+    r.stored_energy = energy.strain + energy.contact + energy.fixed;
     for (const auto &c : engine->contacts())
       {
         if (c.state == dda::ContactState::open)

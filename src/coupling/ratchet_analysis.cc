@@ -679,7 +679,8 @@ namespace rockdda::coupling
                {"cuts", "-"},
                {"stationary_samples", "-"},
                {"chatter", "m"},
-               {"fragments", "-"}})
+               {"fragments", "-"},
+               {"stored_energy", "J/m"}})
           table.add_column(name, unit);
         io::Table loop;
         for (const auto &[name, unit] :
@@ -737,7 +738,8 @@ namespace rockdda::coupling
                            static_cast<double>(r.cuts),
                            static_cast<double>(r.stationary_samples),
                            r.chatter,
-                           static_cast<double>(r.fragments)});
+                           static_cast<double>(r.fragments),
+                           r.stored_energy});
             if (record_loop)
               for (const auto &s : samples)
                 loop.add_row({static_cast<double>(r.cycle),

@@ -109,6 +109,11 @@ namespace rockdda::coupling
     /// Infill fragments in the crack at the end of the cycle (the first
     /// and those supplied; RatchetGeometry::supply_distance).
     unsigned int fragments = 0;
+    /// Elastic energy stored at the end of the cycle (the same phase every
+    /// cycle), J per metre of out-of-plane thickness: the blocks' strain
+    /// energy and the contact and fixed-point springs'. A cycle that only
+    /// repeats itself stores the same energy.
+    double stored_energy = 0.;
   };
 
   /// One temperature sample within a cycle (the loop of thesis Fig. 5-6).
