@@ -47,6 +47,21 @@ namespace
     return c;
   }
 
+  /// A block L x H (index 1) between two fixed frictionless walls (0 and
+  /// 2), taller than the block: x is held, y free.
+  BlockSystem
+  confined_scene(const bool plane_strain, const double L, const double H)
+  {
+    BlockSystem s            = weightless_scene(plane_strain);
+    s.joints[0].friction_deg = 0.;
+    const int w1             = add_block(s, rectangle(-1., -1., 1., H + 2.));
+    add_block(s, rectangle(0., 0., L, H));
+    const int w2 = add_block(s, rectangle(L, -1., 1., H + 2.));
+    fix_block(s, w1);
+    fix_block(s, w2);
+    return s;
+  }
+
   /// Set the same free thermal strain alpha dT on every block that is not
   /// fixed and take @p steps static steps.
   void
@@ -268,18 +283,12 @@ TEST(DdaThermal, ConfinedBlockDevelopsThermalStress)
 {
   for (const bool plane_strain : {false, true})
     {
-      const double L = 7., H = 15.;
-      BlockSystem  s = weightless_scene(plane_strain);
-      // Frictionless walls, taller than the block: y is free.
-      s.joints[0].friction_deg = 0.;
-      const int w1             = add_block(s, rectangle(-1., -1., 1., H + 2.));
-      const int b              = add_block(s, rectangle(0., 0., L, H));
-      const int w2             = add_block(s, rectangle(L, -1., 1., H + 2.));
-      fix_block(s, w1);
-      fix_block(s, w2);
-      const double e_plane = plane_strain ? young / (1. - nu * nu) : young;
-      const double p       = 1000. * e_plane;
-      DdaSystem    dda(s, quasi_static(p));
+      const double      L = 7., H = 15.;
+      const BlockSystem s       = confined_scene(plane_strain, L, H);
+      const int         b       = 1;
+      const double      e_plane = plane_strain ? young / (1. - nu * nu) : young;
+      const double      p       = 1000. * e_plane;
+      DdaSystem         dda(s, quasi_static(p));
       heat_uniformly(dda, {0, 1, 0}, 6);
       // The stress takes the eigenstrain as the logarithmic strain
       // log(1 + e) of the free stretch 1 + e (e = alpha dT, or (1 + nu)
@@ -322,17 +331,12 @@ TEST(DdaThermal, ConfinedBlockDevelopsThermalStress)
 // asserted 1e-12 of the height between cycles 1 and 40.
 TEST(DdaThermal, ConfinedCycledBlockDoesNotDrift)
 {
-  const double L = 7., H = 15.;
-  BlockSystem  s           = weightless_scene(false);
-  s.joints[0].friction_deg = 0.;
-  const int w1             = add_block(s, rectangle(-1., -1., 1., H + 2.));
-  const int b              = add_block(s, rectangle(0., 0., L, H));
-  const int w2             = add_block(s, rectangle(L, -1., 1., H + 2.));
-  fix_block(s, w1);
-  fix_block(s, w2);
-  DdaSystem    dda(s, quasi_static(1000. * young));
-  const double amplitude = 1e-3;
-  const auto   height    = [&]() {
+  const double      L = 7., H = 15.;
+  const BlockSystem s = confined_scene(false, L, H);
+  const int         b = 1;
+  DdaSystem         dda(s, quasi_static(1000. * young));
+  const double      amplitude = 1e-3;
+  const auto        height    = [&]() {
     const auto &p = dda.system().blocks[b].polygon.vertices;
     return 0.5 * ((p[3] - p[0]).norm() + (p[2] - p[1]).norm());
   };
