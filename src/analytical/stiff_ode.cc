@@ -30,6 +30,10 @@ namespace rockdda::analytical
     std::vector<double> y_buffer, ydot_buffer, jacobian_buffer, output;
     /// Called after every internal step (may be empty).
     StepObserver observer;
+    /// Event functions (may be empty) and their number.
+    RootFunctions       roots;
+    std::size_t         n_roots = 0;
+    std::vector<double> root_buffer;
     /// The solution handed to the observer.
     std::vector<double> observed;
     /// An exception thrown by a user callback, re-thrown from advance().
@@ -170,6 +174,86 @@ namespace rockdda::analytical
           self->pending = std::current_exception();
           return -1;
         }
+    }
+
+    static int
+    root_callback(realtype t, N_Vector y, realtype *gout, void *user_data)
+    {
+      Impl *self = static_cast<Impl *>(user_data);
+      try
+        {
+          const double *in = N_VGetArrayPointer(y);
+          for (std::size_t i = 0; i < self->n; ++i)
+            self->y_buffer[i] = in[i];
+          std::fill(self->root_buffer.begin(), self->root_buffer.end(), 0.);
+          self->roots(t, self->y_buffer, self->root_buffer);
+          for (std::size_t i = 0; i < self->n_roots; ++i)
+            {
+              if (!std::isfinite(self->root_buffer[i]))
+                throw OdeError("CVODE: event function " + std::to_string(i)
+                               + " returned a non-finite value at t = "
+                               + std::to_string(t) + " s");
+              gout[i] = self->root_buffer[i];
+            }
+          return 0;
+        }
+      catch (...)
+        {
+          self->pending = std::current_exception();
+          return -1;
+        }
+    }
+
+    /**
+     * Take internal steps until t_out; if @p stop_at_roots, return true at
+     * the first root (output = the solution there). Otherwise roots are
+     * stepped over.
+     */
+    bool
+    step_to(const double t_out, const bool stop_at_roots)
+    {
+      while (t_internal < t_out)
+        {
+          double    t_return = t_internal;
+          const int flag = CVode(cvode_mem, t_out, y, &t_return, CV_ONE_STEP);
+          rethrow_pending();
+          check(flag, "CVode");
+          check_finite(y, t_return);
+          if (flag == CV_ROOT_RETURN)
+            {
+              // y is the solution at the root t_return; CVODE's internal
+              // time is the end of the step, from which it continues.
+              realtype t_current = t_return;
+              check(CVodeGetCurrentTime(cvode_mem, &t_current),
+                    "CVodeGetCurrentTime");
+              t_internal = t_current;
+              if (stop_at_roots && t_return <= t_out)
+                {
+                  const double *data = N_VGetArrayPointer(y);
+                  output.assign(data, data + n);
+                  t_output = t_return;
+                  return true;
+                }
+              continue;
+            }
+          t_internal = t_return;
+          if (observer)
+            {
+              const double *data = N_VGetArrayPointer(y);
+              observed.assign(data, data + n);
+              observer(t_return, observed);
+            }
+        }
+
+      if (t_internal == t_out)
+        N_VScale(1., y, y_out);
+      else
+        check(CVodeGetDky(cvode_mem, t_out, 0, y_out), "CVodeGetDky");
+      check_finite(y_out, t_out);
+      const double *data = N_VGetArrayPointer(y_out);
+      output.assign(data, data + n);
+      t_output = t_out;
+      return false;
     }
 
     static void
@@ -324,32 +408,78 @@ namespace rockdda::analytical
       }
     if (t_out == d.t_output)
       return d.output;
-
-    while (d.t_internal < t_out)
-      {
-        double    t_return = d.t_internal;
-        const int flag = CVode(d.cvode_mem, t_out, d.y, &t_return, CV_ONE_STEP);
-        d.rethrow_pending();
-        d.check(flag, "CVode");
-        d.t_internal = t_return;
-        d.check_finite(d.y, t_return);
-        if (d.observer)
-          {
-            const double *data = N_VGetArrayPointer(d.y);
-            d.observed.assign(data, data + d.n);
-            d.observer(t_return, d.observed);
-          }
-      }
-
-    if (d.t_internal == t_out)
-      N_VScale(1., d.y, d.y_out);
-    else
-      d.check(CVodeGetDky(d.cvode_mem, t_out, 0, d.y_out), "CVodeGetDky");
-    d.check_finite(d.y_out, t_out);
-    const double *data = N_VGetArrayPointer(d.y_out);
-    d.output.assign(data, data + d.n);
-    d.t_output = t_out;
+    d.step_to(t_out, false);
     return d.output;
+  }
+
+
+
+  bool
+  StiffOdeSolver::advance_to_root(const double t_out)
+  {
+    Impl &d = *impl;
+    if (!std::isfinite(t_out) || t_out < d.t_output)
+      {
+        std::ostringstream message;
+        message << "StiffOdeSolver::advance_to_root: output time " << t_out
+                << " s is before the current time " << d.t_output << " s";
+        throw std::invalid_argument(message.str());
+      }
+    if (t_out == d.t_output)
+      return false;
+    if (d.t_internal > t_out)
+      {
+        // Already integrated past t_out (after a root return): interpolate.
+        // A root in (t_output, t_out] would have been reported before.
+        return d.step_to(t_out, true);
+      }
+    d.check(CVodeSetStopTime(d.cvode_mem, t_out), "CVodeSetStopTime");
+    return d.step_to(t_out, true);
+  }
+
+
+
+  void
+  StiffOdeSolver::set_root_functions(const unsigned int     n_roots,
+                                     RootFunctions          g,
+                                     const std::vector<int> directions)
+  {
+    Impl &d = *impl;
+    if (n_roots > 0 && !g)
+      throw std::invalid_argument(
+        "StiffOdeSolver::set_root_functions: empty event functions");
+    if (!directions.empty() && directions.size() != n_roots)
+      throw std::invalid_argument(
+        "StiffOdeSolver::set_root_functions: one direction per function");
+    d.roots   = std::move(g);
+    d.n_roots = n_roots;
+    d.root_buffer.assign(n_roots, 0.);
+    d.check(CVodeRootInit(d.cvode_mem,
+                          static_cast<int>(n_roots),
+                          n_roots > 0 ? &Impl::root_callback : nullptr),
+            "CVodeRootInit");
+    if (n_roots > 0)
+      {
+        std::vector<int> dirs = directions;
+        if (dirs.empty())
+          dirs.assign(n_roots, 0);
+        d.check(CVodeSetRootDirection(d.cvode_mem, dirs.data()),
+                "CVodeSetRootDirection");
+        d.check(CVodeSetNoInactiveRootWarn(d.cvode_mem),
+                "CVodeSetNoInactiveRootWarn");
+      }
+  }
+
+
+
+  std::vector<int>
+  StiffOdeSolver::roots_found() const
+  {
+    std::vector<int> info(impl->n_roots, 0);
+    if (!info.empty())
+      impl->check(CVodeGetRootInfo(impl->cvode_mem, info.data()),
+                  "CVodeGetRootInfo");
+    return info;
   }
 
 

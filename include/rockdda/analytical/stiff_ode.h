@@ -155,6 +155,45 @@ namespace rockdda::analytical
     long
     n_steps() const;
 
+    /// Root (event) functions: fill g (already sized n_roots) with g_i(t, y).
+    using RootFunctions = std::function<void(const double               t,
+                                             const std::vector<double> &y,
+                                             std::vector<double>       &g)>;
+
+    /**
+     * Locate the zeros of @p n_roots event functions g_i(t, y) during the
+     * integration (CVodeRootInit: CVODE checks the signs of g_i at the end
+     * of every internal step and locates a sign change by the Illinois
+     * modified secant method, Hiebert and Shampine 1980). @p directions,
+     * if not empty, has one entry per function: +1 reports only zeros where
+     * g_i increases, -1 only where it decreases, 0 both. A g_i that is
+     * exactly zero at the initial time (after construction or reinit()) is
+     * ignored until it moves away from zero. The functions and directions
+     * survive reinit(). Roots are only reported by advance_to_root();
+     * advance() steps over them.
+     */
+    void
+    set_root_functions(const unsigned int     n_roots,
+                       RootFunctions          g,
+                       const std::vector<int> directions = {});
+
+    /**
+     * Like advance(), but never steps past @p t_out (a stop time) and
+     * returns early at the first zero of an event function: then time() is
+     * the root (s), state() the solution there, and the return value is
+     * true; otherwise it returns false with time() = t_out. See
+     * roots_found() for which function vanished.
+     */
+    bool
+    advance_to_root(const double t_out);
+
+    /**
+     * After advance_to_root() returned true: one entry per event function,
+     * +1 if g_i vanished increasing, -1 decreasing, 0 if it did not vanish.
+     */
+    std::vector<int>
+    roots_found() const;
+
   private:
     struct Impl;
     std::unique_ptr<Impl> impl;
