@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -388,6 +390,11 @@ namespace rockdda::analytical
                      "sliding_block.initial_theta",
                      initial_theta,
                      "a finite number (s; <= 0 means Dc/V0)");
+    require_in_range(stick_velocity >= 0. && stick_velocity < friction.v0,
+                     "sliding_block.stick_velocity",
+                     stick_velocity,
+                     "0 <= stick_velocity < v0 (m/s; 0 = automatic, "
+                     "1e-12 v0)");
   }
 
 
@@ -450,17 +457,54 @@ namespace rockdda::analytical
           : std::clamp(2. * f.v0 * std::exp(-state_term(f, theta_init) / f.a),
                        1e-280,
                        f.v0);
+    // asinh(V/V_s) for V > 0, in logarithms (V/V_s may overflow).
+    const auto w_of = [vs](const double v) {
+      const double l = std::log(v) - std::log(vs);
+      return l > 30. ? l + std::log(2.) : std::asinh(std::exp(l));
+    };
+
+    // Stick floor and the stick/slip criterion. S = sin a + k cos a is the
+    // driving force and N = cos a - k sin a the normal force per unit
+    // weight; the capacity at the floor is c(theta) = mu_reg(V_min, theta).
+    // excess(t, theta) = |S| - c N > 0: the block cannot be held.
+    // The automatic floor is 1e-3 V0, but at least the slip rate that an
+    // acceleration of g changes in 1000 round-off units of the time: a stop
+    // (V -> 0 at a finite deceleration) must be resolvable in double
+    // precision, and round-off in the force balance, divided by V in
+    // dw/dt, must stay far below the tolerances.
+    const double v_min
+      = p.stick_velocity > 0.
+          ? p.stick_velocity
+          : std::max(1e-3 * f.v0,
+                     1e3 * g * std::numeric_limits<double>::epsilon()
+                       * std::max(duration, 1.));
+    const double w_min   = w_of(v_min);
+    const auto   driving = [&record, sin_a, cos_a](const double t) {
+      return sin_a + record.at(t) * cos_a;
+    };
+    const auto excess = [&](const double t, const double theta) {
+      return std::abs(driving(t))
+             - regularized_friction_coefficient(f, v_min, theta) * normal(t);
+    };
+
     // Initial w. A block released at V = 0 reaches force balance within
     // ~V*/g (< 1e-30 s for usual parameters), far below any resolvable time
     // step; so V = 0 is replaced by min(V_balance, 1e-6 V0), V_balance being
-    // the slip rate at which mu_reg equals the driving ratio (the creep rate
-    // in a stick phase). Computed in logarithms.
-    double initial_w = std::asinh(p.initial_velocity / vs);
-    if (p.initial_velocity == 0.)
+    // the slip rate at which mu_reg equals the driving ratio, or, if
+    // V_balance <= V_min, the block starts in a stick phase. Computed in
+    // logarithms. So does a start below the floor, 0 < |V| < V_min.
+    bool   start_stuck = false;
+    double initial_w
+      = p.initial_velocity > 0.
+          ? w_of(p.initial_velocity)
+          : (p.initial_velocity < 0. ? -w_of(-p.initial_velocity) : 0.);
+    if (std::abs(p.initial_velocity) < v_min)
       {
-        const double mu_balance = (sin_a + record.at(0.) * cos_a) / normal(0.);
+        const double mu_balance = driving(0.) / normal(0.);
         const double y          = std::abs(mu_balance) / f.a;
-        if (y > 0.)
+        if (excess(0., theta_init) <= 0.)
+          start_stuck = true;
+        else
           {
             // ln(V_balance/V_s) = ln sinh(y) + ln(V*) - ln(V_s)
             const double ln_ratio
@@ -468,14 +512,15 @@ namespace rockdda::analytical
                 + std::log(2. * f.v0) - state_term(f, theta_init) / f.a
                 - std::log(vs);
             const double ln_ratio_cap = std::log(1e-6 * f.v0 / vs);
-            const double l            = std::min(ln_ratio, ln_ratio_cap);
+            const double l = std::max(std::min(ln_ratio, ln_ratio_cap),
+                                      std::log(v_min) - std::log(vs));
             const double w
               = l > 30. ? l + std::log(2.) : std::asinh(std::exp(l));
             initial_w = mu_balance < 0. ? -w : w;
           }
       }
 
-    StiffOdeSolver solver(
+    const auto rhs =
       [&f, &record, &normal, g, sin_a, cos_a, vs](const double               t,
                                                   const std::vector<double> &y,
                                                   std::vector<double> &ydot) {
@@ -486,10 +531,8 @@ namespace rockdda::analytical
         ydot[1] = g * ((sin_a + record.at(t) * cos_a) - mu * normal(t))
                   / (vs * std::cosh(y[1]));
         ydot[2] = std::exp(-y[2]) - std::abs(v) / f.dc;
-      },
-      {0., initial_w, std::log(theta_init)},
-      0.,
-      ode_settings,
+      };
+    const auto jacobian =
       [&f, &record, &normal, g, sin_a, cos_a, vs](const double               t,
                                                   const std::vector<double> &y,
                                                   std::vector<double> &j) {
@@ -507,28 +550,189 @@ namespace rockdda::analytical
         j[1 * 3 + 2]     = -g * n * dmu_dln_theta / s;
         j[2 * 3 + 1]     = -sgn * s / f.dc;
         j[2 * 3 + 2]     = -std::exp(-y[2]);
-      });
+      };
 
     RateStateHistory history;
-    history.max_abs_velocity = std::abs(vs * std::sinh(initial_w));
-    solver.set_step_observer(
-      [&history, vs](const double, const std::vector<double> &y) {
-        history.max_abs_velocity
-          = std::max(history.max_abs_velocity, std::abs(vs * std::sinh(y[1])));
-      });
+
+    // The sliding phases: CVODE on (delta, w, ln theta), stopped by the
+    // event |w| = w_min, |V| decreasing. Created at the first slide.
+    std::unique_ptr<StiffOdeSolver> solver;
+    const auto                      start_sliding
+      = [&](const double t, const std::vector<double> &y) {
+          if (!solver)
+            {
+              solver = std::make_unique<StiffOdeSolver>(
+                rhs, y, t, ode_settings, jacobian);
+              solver->set_step_observer(
+                [&history, vs](const double, const std::vector<double> &z) {
+                  history.max_abs_velocity
+                    = std::max(history.max_abs_velocity,
+                               std::abs(vs * std::sinh(z[1])));
+                });
+            }
+          else
+            solver->reinit(t, y);
+          // Set after every (re)initialisation: CVODE then ignores an event
+          // function that is exactly zero at the start (|w| = w_min on
+          // release).
+          solver->set_root_functions(1,
+                                     [w_min](const double,
+                                             const std::vector<double> &z,
+                                             std::vector<double>       &e) {
+                                       e[0] = std::abs(z[1]) - w_min;
+                                     },
+                                     {-1});
+          history.max_abs_velocity = std::max(history.max_abs_velocity,
+                                              std::abs(vs * std::sinh(y[1])));
+        };
+
+    // The stick phase: since t_stick, at slip delta_stick, theta grows by
+    // the aging law with V = 0 from theta_stick.
+    bool       stuck       = false;
+    double     t_stick     = 0.;
+    double     theta_stick = theta_init;
+    double     delta_stick = 0.;
+    const auto theta_at
+      = [&](const double t) { return theta_stick + (t - t_stick); };
+    // Release from stick at t (the excess is > 0 there) or sliding
+    // resumed: from +-V_min in the direction of the driving force.
+    const auto release
+      = [&](const double t, const double delta, const double theta) {
+          const double direction = driving(t) >= 0. ? 1. : -1.;
+          stuck                  = false;
+          start_sliding(t, {delta, direction * w_min, std::log(theta)});
+        };
+    // The block reached V_min at t: stick, or reverse at once.
+    const auto stop
+      = [&](const double t, const double delta, const double theta) {
+          if (excess(t, theta) > 0.)
+            {
+              release(t, delta, theta);
+              return;
+            }
+          stuck       = true;
+          t_stick     = t;
+          theta_stick = theta;
+          delta_stick = delta;
+          ++history.n_stick_events;
+        };
+    // The first time in (t_begin, t_end] at which the block cannot be held,
+    // or t_end if none (the return value is then false). The driving and
+    // normal forces are linear in t between record samples and the capacity
+    // grows by B ln(1 + dt/theta) over one, so the sign of the excess is
+    // checked at the samples and the change of sign located by bisection to
+    // round-off (the release is at the first time where the excess is > 0).
+    const auto find_release
+      = [&](const double t_begin, const double t_end, double &t_release) {
+          const bool   has_record = !record.acceleration.empty();
+          const double t_record_end
+            = has_record ? (record.acceleration.size() - 1) * record.dt : 0.;
+          double t_lo = t_begin;
+          while (t_lo < t_end)
+            {
+              double t_hi = t_end;
+              if (has_record && t_lo < t_record_end)
+                {
+                  const double next
+                    = (std::floor(t_lo / record.dt + 1e-9) + 1.) * record.dt;
+                  t_hi = std::min(std::max(next, t_lo), t_end);
+                  if (t_hi <= t_lo)
+                    t_hi = std::min(t_lo + record.dt, t_end);
+                }
+              if (excess(t_hi, theta_at(t_hi)) > 0.)
+                {
+                  for (int it = 0;
+                       it < 200 && t_hi - t_lo > 4e-16 * std::abs(t_hi);
+                       ++it)
+                    {
+                      const double t_mid = 0.5 * (t_lo + t_hi);
+                      if (t_mid <= t_lo || t_mid >= t_hi)
+                        break;
+                      if (excess(t_mid, theta_at(t_mid)) > 0.)
+                        t_hi = t_mid;
+                      else
+                        t_lo = t_mid;
+                    }
+                  t_release = t_hi;
+                  return true;
+                }
+              t_lo = t_hi;
+            }
+          t_release = t_end;
+          return false;
+        };
+
+    if (start_stuck)
+      {
+        stuck       = true;
+        t_stick     = 0.;
+        theta_stick = theta_init;
+        delta_stick = 0.;
+        ++history.n_stick_events;
+      }
+    else
+      start_sliding(0., {0., initial_w, std::log(theta_init)});
+
     const auto n_intervals = static_cast<unsigned long>(
       std::ceil(duration / output_interval - 1e-9));
+    double       t                   = 0.;
+    unsigned int instantaneous_stops = 0;
     for (unsigned long i = 0; i <= n_intervals; ++i)
       {
-        const double               t = std::min(i * output_interval, duration);
-        const std::vector<double> &y = solver.advance(t);
-        history.time.push_back(t);
-        history.displacement.push_back(y[0]);
-        const double v     = vs * std::sinh(y[1]);
-        const double theta = std::exp(y[2]);
-        history.velocity.push_back(v);
-        history.theta.push_back(theta);
-        history.mu.push_back(regularized_friction_coefficient(f, v, theta));
+        const double t_out = std::min(i * output_interval, duration);
+        while (t < t_out)
+          {
+            if (stuck)
+              {
+                double t_release = t_out;
+                if (find_release(t, t_out, t_release))
+                  {
+                    release(t_release, delta_stick, theta_at(t_release));
+                    ++history.n_slip_events;
+                  }
+                t = t_release;
+              }
+            else
+              {
+                const bool   at_floor = solver->advance_to_root(t_out);
+                const double t_new    = solver->time();
+                if (at_floor)
+                  {
+                    const std::vector<double> y = solver->state();
+                    // A stop right after a reversal at the same instant
+                    // would loop: the event functions exclude it unless the
+                    // force balance is degenerate.
+                    instantaneous_stops
+                      = t_new > t ? 0 : instantaneous_stops + 1;
+                    if (instantaneous_stops > 10)
+                      throw OdeError(
+                        "sliding_block: the block keeps stopping and "
+                        "reversing at t = "
+                        + std::to_string(t_new) + " s");
+                    stop(t_new, y[0], std::exp(y[2]));
+                  }
+                t = t_new;
+              }
+          }
+
+        history.time.push_back(t_out);
+        if (stuck)
+          {
+            history.displacement.push_back(delta_stick);
+            history.velocity.push_back(0.);
+            history.theta.push_back(theta_at(t_out));
+            history.mu.push_back(driving(t_out) / normal(t_out));
+          }
+        else
+          {
+            const std::vector<double> &y     = solver->state();
+            const double               v     = vs * std::sinh(y[1]);
+            const double               theta = std::exp(y[2]);
+            history.displacement.push_back(y[0]);
+            history.velocity.push_back(v);
+            history.theta.push_back(theta);
+            history.mu.push_back(regularized_friction_coefficient(f, v, theta));
+          }
       }
     return history;
   }

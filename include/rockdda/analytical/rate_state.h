@@ -9,7 +9,10 @@
  * References: Dieterich, J.H. (1979) J. Geophys. Res. 84(B5), 2161-2168;
  * Ruina, A. (1983) J. Geophys. Res. 88(B12), 10359-10370; Rice, J.R. and
  * Ben-Zion, Y. (1996) PNAS 93, 3811-3818; Lapusta, N., Rice, J.R., Ben-Zion,
- * Y. and Zheng, G. (2000) J. Geophys. Res. 105(B10), 23765-23789.
+ * Y. and Zheng, G. (2000) J. Geophys. Res. 105(B10), 23765-23789;
+ * stick events: Karnopp, D. (1985) J. Dyn. Syst. Meas. Control 107(1),
+ * 100-103; Leine, R.I., van Campen, D.H., de Kraker, A. and van den Steen,
+ * L. (1998) Nonlinear Dynamics 16, 41-54.
  */
 #ifndef ROCKDDA_ANALYTICAL_RATE_STATE_H
 #define ROCKDDA_ANALYTICAL_RATE_STATE_H
@@ -123,11 +126,19 @@ namespace rockdda::analytical
     std::vector<double> velocity;
     /// State variable theta (s).
     std::vector<double> theta;
-    /// Friction coefficient (-).
+    /// Friction coefficient (-). In a stick phase of the sliding block: the
+    /// mobilised friction, driving over normal force (|mu| <= the capacity
+    /// mu_reg(V_min, theta)).
     std::vector<double> mu;
     /// Largest |slip rate| (m/s) over every internal step of the integrator
     /// and every sample: independent of the output interval.
     double max_abs_velocity = 0.;
+    /// Sliding block: number of stick phases entered (a slip-rate reversal
+    /// through V = 0 without a hold is not counted); 0 for the other models.
+    unsigned int n_stick_events = 0;
+    /// Sliding block: number of times the block started sliding from a
+    /// stick phase; 0 for the other models.
+    unsigned int n_slip_events = 0;
   };
 
   /**
@@ -212,9 +223,23 @@ namespace rockdda::analytical
    * (delta, w, ln theta) with V = V_s sinh(w): w behaves like V near 0 and
    * like ln V for |V| >> V_s, so the error control is relative in V over the
    * tens of decades between creep and slip, and mu_reg is nearly linear in
-   * w (easy Newton iterations). A realistic A (>~ 1e-3) is expected: as
-   * A -> 0 the law tends to a discontinuous Coulomb law and stick phases
-   * become prohibitively stiff (continuous sliding still works).
+   * w (easy Newton iterations).
+   *
+   * Stick is a state of the integrator, not a stiff limit of the ODE: the
+   * event-driven treatment of Coulomb stick in rigid-block models (Newmark
+   * 1965; the switch model of Karnopp 1985 and Leine et al. 1998): while
+   * sliding, a CVODE root function stops the integration where |V| falls to
+   * the floor V_min (stick_velocity). If the driving force is then within
+   * the capacity, |sin a + k cos a| <= mu_reg(V_min, theta) (cos a - k sin a),
+   * the block sticks: V = 0, delta constant, theta grows by the aging law
+   * with V = 0 (theta = theta_stick + t - t_stick, exact). The release is
+   * located on the record's sample grid and by bisection where the driving
+   * force first exceeds the capacity in either direction; sliding resumes
+   * from V = +-V_min with the current theta (CVodeReInit). A block that
+   * reaches V_min while the driving force exceeds the capacity the other
+   * way reverses at once (from -+V_min). Creep below V_min is neglected
+   * (slip < V_min x hold time). Any A > 0 works, including A -> 0 (the
+   * Coulomb limit).
    */
   struct SlidingBlockParameters
   {
@@ -235,6 +260,16 @@ namespace rockdda::analytical
     /// 0 = automatic: V* = 2 V0 exp(-Psi/A) at the initial state (clamped to
     /// [1e-280, V0]), for which w = mu_reg/A at fixed theta.
     double velocity_scale = 0.;
+    /// Stick floor V_min (m/s), in [0, V0); 0 = automatic:
+    /// max(1e-3 V0, 1e3 g eps T), eps the machine epsilon and T the duration
+    /// (>= 1 s). The block sticks when |V| falls to V_min and can be held,
+    /// and slides again from +-V_min (see above). V_min must be resolvable:
+    /// a stop at deceleration a is located to ~V_min/a (s), which must be
+    /// far above the round-off of the time (a eps T), and the force balance
+    /// is divided by V in the equations, so values below ~1e3 g eps T make
+    /// CVODE fail at stops as the unregularised stick did. Creep below V_min
+    /// is neglected (slip < V_min x hold time).
+    double stick_velocity = 0.;
 
     /// Throw InputError naming the key and valid range for bad values.
     void
@@ -248,8 +283,11 @@ namespace rockdda::analytical
    * record means gravity only. If settings.max_step is 0 it is set to the
    * record's dt so that no input sample is stepped over. Tolerances apply to
    * (delta (m), w (-), ln theta (-)); an atol of 1e-8 on w and ln theta and
-   * rtol = 1e-8 are typical. Throws std::domain_error if the
-   * normal force vanishes (cos a - k sin a <= 0: the block lifts off).
+   * rtol = 1e-8 are typical. In stick phases the samples have V = 0, the
+   * slip of the last stop and the mobilised friction; the numbers of stick
+   * and slip events are counted in the history. Throws std::domain_error if
+   * the normal force vanishes (cos a - k sin a <= 0: the block lifts off),
+   * OdeError if CVODE fails.
    */
   RateStateHistory
   sliding_block(const SlidingBlockParameters &p,
