@@ -122,6 +122,43 @@ TEST(StiffOde, FailuresBecomeExceptions)
 
 
 
+TEST(StiffOde, EventFunctionsStopAtTheirRoots)
+{
+  // y0' = y1, y1' = -y0 (y0 = cos t): the event g = y0 has roots at
+  // pi/2 (decreasing) and 3 pi/2 (increasing). Only increasing zeros are
+  // requested, so the first reported root is 3 pi/2; advance_to_root never
+  // steps past the output time.
+  StiffOdeSettings settings;
+  settings.relative_tolerance = 1e-10;
+  settings.absolute_tolerance = 1e-12;
+  StiffOdeSolver solver(
+    [](const double, const std::vector<double> &y, std::vector<double> &f) {
+      f[0] = y[1];
+      f[1] = -y[0];
+    },
+    {1., 0.},
+    0.,
+    settings);
+  solver.set_root_functions(1,
+                            [](const double,
+                               const std::vector<double> &y,
+                               std::vector<double>       &g) { g[0] = y[0]; },
+                            {+1});
+  EXPECT_FALSE(solver.advance_to_root(3.));
+  EXPECT_EQ(solver.time(), 3.);
+  EXPECT_NEAR(solver.state()[0], std::cos(3.), 1e-8);
+  ASSERT_TRUE(solver.advance_to_root(10.));
+  EXPECT_NEAR(solver.time(), 1.5 * M_PI, 1e-8);
+  EXPECT_EQ(solver.roots_found(), std::vector<int>{1});
+  // Restart at the root (g = 0 there is ignored) and find the next one.
+  const std::vector<double> y = solver.state();
+  solver.reinit(solver.time(), y);
+  ASSERT_TRUE(solver.advance_to_root(20.));
+  EXPECT_NEAR(solver.time(), 3.5 * M_PI, 1e-7);
+}
+
+
+
 // ------------------------------------------------------- velocity step
 
 TEST(RateState, VelocityStepJumpDecayAndSteadyState)

@@ -182,7 +182,9 @@ namespace rockdda::analytical
      * returns early at the first zero of an event function: then time() is
      * the root (s), state() the solution there, and the return value is
      * true; otherwise it returns false with time() = t_out. See
-     * roots_found() for which function vanished.
+     * roots_found() for which function vanished. Restart with reinit() at
+     * the root to look for further roots: a second root within the same
+     * internal step is not reported.
      */
     bool
     advance_to_root(const double t_out);
