@@ -912,6 +912,8 @@ namespace rockdda::coupling
                {"coupled_energy_gain", "J/m"},
                {"coupled_dynamic_steps", "-"},
                {"alone_slip", "m"},
+               {"alone_energy_gain", "J/m"},
+               {"alone_energy_scale", "J/m"},
                {"block1_slip", "m"},
                {"block1_analytical", "m"}})
           events.add_column(name, unit);
@@ -929,6 +931,8 @@ namespace rockdda::coupling
                           q.coupled.energy_gain,
                           static_cast<double>(q.coupled.dynamic_steps),
                           q.alone.slip,
+                          q.alone.energy_gain,
+                          q.alone.energy_scale,
                           q.block1,
                           q.block1_analytical});
         context.output.write("earthquake_events.csv", events.csv());
