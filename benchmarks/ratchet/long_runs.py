@@ -2,7 +2,7 @@
 """Long-run convergence of the coupled DDA ratchet of Masada Block 1.
 
 usage: long_runs.py ROCKDDA [--cycles N] [--skip K] [--batch B] [--out DIR]
-                    [--jobs J]
+                    [--jobs J] [--replicates R]
 
 The per-cycle permanent displacement of the ratchet is erratic (its
 cycle-to-cycle standard deviation is about the rate itself): which contacts
@@ -14,18 +14,25 @@ hundred cycles per setting. This script runs each setting for N cycles
 (default 400), drops the first K (default 50, the infill's first descent),
 and gives the rate with its standard error from batch means (batches of B
 cycles, default 25, longer than the correlation of successive cycles).
+With --replicates R each setting runs R times with the contact penalty
+multiplied by 1 + 1e-6 r: the slip sequence changes completely (it changes
+at 1e-9 of any input), the process does not, so the replicates are
+independent draws and their batches are pooled (the standard error falls
+as 1 / sqrt(R)).
 
-Settings: the default (4 slices, 24 steps per cycle, automatic penalty
-4e11 N/m and pseudo time step), Slices 2 and 8, Steps per cycle 12 and 48,
-Contact penalty 1e12 and 4e12 N/m, Pseudo time step 200 s (10x the
-automatic one). Writes long-runs.csv and long-runs.md into DIR (default:
-this script's folder). Exit status 1 if a run failed.
+Settings: the default (parameter-files/masada/ratchet-block1.prm: 4
+slices, 24 steps per cycle, contact penalty 1e13 N/m, automatic pseudo time
+step), Slices 2 and 8, Steps per cycle 12 and 48, Contact penalty 4e12 and
+2e13 N/m, Pseudo time step 20 s (5x the automatic one). Writes
+long-runs.csv and long-runs.md into DIR (default: this script's folder).
+Exit status 1 if a run failed.
 """
 import argparse
 import concurrent.futures
 import csv
 import math
 import os
+import re
 import shutil
 import statistics
 import sys
@@ -65,41 +72,68 @@ def main():
     ap.add_argument("--batch", type=int, default=25)
     ap.add_argument("--out", default=here)
     ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--replicates", type=int, default=1,
+                    help="runs per setting, the contact penalty multiplied "
+                    "by 1 + 1e-6 r (r = 0, 1, ...): independent draws of the "
+                    "same process (the slip sequence changes at 1e-9), "
+                    "pooled")
     args = ap.parse_args()
     base = open(study.BASE_PRM).read()
+    base_penalty = float(re.search(r"set\s+Contact penalty\s*=\s*(\S+)",
+                                   base).group(1))
     folder, rockdda = study.scratch(args.rockdda, "ratchet-long-")
     jobs = {}
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         for i, (label, over) in enumerate(SETTINGS):
-            over = dict(over)
-            over[(R, "Cycles")] = args.cycles
-            over[(R, "Checkpoint cycles")] = 0
-            text = study.derive_prm(base, over)
-            jobs[label] = pool.submit(study.run_one, rockdda, folder,
-                                      f"long{i}", text, 3600)
+            for rep in range(args.replicates):
+                o = dict(over)
+                o[(R, "Cycles")] = args.cycles
+                o[(R, "Checkpoint cycles")] = 0
+                o[(R, "Contact penalty")] = (
+                    o.get((R, "Contact penalty"), base_penalty)
+                    * (1. + 1e-6 * rep))
+                text = study.derive_prm(base, o)
+                jobs[(label, rep)] = pool.submit(
+                    study.run_one, rockdda, folder, f"long{i}-{rep}", text,
+                    3600)
     rows = []
     failed = False
     for label, _ in SETTINGS:
-        run = jobs[label].result()
-        if not run["ok"]:
+        runs = [jobs[(label, rep)].result() for rep in range(args.replicates)]
+        bad = [r for r in runs if not r["ok"]]
+        if bad:
             failed = True
-            rows.append({"setting": label, "status": run["error"]})
+            rows.append({"setting": label, "status": bad[0]["error"]})
             continue
-        perm = [1e3 * r["permanent_m"] for r in run["stats"]][args.skip:]
-        rate, se = batch_means(perm, args.batch)
-        s = run["summary"]
+        perm, means = [], []
+        for run in runs:
+            p = [1e3 * r["permanent_m"] for r in run["stats"]][args.skip:]
+            perm += p
+            n = len(p) // args.batch
+            means += [statistics.fmean(p[k * args.batch:(k + 1) * args.batch])
+                      for k in range(n)]
+        rate = statistics.fmean(perm)
+        se = (statistics.stdev(means) / math.sqrt(len(means))
+              if len(means) > 1 else float("nan"))
+        stats = [run["stats"] for run in runs]
+        s = [run["summary"] for run in runs]
         rows.append({
-            "setting": label, "status": "ok", "cycles": len(run["stats"]),
+            "setting": label, "status": "ok", "cycles": len(stats[0]),
+            "replicates": len(runs),
             "rate_mm_per_yr": rate, "standard_error": se,
             "std_per_cycle": statistics.stdev(perm),
-            "cumulative_mm": 1e3 * run["stats"][-1]["displacement_m"],
-            "infill_descent_mm": 1e3 * run["stats"][-1]["infill_descent_m"],
-            "dda_seconds": float(s["dda_seconds"]),
-            "heat_seconds": float(s["heat_seconds"]),
-            "pseudo_time_step": float(s.get("pseudo_time_step", "nan")),
+            "cumulative_mm": statistics.fmean(
+                1e3 * st[-1]["displacement_m"] for st in stats),
+            "infill_descent_mm": statistics.fmean(
+                1e3 * st[-1]["infill_descent_m"] for st in stats),
+            "dda_seconds": statistics.fmean(float(x["dda_seconds"])
+                                            for x in s),
+            "heat_seconds": float(s[0]["heat_seconds"]),
+            "pseudo_time_step": float(s[0].get("pseudo_time_step", "nan")),
         })
     shutil.rmtree(folder, ignore_errors=True)
-    keys = ["setting", "status", "cycles", "rate_mm_per_yr", "standard_error",
+    keys = ["setting", "status", "cycles", "replicates", "rate_mm_per_yr",
+            "standard_error",
             "std_per_cycle", "cumulative_mm", "infill_descent_mm",
             "dda_seconds", "heat_seconds", "pseudo_time_step"]
     with open(os.path.join(args.out, "long-runs.csv"), "w",
@@ -113,9 +147,12 @@ def main():
     lines = [
         "# Long runs of the DDA ratchet: rates with standard errors",
         "",
-        f"{args.cycles} cycles per setting; rate = mean permanent "
+        f"{args.cycles} cycles per setting, {args.replicates} replicate(s) "
+        "(contact penalty x (1 + 1e-6 r)); rate = mean permanent "
         f"displacement per cycle over cycles {args.skip + 1}-{args.cycles} "
-        f"(mm/yr); standard error from batch means of {args.batch} cycles. "
+        f"(mm/yr), pooled over the replicates; standard error from the batch "
+        f"means of {args.batch} cycles of every replicate; cumulative, "
+        "descent and DDA seconds are replicate means. "
         "Difference from the default in units of the two rates' combined "
         "standard error.",
         "",
