@@ -43,6 +43,19 @@ namespace rockdda::analytical
     /// Number of callback evaluations that produced non-finite values.
     long n_nonfinite = 0;
 
+    /// Throw std::invalid_argument naming @p method if @p t_out is not
+    /// finite or lies before the last output time.
+    void
+    check_output_time(const char *method, const double t_out) const
+    {
+      if (std::isfinite(t_out) && t_out >= t_output)
+        return;
+      std::ostringstream message;
+      message << "StiffOdeSolver::" << method << ": output time " << t_out
+              << " s is before the current time " << t_output << " s";
+      throw std::invalid_argument(message.str());
+    }
+
     ~Impl()
     {
       if (cvode_mem != nullptr)
@@ -399,13 +412,7 @@ namespace rockdda::analytical
   StiffOdeSolver::advance(const double t_out)
   {
     Impl &d = *impl;
-    if (!std::isfinite(t_out) || t_out < d.t_output)
-      {
-        std::ostringstream message;
-        message << "StiffOdeSolver::advance: output time " << t_out
-                << " s is before the current time " << d.t_output << " s";
-        throw std::invalid_argument(message.str());
-      }
+    d.check_output_time("advance", t_out);
     if (t_out == d.t_output)
       return d.output;
     d.step_to(t_out, false);
@@ -418,13 +425,7 @@ namespace rockdda::analytical
   StiffOdeSolver::advance_to_root(const double t_out)
   {
     Impl &d = *impl;
-    if (!std::isfinite(t_out) || t_out < d.t_output)
-      {
-        std::ostringstream message;
-        message << "StiffOdeSolver::advance_to_root: output time " << t_out
-                << " s is before the current time " << d.t_output << " s";
-        throw std::invalid_argument(message.str());
-      }
+    d.check_output_time("advance_to_root", t_out);
     if (t_out == d.t_output)
       return false;
     if (d.t_internal > t_out)
