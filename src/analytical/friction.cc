@@ -21,7 +21,6 @@ namespace rockdda::analytical
   {
     if (type == Type::coulomb)
       return mu0;
-    const double speed = std::max(std::abs(v), v_cutoff);
-    return std::max(0., mu0 + a_minus_b * std::log(speed / v0));
+    return steady_state_friction(mu0, a_minus_b, v0, v_cutoff, v);
   }
 } // namespace rockdda::analytical

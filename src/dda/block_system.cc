@@ -155,6 +155,9 @@ namespace rockdda::dda
           + " deg, cohesion " + io::format_number(j.cohesion)
           + " Pa, tensile strength " + io::format_number(j.tensile)
           + " Pa; valid: 0 <= phi < 90 deg, c >= 0, T >= 0");
+    for (const auto &j : system.joints)
+      if (const std::string e = friction_law_error(j); !e.empty())
+        throw InputError("joint material: " + e);
 
     // Overlap at t = 0: a vertex (or the centroid) of one block deeper than
     // the tolerance inside another.

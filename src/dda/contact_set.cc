@@ -68,6 +68,7 @@ namespace rockdda::dda
             r.slide_direction = o.slide_direction;
             r.broken          = o.broken;
             r.held            = o.held;
+            r.slip_rate       = o.slip_rate;
             if (o.state == ContactState::locked)
               r.xi_ref = o.xi_ref;
           }
@@ -86,6 +87,7 @@ namespace rockdda::dda
                 r.normal_force    = o.normal_force;
                 r.slide_direction = o.slide_direction;
                 r.broken          = o.broken;
+                r.slip_rate       = o.slip_rate;
               }
             else
               {

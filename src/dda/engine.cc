@@ -294,6 +294,10 @@ namespace rockdda::dda
                             : scene.joints[a].friction_deg <= scene.joints[b].friction_deg
                               ? a
                               : b;
+        // The slip rate of the friction law: the previous step's, none in
+        // a static step (constant friction), 0 after static steps.
+        c.slip_rate
+          = ctrl.dynamic == 0. ? no_slip_rate : std::max(c.slip_rate, 0.);
       }
 
     StepReport  report;
@@ -720,10 +724,17 @@ namespace rockdda::dda
     const double energy_before   = accepted_balance;
     const double friction_before = friction_work, load_before = load_work;
     // Accepted: energy flows of the step, and joints broken by the
-    // accepted states.
+    // accepted states; each contact's slip rate, |s - s0| / h (its shear
+    // displacement increment over the step), for the next step's friction
+    // (friction_coefficient()).
+    std::vector<double> slip_rates(contacts.size());
     for (std::size_t c = 0; c < contacts.size(); ++c)
       {
         Contact &ct = contacts[c];
+        slip_rates[c]
+          = std::abs(assembler.shear_displacement(static_cast<int>(c), x)
+                     - assembler.kinematics()[c].s0)
+            / h;
         // Static steps (dynamic control 0) are an iteration towards
         // equilibrium: a contact held in one stays held in the next (its
         // hold ends when it changes state beyond it). Dynamic steps carry
@@ -812,6 +823,8 @@ namespace rockdda::dda
         return false;
       }
     accepted_balance = balance;
+    for (std::size_t c = 0; c < current_contacts.size(); ++c)
+      current_contacts[c].slip_rate = slip_rates[c];
     contact_set.store(current_contacts);
     last_solution = x;
     ++n_steps;

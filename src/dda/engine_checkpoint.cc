@@ -17,7 +17,7 @@ namespace rockdda::dda
   namespace
   {
     constexpr char          magic[]        = "rockdda DDA checkpoint";
-    constexpr std::uint32_t format_version = 6;
+    constexpr std::uint32_t format_version = 7;
     using io::BinaryReader;
     using io::BinaryWriter;
 
@@ -133,6 +133,7 @@ namespace rockdda::dda
         // Flags: bit 0 broken, bit 1 held (older checkpoints: 0).
         w.put<std::uint8_t>((c.broken ? 1 : 0) | (c.held ? 2 : 0));
         w.put<std::int32_t>(c.joint);
+        w.put(c.slip_rate);
       }
     w.put(t);
     w.put(dt);
@@ -236,8 +237,8 @@ namespace rockdda::dda
         m.initial = get_point(r);
       }
     const auto n_contacts = r.get<std::uint64_t>();
-    // Each contact takes 85 bytes: a larger count is a damaged file.
-    if (n_contacts > bytes.size() / 85)
+    // Each contact takes 93 bytes: a larger count is a damaged file.
+    if (n_contacts > bytes.size() / 93)
       throw InputError(source + ": the checkpoint is damaged ("
                        + std::to_string(n_contacts) + " contacts in "
                        + std::to_string(bytes.size()) + " bytes)");
@@ -270,6 +271,7 @@ namespace rockdda::dda
         c.broken           = (flags & 1) != 0;
         c.held             = (flags & 2) != 0;
         c.joint            = r.get<std::int32_t>();
+        c.slip_rate        = r.get<double>();
         const int n_blocks = static_cast<int>(s.blocks.size());
         if (g.block_i < 0 || g.block_i >= n_blocks || g.block_j < 0
             || g.block_j >= n_blocks || c.joint < 0

@@ -349,7 +349,7 @@ namespace rockdda::dda
         // the slip (a reversal beyond f / k_s locks the contact).
         const double carried
           = shear_strength(ct, assembled_normal[k], kin.length, joint);
-        const double mu = std::tan(joint.friction_deg * M_PI / 180.);
+        const double mu = friction_coefficient(joint, ct.slip_rate);
         judge(c,
               "friction off its strength",
               std::abs(carried - strength),

@@ -195,6 +195,8 @@ namespace rockdda::dda3d
           throw InputError(name
                            + ": cohesion, tensile strength and "
                              "stiffnesses must be >= 0");
+        if (const std::string e = dda::friction_law_error(j); !e.empty())
+          throw InputError(name + ": " + e);
       }
     for (auto &b : system.blocks)
       {

@@ -414,6 +414,7 @@ namespace rockdda::dda3d
             c.broken        = old->broken;
             c.reference     = old->reference;
             c.has_reference = same_feature && old->has_reference;
+            c.slip_rate     = old->slip_rate;
           }
         else
           {
@@ -431,6 +432,10 @@ namespace rockdda::dda3d
           }
         if (c.state != ContactState::locked)
           c.has_reference = false;
+        // The slip rate of the friction law: the previous step's, none in
+        // a static step (constant friction), 0 after static steps.
+        c.slip_rate
+          = ctrl.dynamic == 0. ? dda::no_slip_rate : std::max(c.slip_rate, 0.);
       }
     // Contact areas: the overlap of the two faces facing each other,
     // shared among the contacts between them (a face group).
@@ -819,6 +824,10 @@ namespace rockdda::dda3d
           }
         else
           c.has_reference = false;
+        // The next step's slip rate (dda::friction_coefficient()): the
+        // shear displacement increment of this step over its length.
+        c.slip_rate
+          = (K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j]).norm() / h;
       }
     for (std::size_t b = 0; b < n; ++b)
       {

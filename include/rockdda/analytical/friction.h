@@ -5,8 +5,33 @@
 #ifndef ROCKDDA_ANALYTICAL_FRICTION_H
 #define ROCKDDA_ANALYTICAL_FRICTION_H
 
+#include <algorithm>
+#include <cmath>
+
 namespace rockdda::analytical
 {
+  /**
+   * The steady-state velocity-dependent friction coefficient (Dieterich
+   * 1979; Ruina 1983; thesis Eq. 2.3 and Sec. 4.7.3, 4.8):
+   *   mu(V) = mu0 + (A - B) ln(max(|V|, V_min) / V0),  clamped to >= 0,
+   * with @p mu0 the coefficient at the reference slip rate @p v0 (m/s, > 0),
+   * @p a_minus_b = A - B (-; < 0 velocity weakening), @p v_min the velocity
+   * floor (m/s, > 0; the logarithm diverges at rest) and @p v the slip rate
+   * (m/s, either sign). The one law of the analytical sliding solutions
+   * (FrictionLaw) and of both DDA engines' contacts
+   * (dda::friction_coefficient()).
+   */
+  inline double
+  steady_state_friction(const double mu0,
+                        const double a_minus_b,
+                        const double v0,
+                        const double v_min,
+                        const double v)
+  {
+    const double speed = std::max(std::abs(v), v_min);
+    return std::max(0., mu0 + a_minus_b * std::log(speed / v0));
+  }
+
   /**
    * Friction coefficient of an interface as a function of slip rate.
    *

@@ -5,16 +5,20 @@
  * joint's stiffness and the Mohr-Coulomb strength. Dimension-generic: the
  * "length" of a 2D contact (m, per m thickness) is the area of a 3D one
  * (m^2), and the functions taking a contact are templates on the contact
- * type (anything with `state` and `broken`).
+ * type (anything with `state`, `broken` and `slip_rate`).
  */
 #ifndef ROCKDDA_DDA_CONTACT_MECHANICS_H
 #define ROCKDDA_DDA_CONTACT_MECHANICS_H
+
+#include <rockdda/analytical/friction.h>
 
 #include <Eigen/Core>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
+#include <string>
 
 namespace rockdda::dda
 {
@@ -36,7 +40,84 @@ namespace rockdda::dda
     /// 0: a rigid joint, only the penalty acts.
     double normal_stiffness = 0.;
     double shear_stiffness  = 0.;
+    /// Steady-state velocity dependence of the friction coefficient, A - B
+    /// (-), in [-1, 1]: mu(V) = tan(phi) + (A - B) ln(max(V, V_min) / V0)
+    /// (friction_coefficient(); doc/theory/dda.md "Velocity-dependent
+    /// friction"). < 0: velocity weakening. 0 (default): constant friction
+    /// tan(phi), exactly as without the law.
+    double a_minus_b = 0.;
+    /// Reference slip rate V0 (m/s), > 0: the slip rate at which the
+    /// friction coefficient is tan(phi).
+    double reference_velocity = 1e-6;
+    /// Velocity floor V_min (m/s), 0 < V_min <= V0: slower contacts (and
+    /// contacts at rest) have the friction coefficient mu(V_min).
+    double min_velocity = 1e-6;
   };
+
+  /// The slip rate of a contact that has none: every contact of a static
+  /// step (dynamic control 0), whose friction is then tan(phi).
+  inline constexpr double no_slip_rate = -1.;
+
+  /**
+   * Friction coefficient (-) of a contact on @p joint slipping at
+   * @p slip_rate (m/s, >= 0; no_slip_rate in a static step) whose constant
+   * coefficient tan(phi) is @p mu0: the steady-state law
+   * analytical::steady_state_friction() with the joint's A - B, V0 and
+   * V_min. Exactly @p mu0 when A - B = 0, without a slip rate, or for a
+   * frictionless joint (phi = 0, which stays frictionless(): no
+   * velocity strengthening from nothing).
+   */
+  inline double
+  friction_coefficient(const JointMaterial &joint,
+                       const double         mu0,
+                       const double         slip_rate)
+  {
+    if (joint.a_minus_b == 0. || slip_rate < 0. || mu0 == 0.)
+      return mu0;
+    return analytical::steady_state_friction(mu0,
+                                             joint.a_minus_b,
+                                             joint.reference_velocity,
+                                             joint.min_velocity,
+                                             slip_rate);
+  }
+
+  /**
+   * What is wrong with the velocity-dependent friction of @p joint (empty
+   * if nothing): A - B outside [-1, 1], V0 not > 0, V_min not in (0, V0].
+   * Both engines' scene checks throw InputError with it.
+   */
+  inline std::string
+  friction_law_error(const JointMaterial &joint)
+  {
+    const auto text = [](const double v) {
+      std::ostringstream o;
+      o.precision(6);
+      o << v;
+      return o.str();
+    };
+    if (!(joint.a_minus_b >= -1. && joint.a_minus_b <= 1.))
+      return "friction velocity dependence A - B = " + text(joint.a_minus_b)
+             + "; valid: -1 <= A - B <= 1";
+    if (!(joint.reference_velocity > 0.)
+        || !std::isfinite(joint.reference_velocity))
+      return "reference slip rate V0 = " + text(joint.reference_velocity)
+             + " m/s; valid: > 0";
+    if (!(joint.min_velocity > 0.
+          && joint.min_velocity <= joint.reference_velocity))
+      return "minimum slip rate V_min = " + text(joint.min_velocity)
+             + " m/s; valid: 0 < V_min <= V0 = "
+             + text(joint.reference_velocity) + " m/s";
+    return "";
+  }
+
+  /// friction_coefficient() with tan(phi) of @p joint.
+  inline double
+  friction_coefficient(const JointMaterial &joint, const double slip_rate)
+  {
+    return friction_coefficient(joint,
+                                std::tan(joint.friction_deg * M_PI / 180.),
+                                slip_rate);
+  }
 
   /// State of a contact.
   enum class ContactState : int
@@ -106,10 +187,12 @@ namespace rockdda::dda
 
   /**
    * Shear strength (N) of a closed contact with normal force @p n
-   * (compression positive, N): N tan(phi) + c l while the joint is intact
+   * (compression positive, N): N mu + c l while the joint is intact
    * and locked, where a tensile N lowers it (Mohr-Coulomb, floored at 0);
-   * max(N, 0) tan(phi) once it is broken or sliding (residual). @p length
+   * max(N, 0) mu once it is broken or sliding (residual). @p length
    * is the contact's length (2D, m per m thickness) or area (3D, m^2).
+   * mu is friction_coefficient() at the contact's slip_rate: tan(phi)
+   * unless the joint's friction depends on the velocity.
    */
   template <typename ContactType>
   double
@@ -125,7 +208,7 @@ namespace rockdda::dda
         last_deg = joint.friction_deg;
         last_mu  = std::tan(joint.friction_deg * M_PI / 180.);
       }
-    const double mu = last_mu;
+    const double mu = friction_coefficient(joint, last_mu, contact.slip_rate);
     // An intact joint: Mohr-Coulomb with the cohesion, where tension
     // lowers the strength; once broken or sliding: residual friction.
     if (!contact.broken && contact.state != ContactState::sliding)

@@ -45,6 +45,12 @@ namespace rockdda::dda
     bool held = false;
     /// Joint material index.
     int joint = 0;
+    /// Slip rate (m/s) whose friction coefficient the step uses
+    /// (friction_coefficient()): the magnitude of the shear displacement
+    /// increment of the previous accepted step over its length, 0 for a
+    /// new contact (the floor V_min), no_slip_rate in a static step
+    /// (dynamic control 0: constant friction).
+    double slip_rate = 0.;
   };
 
   /**

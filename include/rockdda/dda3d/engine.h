@@ -60,6 +60,12 @@ namespace rockdda::dda3d
     /// stiffness act: the overlap of the two touching faces shared among
     /// the contacts between them; 0 for a corner or edge on a face.
     double area = 0.;
+    /// Slip rate (m/s) whose friction coefficient the step uses
+    /// (dda::friction_coefficient()): the magnitude of the shear
+    /// displacement increment of the previous accepted step over its
+    /// length, 0 for a new contact (the floor V_min), dda::no_slip_rate in
+    /// a static step (dynamic control 0: constant friction).
+    double slip_rate = 0.;
   };
 
   /**
