@@ -141,6 +141,40 @@ namespace rockdda::dda
                 Double(0.),
                 "s",
                 "Spacing of rows in statistics.csv, >= 0; 0 = every step.");
+    io::declare(
+      prm,
+      "Friction velocity dependence",
+      "0",
+      Double(-1., 1.),
+      "-",
+      "Steady-state velocity dependence A - B of the friction coefficient "
+      "of every joint of the block file, in [-1, 1] (Dieterich 1979, Ruina "
+      "1983; thesis Sec. 4.7.3, 4.8): a closed contact slipping at the rate "
+      "V (its shear displacement increment in the previous step over the "
+      "step's length) has the friction coefficient mu(V) = tan(phi) + (A - "
+      "B) ln(max(V, V_min) / V0), at least 0, with phi the joint's friction "
+      "angle. < 0: velocity weakening (the thesis's fit to all its data, "
+      "Fig. 4-10: -0.0174); 0 = constant friction tan(phi). Static steps "
+      "(Dynamic control 0, Settling steps) have no velocity and keep "
+      "tan(phi).");
+    io::declare(prm,
+                "Reference slip rate",
+                "1e-6",
+                io::DoubleInterval::positive(),
+                "m/s",
+                "Reference slip rate V0 of the friction law (Friction "
+                "velocity dependence), > 0: the slip rate at which the "
+                "friction coefficient is tan(phi).");
+    io::declare(prm,
+                "Minimum slip rate",
+                "1e-6",
+                io::DoubleInterval::positive(),
+                "m/s",
+                "Velocity floor V_min of the friction law (Friction velocity "
+                "dependence), > 0 and at most the Reference slip rate V0: "
+                "contacts slipping slower, or at rest, have the friction "
+                "coefficient mu(V_min); V_min = V0 keeps the static "
+                "friction tan(phi).");
   }
 
 
@@ -163,6 +197,9 @@ namespace rockdda::dda
     gravity                = prm.get_double("Gravity");
     output_interval        = prm.get_double("Output interval");
     statistics_interval    = prm.get_double("Statistics interval");
+    a_minus_b              = prm.get_double("Friction velocity dependence");
+    reference_velocity     = prm.get_double("Reference slip rate");
+    min_velocity           = prm.get_double("Minimum slip rate");
 
     io::require(end_time > 0., prm_file, s + "End time", end_time, "> 0 s");
     io::require(time_step > 0., prm_file, s + "Time step", time_step, "> 0 s");
@@ -190,10 +227,41 @@ namespace rockdda::dda
                 s + "Shear penalty ratio",
                 shear_ratio,
                 "> 0");
+    io::require(a_minus_b >= -1. && a_minus_b <= 1.,
+                prm_file,
+                s + "Friction velocity dependence",
+                a_minus_b,
+                "-1 <= A - B <= 1");
+    io::require(reference_velocity > 0.,
+                prm_file,
+                s + "Reference slip rate",
+                reference_velocity,
+                "> 0 m/s");
+    io::require(min_velocity > 0. && min_velocity <= reference_velocity,
+                prm_file,
+                s + "Minimum slip rate",
+                min_velocity,
+                "0 < V_min <= V0 (Reference slip rate = "
+                  + io::format_number(reference_velocity) + " m/s)");
     if (file.empty())
       throw InputError(prm_file + ": key '" + s
                        + "Block file' is empty; give the scene's block file");
     block_file = io::resolve_path(file, prm_file, s + "Block file");
+  }
+
+
+
+  template <int dim>
+  void
+  AnalysisParameters<dim>::apply_friction_law(
+    std::vector<JointMaterial> &joints) const
+  {
+    for (auto &j : joints)
+      {
+        j.a_minus_b          = a_minus_b;
+        j.reference_velocity = reference_velocity;
+        j.min_velocity       = min_velocity;
+      }
   }
 
 

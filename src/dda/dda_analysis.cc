@@ -342,6 +342,7 @@ namespace rockdda::dda
         const std::string &path  = shared.block_file;
         BlockSystem        scene = read_block_file(path);
         scene.gravity            = geometry::Point(0., -gravity);
+        shared.apply_friction_law(scene.joints);
         if (c.law.normal_penalty == 0.)
           c.law.normal_penalty = automatic_penalty(scene, gravity);
         if (mode != "none")

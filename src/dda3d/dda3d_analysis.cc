@@ -158,7 +158,8 @@ namespace rockdda::dda3d
         const std::string &path  = shared.block_file;
         BlockSystem        scene = read_block_file(path);
         scene.gravity            = Point(0., 0., -gravity);
-        seismic                  = parse_seismic_input(
+        shared.apply_friction_law(scene.joints);
+        seismic = parse_seismic_input(
           prm, prm_file, end_time, c.dt, gravity > 0. ? gravity : 9.80665);
         if (seismic.mode == SeismicInput3d::Mode::loading)
           c.ground_acceleration = seismic.acceleration;

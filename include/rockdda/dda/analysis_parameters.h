@@ -6,9 +6,12 @@
 #ifndef ROCKDDA_DDA_ANALYSIS_PARAMETERS_H
 #define ROCKDDA_DDA_ANALYSIS_PARAMETERS_H
 
+#include <rockdda/dda/contact_mechanics.h>
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
+#include <vector>
 
 namespace rockdda::dda
 {
@@ -54,6 +57,16 @@ namespace rockdda::dda
     double output_interval = 0.1;
     /// Spacing of rows of statistics.csv (s), >= 0; 0: every step.
     double statistics_interval = 0.;
+    /// Velocity-dependent friction of every joint (JointMaterial::a_minus_b
+    /// (-), reference_velocity and min_velocity (m/s)): A - B in [-1, 1],
+    /// V0 > 0, 0 < V_min <= V0.
+    double a_minus_b = 0., reference_velocity = 1e-6, min_velocity = 1e-6;
+
+    /// Give every joint of @p joints the velocity-dependent friction law
+    /// of these parameters (the block file's friction angle is its mu0 =
+    /// tan(phi) at V0).
+    void
+    apply_friction_law(std::vector<JointMaterial> &joints) const;
 
     /// The analysis's section: "DDA" (2D) or "DDA 3d" (3D).
     static std::string
