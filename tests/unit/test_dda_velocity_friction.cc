@@ -9,10 +9,13 @@
  * The 3D shaking-table wedge is in test_dda3d_analysis.cc.
  */
 #include <rockdda/analytical/friction.h>
+#include <rockdda/dda/analysis_parameters.h>
 #include <rockdda/dda/block_system.h>
 #include <rockdda/dda/contact_mechanics.h>
 #include <rockdda/dda/engine.h>
 #include <rockdda/io/error.h>
+
+#include <deal.II/base/parameter_handler.h>
 
 #include <gtest/gtest.h>
 
@@ -284,4 +287,48 @@ TEST(DdaVelocityFriction, StaticStepsKeepConstantFriction)
       EXPECT_GT(along_slope(dda, 1, alpha), 0.);
     }
   EXPECT_EQ(max_vertex_difference(ends[0], ends[1]), 0.);
+}
+
+
+
+TEST(DdaVelocityFriction, ParameterKeysNameTheKeyAndRange)
+{
+  // The keys of the "DDA" and "DDA 3d" sections: a V_min above V0 and an
+  // A - B outside [-1, 1] are rejected naming the key and the range.
+  const auto error = [](const std::string &keys) {
+    dealii::ParameterHandler prm;
+    prm.enter_subsection(AnalysisParameters<2>::section());
+    AnalysisParameters<2>::declare_parameters(prm);
+    prm.leave_subsection();
+    try
+      {
+        prm.parse_input_from_string("subsection DDA\n  set Block file = "
+                                    "x.blocks\n"
+                                    + keys + "end\n");
+        prm.enter_subsection(AnalysisParameters<2>::section());
+        AnalysisParameters<2> p;
+        p.parse_parameters(prm, "test.prm");
+        std::vector<JointMaterial> joints(2);
+        p.apply_friction_law(joints);
+        return joints[1].a_minus_b == -0.0174 && joints[1].min_velocity == 1e-6
+                   && joints[1].reference_velocity == 1e-5
+                 ? std::string()
+                 : std::string("not applied");
+      }
+    catch (const std::exception &e)
+      {
+        return std::string(e.what());
+      }
+  };
+  EXPECT_EQ(error("  set Friction velocity dependence = -0.0174\n"
+                  "  set Reference slip rate = 1e-5\n"),
+            "");
+  const std::string bad_floor = error("  set Reference slip rate = 1e-6\n"
+                                      "  set Minimum slip rate = 1e-3\n");
+  EXPECT_NE(bad_floor.find("Minimum slip rate"), std::string::npos)
+    << bad_floor;
+  EXPECT_NE(bad_floor.find("0 < V_min <= V0"), std::string::npos) << bad_floor;
+  const std::string bad_ab = error("  set Friction velocity dependence = -2\n");
+  EXPECT_NE(bad_ab.find("Friction velocity dependence"), std::string::npos)
+    << bad_ab;
 }
