@@ -231,6 +231,103 @@ namespace
       << extra << "end\n";
     return p.str();
   }
+
+  /// The shaking table of thesis Sec. 4.6-4.7.2: the wedge on joints
+  /// 51.4/065.8 and 51.4/295.2 in its trough (clamped; margin @p margin m)
+  /// under a slope face 80/000.5, Table 4-1's material, joint friction
+  /// @p phi (deg); and the input: a 2 Hz sinusoid of 0.21 g along 000.5
+  /// with a linear ramp of @p ramp s, @p record s long, sampled at 5 ms and
+  /// low-passed at 2.5 Hz (order 4, zero phase), read as the dda3d analysis
+  /// reads it (loading mode) for a run of @p end_time s at @p dt s.
+  struct ShakingTable
+  {
+    BlockSystem           scene;
+    std::string           ground;
+    dda3d::SeismicInput3d input;
+  };
+
+  /// Parameter text of a dda3d run of the shaking table (20 settling
+  /// steps, statistics every 0.01 s, the ground motion along 000.5 in
+  /// @p mode) with @p extra keys.
+  std::string
+  shaking_table_prm(const double       end_time,
+                    const double       dt,
+                    const double       penalty,
+                    const std::string &mode,
+                    const std::string &extra = "")
+  {
+    return dda3d_prm(end_time,
+                     dt,
+                     penalty,
+                     "  set Settling steps = 20\n  set Statistics interval = "
+                     "0.01\n  set Seismic input = "
+                       + mode
+                       + "\n  set Seismic source = ground motion\n  set "
+                         "Ground motion azimuth = 0.5\n"
+                       + extra);
+  }
+
+  ShakingTable
+  shaking_table(const double phi,
+                const double margin,
+                const double ramp,
+                const double record,
+                const double end_time,
+                const double dt)
+  {
+    std::ostringstream ground;
+    ground << "subsection Ground motion\n"
+           << "  set Source = harmonic\n  set Harmonic amplitude = 0.21\n"
+           << "  set Harmonic frequency = 2\n"
+           << "  set Harmonic ramp duration = " << ramp
+           << "\n  set Duration = " << record
+           << "\n  set Time step = 0.005\n  subsection Processing\n"
+           << "    set Low-pass corner = 2.5\n    set Filter order = 4\n"
+           << "  end\nend\n";
+    dda::JointMaterial joint;
+    joint.friction_deg = phi;
+    ShakingTable t{
+      wedge_in_trough_scene(
+        make_wedge_in_trough({51.4, 65.8, 51.4, 295.2, 80., 0.5}, 0.1, margin),
+        {1700., 2e11, 0.25, 1},
+        joint),
+      ground.str(),
+      {}};
+    dealii::ParameterHandler prm;
+    auto                     analyses = make_analyses();
+    analyses.front()->declare_parameters(prm);
+    prm.parse_input_from_string(t.ground
+                                + "subsection DDA 3d\n  set Seismic input = "
+                                  "loading\n  set Seismic source = ground "
+                                  "motion\n  set Ground motion azimuth = "
+                                  "0.5\nend\n");
+    t.input = parse_seismic_input(prm, "test.prm", end_time, dt, 9.80665);
+    return t;
+  }
+
+  /// The rigid wedge on @p p1 and @p p2 (analytical::slide_3d, steps of
+  /// 1e-4 s, output every 0.01 s) under the shaking table's input for
+  /// @p duration s.
+  analytical::Sliding3dResult
+  rigid_wedge(const analytical::SlidingPlane &p1,
+              const analytical::SlidingPlane &p2,
+              const ShakingTable             &table,
+              const double                    duration)
+  {
+    analytical::Sliding3dOptions o;
+    o.wedge           = true;
+    o.plane1          = p1;
+    o.plane2          = p2;
+    o.time_step       = 1e-4;
+    o.duration        = duration;
+    o.output_interval = 0.01;
+    return analytical::slide_3d(
+      [&](const double t) {
+        return Eigen::Vector3d(Point(0., 0., -1.)
+                               - table.input.acceleration(t) / 9.80665);
+      },
+      o);
+  }
 } // namespace
 
 
@@ -637,45 +734,15 @@ TEST(Dda3dSeismic,
   EXPECT_NEAR(ky, k_onset, 1e-8);
 
   const double       record = 20., T = record + 2.4, dt = 0.005, penalty = 4e10;
-  std::ostringstream ground;
-  ground << "subsection Ground motion\n"
-         << "  set Source = harmonic\n  set Harmonic amplitude = 0.21\n"
-         << "  set Harmonic frequency = 2\n"
-         << "  set Harmonic ramp duration = 5\n  set Duration = " << record
-         << "\n  set Time step = 0.005\n  subsection Processing\n"
-         << "    set Low-pass corner = 2.5\n    set Filter order = 4\n"
-         << "  end\nend\n";
-  dda::JointMaterial joint;
-  joint.friction_deg      = phi;
-  const BlockSystem scene = wedge_in_trough_scene(
-    make_wedge_in_trough({51.4, 65.8, 51.4, 295.2, 80., az}, 0.1, 0.1),
-    {1700., 2e11, 0.25, 1},
-    joint);
-  const double mass = 1700. * scene.blocks[2].polyhedron.moments().volume;
+  const ShakingTable table  = shaking_table(phi, 0.1, 5., record, T, dt);
+  const BlockSystem &scene  = table.scene;
+  const std::string &ground = table.ground;
+  const auto        &in     = table.input;
+  const double       mass = 1700. * scene.blocks[2].polyhedron.moments().volume;
 
-  // The processed input and the analytical rigid wedge under it.
-  dealii::ParameterHandler prm;
-  auto                     analyses = make_analyses();
-  analyses.front()->declare_parameters(prm);
-  prm.parse_input_from_string(ground.str()
-                              + "subsection DDA 3d\n  set Seismic input = "
-                                "loading\n  set Seismic source = ground "
-                                "motion\n  set Ground motion azimuth = 0.5\n"
-                                "end\n");
-  const auto in = parse_seismic_input(prm, "test.prm", T, dt, g);
-  analytical::Sliding3dOptions o;
-  o.wedge           = true;
-  o.plane1          = p1;
-  o.plane2          = p2;
-  o.time_step       = 1e-4;
-  o.duration        = T;
-  o.output_interval = 0.01;
-  const auto exact  = analytical::slide_3d(
-    [&](const double t) {
-      return Eigen::Vector3d(Point(0., 0., -1.) - in.acceleration(t) / g);
-    },
-    o);
-  const Eigen::Vector3d end = exact.final_displacement;
+  // The analytical rigid wedge under the processed input.
+  const auto            exact = rigid_wedge(p1, p2, table, T);
+  const Eigen::Vector3d end   = exact.final_displacement;
   // The input's component that drives the wedge down the line: the
   // inertial load -a_g along the shaking axis (g).
   const Point axis(std::sin(az * pi / 180.), std::cos(az * pi / 180.), 0.);
@@ -716,18 +783,7 @@ TEST(Dda3dSeismic,
       std::vector<std::map<std::string, double>> rows;
       const auto s = run_dda3d("dda3d-shaking-" + mode,
                                blocks,
-                               ground.str()
-                                 + dda3d_prm(T,
-                                             dt,
-                                             penalty,
-                                             "  set Settling steps = 20\n"
-                                             "  set Statistics interval = "
-                                             "0.01\n  set Seismic input = "
-                                               + mode
-                                               + "\n  set Seismic source = "
-                                                 "ground motion\n  set "
-                                                 "Ground motion azimuth = "
-                                                 "0.5\n"),
+                               ground + shaking_table_prm(T, dt, penalty, mode),
                                &wall,
                                &rows);
       // The slide (relative to the ground) against the analytical one at
@@ -805,36 +861,15 @@ TEST(Dda3dSeismic, ShakingTableWedgeRunsOutWithVelocityWeakeningAsSliding3d)
   // run falls 33-38 % short: the slip rate lags one step, and in the
   // first steps of a pulse from rest the friction's logarithm is far off
   // (doc/theory/dda3d.md).
-  const double g = 9.80665, az = 0.5, v0 = 1e-5;
+  const double az = 0.5, v0 = 1e-5;
   const double phi = analytical::critical_friction_angle_wedge(
     51.4, 65.8, 51.4, 295.2, az, 0.14);
   const double       record = 12., T = 3.5, dt = 1e-3, penalty = 4e10;
-  std::ostringstream ground;
-  ground << "subsection Ground motion\n"
-         << "  set Source = harmonic\n  set Harmonic amplitude = 0.21\n"
-         << "  set Harmonic frequency = 2\n"
-         << "  set Harmonic ramp duration = 1\n  set Duration = " << record
-         << "\n  set Time step = 0.005\n  subsection Processing\n"
-         << "    set Low-pass corner = 2.5\n    set Filter order = 4\n"
-         << "  end\nend\n";
-  dda::JointMaterial joint;
-  joint.friction_deg      = phi;
-  const BlockSystem scene = wedge_in_trough_scene(
-    make_wedge_in_trough({51.4, 65.8, 51.4, 295.2, 80., az}, 0.1, 1.5),
-    {1700., 2e11, 0.25, 1},
-    joint);
-  const std::string blocks = block_text(scene);
+  const ShakingTable table  = shaking_table(phi, 1.5, 1., record, T, dt);
+  const std::string &ground = table.ground;
+  const std::string  blocks = block_text(table.scene);
 
-  // The processed input and the rigid wedge under it, with either law.
-  dealii::ParameterHandler prm;
-  auto                     analyses = make_analyses();
-  analyses.front()->declare_parameters(prm);
-  prm.parse_input_from_string(ground.str()
-                              + "subsection DDA 3d\n  set Seismic input = "
-                                "loading\n  set Seismic source = ground "
-                                "motion\n  set Ground motion azimuth = 0.5\n"
-                                "end\n");
-  const auto in    = parse_seismic_input(prm, "test.prm", T, dt, g);
+  // The rigid wedge under the processed input, with either law.
   const auto slide = [&](const double a_minus_b) {
     analytical::SlidingPlane p1, p2;
     p1.dip_deg = p2.dip_deg     = 51.4;
@@ -849,18 +884,7 @@ TEST(Dda3dSeismic, ShakingTableWedgeRunsOutWithVelocityWeakeningAsSliding3d)
         law.v_cutoff  = v0;
       }
     p1.friction = p2.friction = law;
-    analytical::Sliding3dOptions o;
-    o.wedge           = true;
-    o.plane1          = p1;
-    o.plane2          = p2;
-    o.time_step       = 1e-4;
-    o.duration        = T;
-    o.output_interval = 0.01;
-    return analytical::slide_3d(
-      [&](const double t) {
-        return Eigen::Vector3d(Point(0., 0., -1.) - in.acceleration(t) / g);
-      },
-      o);
+    return rigid_wedge(p1, p2, table, T);
   };
 
   struct Run
@@ -886,23 +910,15 @@ TEST(Dda3dSeismic, ShakingTableWedgeRunsOutWithVelocityWeakeningAsSliding3d)
       const auto                                 exact = slide(run.a_minus_b);
       double                                     wall  = 0.;
       std::vector<std::map<std::string, double>> rows;
-      const auto s     = run_dda3d("dda3d-rate-" + run.name,
-                               blocks,
-                               ground.str()
-                                 + dda3d_prm(T,
-                                             dt,
-                                             penalty,
-                                             "  set Settling steps = 20\n"
-                                                 "  set Statistics interval = "
-                                                 "0.01\n  set Seismic input = "
-                                                 "loading\n  set Seismic source "
-                                                 "= ground motion\n  set Ground "
-                                                 "motion azimuth = 0.5\n"
-                                               + run.keys),
-                               &wall,
-                               &rows);
-      double     error = 0.;
-      Point      u     = Point::Zero();
+      const auto                                 s
+        = run_dda3d("dda3d-rate-" + run.name,
+                    blocks,
+                    ground
+                      + shaking_table_prm(T, dt, penalty, "loading", run.keys),
+                    &wall,
+                    &rows);
+      double error = 0.;
+      Point  u     = Point::Zero();
       for (const auto &r : rows)
         {
           u = Point(r.at("mp1_ux_m"), r.at("mp1_uy_m"), r.at("mp1_uz_m"));
