@@ -17,7 +17,8 @@ of the top row of bricks at the end (settlement.py).
 OPTIONs of a configuration (issue 16, distributed DDA): np=N runs it with
 'mpirun -np N' (ranks, column 'ranks'); threads=T fixes its threads
 (otherwise each of --threads); solver=S and pc=P set 'Linear solver' and
-'Distributed preconditioner'. The column 'time_ratio' is the median over
+'Distributed preconditioner'; tol=F sets 'Contact force tolerance' (issue
+12's accuracy knob) and dt=H the 'Time step' (s). The column 'time_ratio' is the median over
 the rounds of the time to the end divided by that of the first
 configuration on the same scene in the same round (binaries alternate
 within a round).
@@ -69,6 +70,11 @@ def run(binary, scene, threads, work, options=None):
         extra += "  set Linear solver = %s\n" % options["solver"]
     if "pc" in options:
         extra += "  set Distributed preconditioner = %s\n" % options["pc"]
+    if "tol" in options:
+        extra += "  set Contact force tolerance = %s\n" % options["tol"]
+    if "dt" in options:
+        prm = re.sub(r"set Time step\s*=.*", "set Time step = " + options["dt"],
+                     prm)
     prm = prm.replace("subsection DDA\n", "subsection DDA\n" + extra, 1)
     # One output at the start and one at the end, for the settlement.
     prm = re.sub(r"set Output interval\s*=.*", "set Output interval = %g" % end,

@@ -96,6 +96,22 @@ namespace rockdda::dda
                 "Shear penalty / normal penalty, > 0 (in series with a "
                 "joint's shear stiffness, if it has one).");
     io::declare(prm,
+                "Contact force tolerance",
+                "1e-4",
+                io::DoubleInterval(1e-8, false, 0.1, false),
+                "-",
+                "Accuracy knob of the open-close iteration: a contact's state "
+                "change is numerical noise below this fraction of the "
+                "lighter block's weight W (its mass times |gravity + the "
+                "seismic acceleration|, N"
+                  + std::string(dim == 2 ? "/m" : "")
+                  + "). An accepted step's closed contacts carry at most "
+                    "this tension, penetration force or shear beyond their "
+                    "strength (up to 100x it for a chattering or held "
+                    "contact). 1e-8 <= fraction <= 0.1; a looser value "
+                    "takes fewer iterations and step cuts on scenes that "
+                    "move (benchmarks/dda-scaling, section 8).");
+    io::declare(prm,
                 "Fixed point penalty",
                 "0",
                 Double(0.),
@@ -192,6 +208,7 @@ namespace rockdda::dda
     max_open_close         = prm.get_integer("Maximum open-close iterations");
     max_displacement_ratio = prm.get_double("Maximum displacement ratio");
     shear_ratio            = prm.get_double("Shear penalty ratio");
+    force_tolerance        = prm.get_double("Contact force tolerance");
     fixed_penalty          = prm.get_double("Fixed point penalty");
     settling_steps         = prm.get_integer("Settling steps");
     gravity                = prm.get_double("Gravity");
@@ -227,6 +244,11 @@ namespace rockdda::dda
                 s + "Shear penalty ratio",
                 shear_ratio,
                 "> 0");
+    io::require(force_tolerance >= 1e-8 && force_tolerance <= 0.1,
+                prm_file,
+                s + "Contact force tolerance",
+                force_tolerance,
+                "1e-8 <= fraction <= 0.1");
     io::require(a_minus_b >= -1. && a_minus_b <= 1.,
                 prm_file,
                 s + "Friction velocity dependence",

@@ -67,7 +67,8 @@ namespace rockdda::dda
     // Force scale: 1e-4 of the weight of the lighter block.
     return contact_weight_tolerance(std::min(mass[block_i](0, 0),
                                              mass[block_j](0, 0)),
-                                    params.body_acceleration.norm());
+                                    params.body_acceleration.norm(),
+                                    params.law.force_tolerance);
   }
 
 

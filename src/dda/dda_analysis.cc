@@ -301,6 +301,7 @@ namespace rockdda::dda
                                "(0 = auto)");
         }
         c.law.shear_ratio        = shared.shear_ratio;
+        c.law.force_tolerance    = shared.force_tolerance;
         c.fixed_penalty          = shared.fixed_penalty;
         const std::string solver = prm.get("Linear solver");
         c.solver.type            = solver == "direct"      ? SolverType::direct

@@ -417,7 +417,7 @@ namespace rockdda::dda
       for (std::size_t c = 0; c < contacts.size(); ++c)
         {
           factor[c] = flips[c] >= 2 ? std::min(std::pow(10., flips[c] - 1),
-                                               max_tolerance_factor)
+                                               max_tolerance_factor())
                                     : 1.;
           hold[c]   = 0.;
           if (flips[c] >= static_cast<int>(ctrl.hold_after) || contacts[c].held)
@@ -437,7 +437,7 @@ namespace rockdda::dda
                   * std::min(block_size[g.block_i], block_size[g.block_j]);
               hold[c]
                 = std::min(slip,
-                           escalated_tolerance(kin, max_tolerance_factor));
+                           escalated_tolerance(kin, max_tolerance_factor()));
             }
         }
     };
@@ -947,7 +947,7 @@ namespace rockdda::dda
                                       scene.joints[contacts[c].joint]);
         gs.tolerance
           += std::min(std::max(kin.force_tolerance, hold[c]),
-                      escalated_tolerance(kin, max_tolerance_factor));
+                      escalated_tolerance(kin, max_tolerance_factor()));
       }
     // Members pulled in opposite senses: the face is stretched or
     // shortened, not dragged as a rigid face, if a block of it is strained

@@ -300,12 +300,13 @@ namespace rockdda::dda
     };
     // The iteration's tolerances of contact c (check_state): f escalated by
     // its chatter factor for a sliding contact, max(that, its hold) for an
-    // open or a locked one; never more than max_tolerance_factor x 1e-4 of
-    // the lighter block's weight, or f if that is larger (the round-off
+    // open or a locked one; never more than max_tolerance_factor() x the
+    // weight tolerance (ContactLaw::force_tolerance of the lighter block's
+    // weight), or f if that is larger (the round-off
     // floor: escalated_tolerance).
     const auto tolerances = [&](const int c) {
       const double cap
-        = escalated_tolerance(kinematics[c], max_tolerance_factor);
+        = escalated_tolerance(kinematics[c], max_tolerance_factor());
       const double fc
         = std::min(escalated_tolerance(kinematics[c], factor[c]), cap);
       return std::make_pair(fc, std::min(std::max(fc, hold[c]), cap));

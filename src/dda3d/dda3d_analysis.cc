@@ -139,6 +139,7 @@ namespace rockdda::dda3d
         c.max_open_close          = shared.max_open_close;
         c.max_displacement_ratio  = shared.max_displacement_ratio;
         c.law.shear_ratio         = shared.shear_ratio;
+        c.law.force_tolerance     = shared.force_tolerance;
         c.fixed_penalty           = shared.fixed_penalty;
         settling_steps            = shared.settling_steps;
         output_interval           = shared.output_interval;

@@ -532,7 +532,8 @@ namespace rockdda::dda3d
         K.tolerance = dda::coordinate_round_off(g.p, g.q);
         K.weight_tolerance
           = dda::contact_weight_tolerance(std::min(mass[g.i], mass[g.j]),
-                                          body_accel);
+                                          body_accel,
+                                          ctrl.law.force_tolerance);
         K.force_tolerance = dda::contact_force_tolerance(K.weight_tolerance,
                                                          K.normal_stiffness,
                                                          K.tolerance);

@@ -47,6 +47,9 @@ namespace rockdda::dda
     double max_displacement_ratio = 0.01;
     /// Shear penalty / normal penalty (-), > 0.
     double shear_ratio = 0.4;
+    /// Force tolerance of the contact conditions, fraction of the lighter
+    /// block's weight (dda::ContactLaw::force_tolerance).
+    double force_tolerance = 1e-4;
     /// Spring of fixed points (N/m), >= 0; 0: 10 x the contact penalty.
     double fixed_penalty = 0.;
     /// Static steps under gravity before t = 0, in [0, 100000].

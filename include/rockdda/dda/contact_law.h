@@ -77,9 +77,9 @@ namespace rockdda::dda
 
   /**
    * The force tolerance of a contact whose state check is relaxed by
-   * @p factor (>= 1; chatter or hold): @p factor x 1e-4 of the lighter
-   * block's weight, and at least the contact's force_tolerance (its
-   * round-off floor).
+   * @p factor (>= 1; chatter or hold): @p factor x the weight tolerance (1e-4
+   * by default) of the lighter block's weight, and at least the contact's
+   * force_tolerance (its round-off floor).
    */
   inline double
   escalated_tolerance(const ContactKinematics &k, const double factor)

@@ -136,6 +136,10 @@ namespace rockdda::dda
     double normal_penalty = 1e11;
     /// Shear penalty p_s = shear_ratio * p.
     double shear_ratio = 0.4;
+    /// Force tolerance of the open-close iteration as a fraction of the
+    /// lighter block's weight (contact_weight_tolerance()): the accuracy
+    /// knob of the contact conditions.
+    double force_tolerance = 1e-4;
 
     double
     shear_penalty() const
@@ -220,12 +224,13 @@ namespace rockdda::dda
    *
    * One rule for both engines (doc/theory/dda.md, Tolerances): a contact's
    * state changes only by more than its force tolerance
-   *   f = max(W_tol, k_n x r),   W_tol = 1e-4 x the lighter block's weight
-   * (contact_weight_tolerance(), contact_force_tolerance()),
-   * with r the round-off of its gap (m) and k_n its normal spring; a
-   * chattering or held contact's tolerance grows in units of W_tol only,
-   * the round-off force k_n r staying a floor (escalated_tolerance()).
-   * The weight is N/m per metre of thickness in 2D and N in 3D.
+   *   f = max(W_tol, k_n x r),   W_tol = ContactLaw::force_tolerance (1e-4) x
+   * the lighter block's weight (contact_weight_tolerance(),
+   * contact_force_tolerance()), with r the round-off of its gap (m) and k_n its
+   * normal spring; a chattering or held contact's tolerance grows in units of
+   * W_tol only, the round-off force k_n r staying a floor
+   * (escalated_tolerance()). The weight is N/m per metre of thickness in 2D and
+   * N in 3D.
    *
    * The engines differ in r alone. 3D uses the coordinates' round-off
    * (coordinate_round_off()); 2D also adds 1e-12 x the smaller block's size
@@ -271,16 +276,18 @@ namespace rockdda::dda
   }
 
   /**
-   * The weight part of a contact's force tolerance: 1e-4 of the weight of
-   * the lighter block, @p lighter_mass (kg, per m thickness in 2D) times
-   * the body acceleration @p body_acceleration (m/s^2). The unit in which
-   * the tolerance of a chattering or held contact grows.
+   * The weight part of a contact's force tolerance: @p fraction
+   * (ContactLaw::force_tolerance, 1e-4 by default) of the weight of the
+   * lighter block, @p lighter_mass (kg, per m thickness in 2D) times the
+   * body acceleration @p body_acceleration (m/s^2). The unit in which the
+   * tolerance of a chattering or held contact grows.
    */
   inline double
   contact_weight_tolerance(const double lighter_mass,
-                           const double body_acceleration)
+                           const double body_acceleration,
+                           const double fraction)
   {
-    return 1e-4 * lighter_mass * body_acceleration;
+    return fraction * lighter_mass * body_acceleration;
   }
 
   /**

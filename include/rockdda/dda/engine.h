@@ -13,6 +13,7 @@
 #include <rockdda/dda/contact_set.h>
 #include <rockdda/dda/linear_solver.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -398,10 +399,16 @@ namespace rockdda::dda
     restore(const std::string &bytes, const std::string &source);
 
   private:
-    /// The largest tolerance of a contact's state check, in force
+    /// The largest tolerance of a contact's state check, in weight
     /// tolerances: chatter factors stop at it, holds are capped at it, and
-    /// the strength audit never grants more.
-    static constexpr double max_tolerance_factor = 100.;
+    /// the strength audit never grants more. 1 % of the lighter block's
+    /// weight (100 at the default Contact force tolerance of 1e-4), and no
+    /// escalation when the tolerance itself is 1 % or more.
+    double
+    max_tolerance_factor() const
+    {
+      return std::max(1., 1e-2 / ctrl.law.force_tolerance);
+    }
 
     /**
      * Check and normalise @p input's directions and record time steps
