@@ -266,9 +266,16 @@ namespace rockdda::dda3d
           std::vector<ContactCandidate> keep;
           if (gmax >= -c)
             {
-              // Outside or on the surface: every face it enters.
+              // Outside or on the surface: every face it enters and is not
+              // behind. A face whose plane it is behind by more than the
+              // coincidence tolerance is not touched (the vertex is on or
+              // outside another face; a spring there would push it out
+              // through that face by the depth): a column 1 mm wide standing
+              // on a base 4.5 mm wide had its corners on the base's top face
+              // 0.5 mm behind its side faces, within the contact distance of
+              // the column's 1 m size, and the step never converged.
               for (const auto &cc : found)
-                if (cc.score >= -sin_e)
+                if (cc.score >= -sin_e && cc.gap >= -c)
                   keep.push_back(cc);
             }
           else

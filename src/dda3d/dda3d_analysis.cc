@@ -325,7 +325,7 @@ namespace rockdda::dda3d
                   progress.update(steps, engine->time());
                 }
             }
-          catch (const InputError &e)
+          catch (const dda::DdaFailure &e)
             {
               failure = e.what();
             }
@@ -337,7 +337,7 @@ namespace rockdda::dda3d
         if (!failure.empty())
           {
             context.log.line("DDA 3d stopped: " + failure);
-            throw InputError(failure);
+            throw dda::DdaFailure(failure);
           }
         if (interrupted != 0)
           {

@@ -19,6 +19,7 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include "dda3d_test_scenes.h"
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -874,32 +875,18 @@ namespace
               const Eigen::Matrix3d &R     = Eigen::Matrix3d::Identity(),
               const Point           &shift = Point::Zero())
   {
-    const double    alpha = alpha_deg * pi / 180.;
-    Eigen::Matrix3d Ry;
-    Ry                      = Eigen::AngleAxisd(alpha, Point::UnitY());
-    const Eigen::Matrix3d Q = R * Ry;
-    BlockSystem           s;
-    s.materials.push_back({2700., 1e10, 0.25, 1});
-    dda::JointMaterial joint;
-    joint.friction_deg = phi_deg;
-    s.joints.push_back(joint);
-    Block base;
-    base.id       = 1;
-    base.material = 0;
-    base.polyhedron
-      = moved(make_box(Point(-3., -1.5, -1.), Point(3., 1.5, 0.)), Q, shift);
-    Block slider = base;
-    slider.id    = 2;
-    slider.polyhedron
-      = moved(make_box(Point(-2., -0.5, 0.), Point(-1., 0.5, 1.)), Q, shift);
-    s.blocks = {base, slider};
-    for (const Point &p : {Point(-2., -1., -0.5),
-                           Point(2., -1., -0.5),
-                           Point(0., 1., -0.5),
-                           Point(0., 0., -0.8)})
-      s.fixed_points.push_back({0, Q * p + shift, Point::Zero()});
-    s.gravity = R * Point(0., 0., -9.80665);
-    EngineControls c;
+    const auto             Sc = test_scenes::incline_scene(alpha_deg,
+                                               phi_deg,
+                                               Point(-3., -1.5, -1.),
+                                               Point(3., 1.5, 0.),
+                                               Point(-2., -0.5, 0.),
+                                               Point(-1., 0.5, 1.),
+                                               {2700., 1e10, 0.25, 1},
+                                               R,
+                                               shift);
+    const Eigen::Matrix3d &Q  = Sc.frame;
+    const BlockSystem     &s  = Sc.system;
+    EngineControls         c;
     c.dt                 = dt;
     c.law.normal_penalty = 1e11;
     Engine     engine(s, c);

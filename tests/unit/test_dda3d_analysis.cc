@@ -19,6 +19,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "dda3d_test_scenes.h"
 #include "test_files.h"
 #include <chrono>
 #include <cmath>
@@ -106,23 +107,17 @@ namespace
                  const double s = 1.)
   {
     const Eigen::Matrix3d Q = plane_frame(dip, dip_direction);
-    BlockSystem           sys;
-    sys.materials.push_back({rho, E, 0.25, 1});
-    dda::JointMaterial j;
-    j.friction_deg = phi;
-    sys.joints.push_back(j);
-    Block base;
-    base.material = 0;
-    base.id       = 1;
-    base.polyhedron
-      = moved(make_box(Point(-4., -2., -1.), Point(4., 2., 0.)), Q, {0, 0, 0});
-    Block block      = base;
-    block.id         = 2;
-    block.polyhedron = moved(make_box(Point(-2. - s / 2, -s / 2, 0.),
-                                      Point(-2. + s / 2, s / 2, s)),
-                             Q,
-                             {0, 0, 0});
-    sys.blocks       = {base, block};
+    // The scene's fixed points are replaced by 'fixed-block 1' below.
+    BlockSystem sys = test_scenes::incline_scene(0.,
+                                                 phi,
+                                                 Point(-4., -2., -1.),
+                                                 Point(4., 2., 0.),
+                                                 Point(-2. - s / 2, -s / 2, 0.),
+                                                 Point(-2. + s / 2, s / 2, s),
+                                                 {rho, E, 0.25, 1},
+                                                 Q)
+                        .system;
+    sys.fixed_points.clear();
     std::string text = block_text(sys);
     char        line[256];
     const Point m = Q * Point(-2., 0., s / 2);

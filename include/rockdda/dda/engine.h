@@ -11,6 +11,7 @@
 #include <rockdda/dda/block_system.h>
 #include <rockdda/dda/contact_law.h>
 #include <rockdda/dda/contact_set.h>
+#include <rockdda/dda/failure.h>
 #include <rockdda/dda/linear_solver.h>
 
 #include <algorithm>
@@ -151,15 +152,6 @@ namespace rockdda::dda
              + std::abs(potential) + std::abs(fixed) + std::abs(friction)
              + std::abs(load_work);
     }
-  };
-
-  /// A run that cannot continue (the message is the diagnosis).
-  class DdaFailure : public std::runtime_error
-  {
-  public:
-    explicit DdaFailure(const std::string &message)
-        : std::runtime_error(message)
-    {}
   };
 
   /**

@@ -112,9 +112,10 @@ namespace rockdda::dda3d
    * Vertex-face (each block's vertices against the other's faces): a
    * vertex P and face F with |gap| <= d whose projection lies in F
    * (within the coincidence tolerance). A vertex outside the other block
-   * is a contact with every such face it enters (score >= -sin(entrance
-   * angle), where the score is the smallest cosine between F's normal and
-   * P's edges); a penetrated vertex with the entered face of shortest
+   * (or on its surface) is a contact with every such face it enters (score
+   * >= -sin(entrance angle), where the score is the smallest cosine between
+   * F's normal and P's edges) and is not behind (gap >= -coincidence
+   * tolerance); a penetrated vertex with the entered face of shortest
    * exit (least depth; if it enters none, the face of shortest exit).
    * Vertex-vertex: two vertices within the coincidence tolerance give one
    * contact, the vertex-face contact with the larger score (by more than

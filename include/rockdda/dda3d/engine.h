@@ -11,6 +11,7 @@
 #define ROCKDDA_DDA3D_ENGINE_H
 
 #include <rockdda/dda/contact_mechanics.h>
+#include <rockdda/dda/failure.h>
 #include <rockdda/dda3d/block_matrices.h>
 #include <rockdda/dda3d/contact_detection.h>
 #include <rockdda/dda3d/local_scene.h>
@@ -160,6 +161,10 @@ namespace rockdda::dda3d
     int max_open_close = 12;
     /// Smallest time step (fraction of dt) before the run stops.
     double min_dt_ratio = 1e-6;
+    /// Stop (dda::DdaFailure) after this many steps in one advance_to()
+    /// call (-); 0 = 100 x (duration / dt) + 1000, as the 2D engine: a run
+    /// whose step stays cut far below dt ends with a diagnosis, not a hang.
+    unsigned long max_steps = 0;
     /// Ground acceleration (m/s^2) in the seismic loading mode, at the
     /// middle of each step; empty: none.
     std::function<Point(double)> ground_acceleration;
@@ -212,11 +217,13 @@ namespace rockdda::dda3d
     /// Validate @p system and keep it; throws InputError.
     Engine(BlockSystem system, const EngineControls &controls);
 
-    /// One accepted step (cut as often as needed).
+    /// One accepted step (cut as often as needed); throws dda::DdaFailure
+    /// when the step would fall below EngineControls::min_dt_ratio x dt.
     void
     step();
 
-    /// Step until time @p t_end (the last step shortened to end there).
+    /// Step until time @p t_end (the last step shortened to end there);
+    /// throws dda::DdaFailure after EngineControls::max_steps steps.
     void
     advance_to(const double t_end);
 
