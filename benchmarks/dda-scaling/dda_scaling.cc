@@ -16,6 +16,7 @@
 #include <rockdda/dda/vtu_output.h>
 
 #include "../../tests/unit/dda_test_scenes.h"
+#include "../timing.h"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -33,6 +34,8 @@ using geometry::Polygon;
 
 namespace
 {
+  using benchmarks::median;
+  using benchmarks::seconds_since;
   using test_scenes::g_earth;
   using test_scenes::rectangle;
   using test_scenes::rotated;
@@ -72,13 +75,6 @@ namespace
   brick_wall(int rows, int columns)
   {
     return test_scenes::running_bond_wall(rows, columns);
-  }
-
-  double
-  seconds_since(std::chrono::steady_clock::time_point t0)
-  {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
-      .count();
   }
 
   /// Controls of the wall cases: dt 1e-3 s, penalty 1e11 N/m, @p dynamic
@@ -148,8 +144,7 @@ namespace
                   iterations = double(it) / steps;
                   contacts   = dda.contacts().size();
                 }
-              std::sort(times.begin(), times.end());
-              const double t = times[1];
+              const double t = median(times);
               std::printf("%d,%s,%s,%.4f,%.0f,%.2f,%zu\n",
                           n,
                           dynamic > 0. ? "dynamic" : "static",
@@ -381,10 +376,6 @@ namespace
                             contacts_snapshot(dda));
         t_h5.push_back(seconds_since(t0));
       }
-    const auto median = [](std::vector<double> v) {
-      std::sort(v.begin(), v.end());
-      return v[v.size() / 2];
-    };
     const double mib = 1024. * 1024.;
     const double size_vtu
       = (std::filesystem::file_size(vtu_b) + std::filesystem::file_size(vtu_c))
