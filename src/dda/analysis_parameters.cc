@@ -149,8 +149,9 @@ namespace rockdda::dda
                 dim == 2 ? "Spacing of snapshots (see Snapshot format), >= 0; "
                            "0 = no snapshots."
                          : "Spacing of the VTU snapshots of the blocks "
-                           "(blocks-NNNNN.vtu, series blocks.pvd), >= 0; 0 = "
-                           "no snapshots.");
+                           "(blocks-NNNNN.vtu, series blocks.pvd) and the "
+                           "contacts (contacts-NNNNN.vtu, series "
+                           "contacts.pvd), >= 0; 0 = no snapshots.");
     io::declare(prm,
                 "Statistics interval",
                 "0",

@@ -19,27 +19,6 @@ namespace rockdda::dda
         out.insert(out.end(), {p.x(), p.y(), 0.});
       return out;
     }
-
-    SnapshotField
-    real_field(const std::string  &name,
-               const int           components,
-               std::vector<double> v)
-    {
-      SnapshotField f;
-      f.name       = name;
-      f.components = components;
-      f.real       = std::move(v);
-      return f;
-    }
-
-    SnapshotField
-    integer_field(const std::string &name, std::vector<std::int32_t> v)
-    {
-      SnapshotField f;
-      f.name    = name;
-      f.integer = std::move(v);
-      return f;
-    }
   } // namespace
 
 

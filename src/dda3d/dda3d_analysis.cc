@@ -263,7 +263,7 @@ namespace rockdda::dda3d
             }
           table.add_row(row);
         };
-        std::vector<std::pair<double, std::string>> files;
+        std::vector<std::pair<double, std::string>> files, contact_files;
         auto                                        snapshot = [&]() {
           char name[64];
           std::snprintf(name, sizeof(name), "blocks-%05zu.vtu", files.size());
@@ -271,6 +271,13 @@ namespace rockdda::dda3d
                                blocks_vtu(engine->scene(), engine->origin()));
           files.emplace_back(engine->time(), name);
           context.output.write("blocks.pvd", dda::pvd(files));
+          std::snprintf(name,
+                        sizeof(name),
+                        "contacts-%05zu.vtu",
+                        contact_files.size());
+          context.output.write(name, contacts_vtu(*engine));
+          contact_files.emplace_back(engine->time(), name);
+          context.output.write("contacts.pvd", dda::pvd(contact_files));
         };
 
         add_row();

@@ -1,7 +1,9 @@
 /**
  * @file
- * ASCII VTK XML output of polyhedral blocks.
+ * ASCII VTK XML output of polyhedral blocks; contacts through the 2D
+ * engine's snapshot writer.
  */
+#include <rockdda/dda/vtu_output.h>
 #include <rockdda/dda3d/vtu_output.h>
 
 #include <cstdint>
@@ -102,5 +104,73 @@ namespace rockdda::dda3d
     array("Float64", "volume", volume.str());
     out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
     return out.str();
+  }
+
+
+  dda::Snapshot
+  contacts_snapshot(const Engine &engine)
+  {
+    const auto               &contacts = engine.contacts();
+    const auto               &blocks   = engine.scene().blocks;
+    const Point              &o        = engine.origin();
+    const std::size_t         n        = contacts.size();
+    dda::Snapshot             out;
+    std::vector<std::int32_t> state(n), type(n), bi(n), bj(n);
+    std::vector<double>       gap(n), fn(n), area(n), fs, normal;
+    out.lines = true;
+    out.offsets.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+      {
+        const auto &c = contacts[k];
+        const auto &g = c.geometry;
+        const Point p = g.p + o, q = g.q + o;
+        out.xyz.insert(out.xyz.end(),
+                       {p.x(), p.y(), p.z(), q.x(), q.y(), q.z()});
+        out.offsets[k] = static_cast<std::int64_t>(2 * (k + 1));
+        state[k]       = static_cast<std::int32_t>(c.state);
+        type[k]        = g.type == ContactType::vertex_face ? 0 : 1;
+        bi[k]          = blocks[g.i].id;
+        bj[k]          = blocks[g.j].id;
+        gap[k]         = g.gap;
+        fn[k]          = c.normal_force;
+        area[k]        = c.area;
+        fs.insert(fs.end(),
+                  {c.shear_force.x(), c.shear_force.y(), c.shear_force.z()});
+        normal.insert(normal.end(), {g.normal.x(), g.normal.y(), g.normal.z()});
+      }
+    out.description
+      = "rockdda 3D DDA contacts (one line cell per contact, from its point "
+        "on block i\n"
+        "to its point on block j at detection, the start of the last "
+        "step; points in m).\n"
+        "Cell data: state: 0 open, 1 sliding, 2 locked; type: 0 "
+        "vertex-face, 1 edge-edge;\n"
+        "block_i, block_j: block ids (i owns the vertex or the first "
+        "edge);\n"
+        "normal_gap (m, at detection, negative = penetration); "
+        "normal_force (N,\n"
+        "compression positive); shear_force (N, on block i); normal "
+        "(unit, out of block j);\n"
+        "area (m^2, the contact's share of the touching faces' overlap).\n";
+    out.fields.push_back(dda::integer_field("state", std::move(state)));
+    out.fields.push_back(dda::integer_field("type", std::move(type)));
+    out.fields.push_back(dda::integer_field("block_i", std::move(bi)));
+    out.fields.push_back(dda::integer_field("block_j", std::move(bj)));
+    out.fields.push_back(dda::real_field("normal_gap", 1, std::move(gap)));
+    out.fields.push_back(dda::real_field("normal_force", 1, std::move(fn)));
+    out.fields.push_back(dda::real_field("shear_force", 3, std::move(fs)));
+    out.fields.push_back(dda::real_field("normal", 3, std::move(normal)));
+    out.fields.push_back(dda::real_field("area", 1, std::move(area)));
+    out.scalars = "state";
+    out.vectors = "normal";
+    return out;
+  }
+
+
+
+  std::string
+  contacts_vtu(const Engine &engine)
+  {
+    return dda::vtu(contacts_snapshot(engine));
   }
 } // namespace rockdda::dda3d

@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include "dda3d_test_scenes.h"
+#include "vtu_reader.h"
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -1482,4 +1483,67 @@ TEST(Dda3dContacts, LightWedgeOnStiffContactsYieldsAtTheYieldAcceleration)
         else
           EXPECT_NEAR(d.dot(e), rigid, 0.02 * rigid) << p;
       }
+}
+
+
+
+TEST(Dda3dOutput, ContactsVtuMatchesTheEngine)
+{
+  // The 30/20 incline after 1 s (200 steps): one line cell per contact of the
+  // engine, with its state, blocks, forces and detection points; the file
+  // is the 2D engine's binary format (read back by tests/unit/vtu_reader.h).
+  const auto     sc = test_scenes::incline_scene(30.,
+                                             20.,
+                                             Point(-3., -1.5, -1.),
+                                             Point(3., 1.5, 0.),
+                                             Point(-2., -0.5, 0.),
+                                             Point(-1., 0.5, 1.),
+                                             {2700., 1e10, 0.25, 1},
+                                             Eigen::Matrix3d::Identity(),
+                                             Point(5e5, 4e6, 0.));
+  EngineControls c;
+  c.dt = 0.005;
+  Engine engine(sc.system, c);
+  engine.advance_to(1.);
+  const auto &contacts = engine.contacts();
+  ASSERT_EQ(contacts.size(), 4u);
+  const test::Vtu vtu(contacts_vtu(engine));
+  EXPECT_NE(vtu.text.find("<VTKFile type=\"UnstructuredGrid\""),
+            std::string::npos);
+  EXPECT_NE(vtu.text.find("NumberOfCells=\"4\""), std::string::npos);
+  EXPECT_NE(vtu.text.find("0 open, 1 sliding, 2 locked"), std::string::npos);
+  const auto xyz   = vtu["Points"].values<double>();
+  const auto state = vtu["state"].values<std::int32_t>();
+  const auto type  = vtu["type"].values<std::int32_t>();
+  const auto bi    = vtu["block_i"].values<std::int32_t>();
+  const auto bj    = vtu["block_j"].values<std::int32_t>();
+  const auto gap   = vtu["normal_gap"].values<double>();
+  const auto fn    = vtu["normal_force"].values<double>();
+  const auto fs    = vtu["shear_force"].values<double>();
+  ASSERT_EQ(xyz.size(), 6 * contacts.size());
+  ASSERT_EQ(state.size(), contacts.size());
+  ASSERT_EQ(fs.size(), 3 * contacts.size());
+  double normal_sum = 0.;
+  for (std::size_t k = 0; k < contacts.size(); ++k)
+    {
+      const auto &ct = contacts[k];
+      EXPECT_EQ(state[k], int(ct.state));
+      EXPECT_EQ(type[k], 0); // the slider's corners on the base's top
+      EXPECT_EQ(bi[k], 2);
+      EXPECT_EQ(bj[k], 1);
+      EXPECT_EQ(gap[k], ct.geometry.gap);
+      EXPECT_EQ(fn[k], ct.normal_force);
+      for (int d = 0; d < 3; ++d)
+        {
+          EXPECT_EQ(fs[3 * k + d], ct.shear_force[d]);
+          // Global coordinates: the local origin added back.
+          EXPECT_EQ(xyz[6 * k + d], ct.geometry.p[d] + engine.origin()[d]);
+          EXPECT_EQ(xyz[6 * k + 3 + d], ct.geometry.q[d] + engine.origin()[d]);
+        }
+      normal_sum += ct.state == ContactState::open ? 0. : fn[k];
+    }
+  // The file's normal forces carry the block's weight normal to the slope
+  // within the start-up transient's residual (1.1e-4 at 1 s in
+  // BlockOnInclineBelowTheFrictionAngleSlides; 6.6e-3 at 0.1 s): 1e-3.
+  EXPECT_NEAR(normal_sum / (2700. * 9.80665 * std::cos(pi / 6.)), 1., 1e-3);
 }

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rockdda::dda
@@ -64,6 +65,29 @@ namespace rockdda::dda
       return offsets.size();
     }
   };
+
+  /// A real field of @p components values per cell (cell-major).
+  inline SnapshotField
+  real_field(const std::string  &name,
+             const int           components,
+             std::vector<double> v)
+  {
+    SnapshotField f;
+    f.name       = name;
+    f.components = components;
+    f.real       = std::move(v);
+    return f;
+  }
+
+  /// An integer field of one value per cell.
+  inline SnapshotField
+  integer_field(const std::string &name, std::vector<std::int32_t> v)
+  {
+    SnapshotField f;
+    f.name    = name;
+    f.integer = std::move(v);
+    return f;
+  }
 
   /**
    * Blocks as polygons. Fields: `block_id` (block file id), `material`
