@@ -2,6 +2,7 @@
 """Ratchet thresholds of Masada Block 1 by DDA bisection (issue 13).
 
 usage: thresholds.py ROCKDDA [--cycles N] [--iterations K] [--out DIR]
+                       [--samples S --suffix X]
 
 Two thresholds of the coupled ratchet (parameter-files/masada/
 ratchet-block1.prm), each found by bisection on full DDA runs:
@@ -18,6 +19,9 @@ mm/yr). K bisection steps (default 6) narrow each bracket to 1/64 of it.
 Next to each: the analytical threshold of Pasten's model (the same run's
 summary.csv, rows ratchet_threshold_*), if the binary writes it.
 Writes thresholds.csv and thresholds.md into DIR (default: this folder).
+--samples S sets 'Steps per cycle' and 'Thermal forcing/Samples per
+cycle' to S (the rate converges in them at about 1536: README, "Steps per
+season"); --suffix X names the files thresholdsX.csv / thresholdsX.md.
 """
 import argparse
 import csv
@@ -38,7 +42,7 @@ def rate(run):
 
 
 def bisect(rockdda, folder, base, key, lo, hi, ratchets_below, cycles,
-           iterations, log):
+           iterations, log, extra=None):
     """Bisection of [lo, hi] for the value where the run stops
     ratcheting; ratchets_below: the ratchet runs for values below it."""
     rows = []
@@ -46,7 +50,7 @@ def bisect(rockdda, folder, base, key, lo, hi, ratchets_below, cycles,
         mid = 0.5 * (lo + hi)
         text = study.derive_prm(base, {("Ratchet", "Cycles"): cycles,
                                        ("Ratchet", "Checkpoint cycles"): 0,
-                                       key: mid})
+                                       **(extra or {}), key: mid})
         run = study.run_one(rockdda, folder, f"t{key[1][:4]}{i}", text, 1800)
         if not run["ok"]:
             raise SystemExit(f"thresholds: run at {key[1]} = {mid} failed: "
@@ -72,7 +76,12 @@ def main():
     ap.add_argument("--cycles", type=int, default=30)
     ap.add_argument("--iterations", type=int, default=6)
     ap.add_argument("--out", default=here)
+    ap.add_argument("--samples", type=int, default=0)
+    ap.add_argument("--suffix", default="")
     args = ap.parse_args()
+    extra = ({("Ratchet", "Steps per cycle"): args.samples,
+              ("Thermal forcing", "Samples per cycle"): args.samples}
+             if args.samples > 0 else {})
     base = open(study.BASE_PRM).read()
     folder, rockdda = study.scratch(args.rockdda, "ratchet-thresholds-")
     log = lambda s: print(s, flush=True)  # noqa: E731
@@ -80,15 +89,15 @@ def main():
     amp, amp_err, rows_a = bisect(rockdda, folder, base,
                                   ("Thermal forcing", "Annual amplitude"),
                                   0.5, 9., False, args.cycles,
-                                  args.iterations, log)
+                                  args.iterations, log, extra)
     log("friction threshold (ratchets below it):")
     phi, phi_err, rows_f = bisect(rockdda, folder, base,
                                   ("Ratchet", "Bedding friction angle"),
                                   41., 70., True, args.cycles,
-                                  args.iterations, log)
+                                  args.iterations, log, extra)
     shutil.rmtree(folder, ignore_errors=True)
     rows = rows_a + rows_f
-    with open(os.path.join(args.out, "thresholds.csv"), "w",
+    with open(os.path.join(args.out, f"thresholds{args.suffix}.csv"), "w",
               newline="") as f:
         w = csv.DictWriter(f, list(rows[0].keys()))
         w.writeheader()
@@ -96,7 +105,9 @@ def main():
     md = [
         "# Ratchet thresholds of Block 1 by DDA bisection",
         "",
-        f"{args.cycles} cycles per run; a run ratchets when its mean "
+        f"{args.cycles} cycles per run"
+        + (f", {args.samples} samples per cycle" if args.samples else "")
+        + "; a run ratchets when its mean "
         f"permanent displacement over the second half exceeds {LIMIT} "
         f"mm/yr; {args.iterations} bisection steps.",
         "",
@@ -115,7 +126,7 @@ def main():
                   f"| {r['rate_mm_per_yr']:.3g} "
                   f"| {'yes' if r['ratchets'] else 'no'} "
                   f"| {r['dda_seconds']:.1f} |")
-    with open(os.path.join(args.out, "thresholds.md"), "w") as f:
+    with open(os.path.join(args.out, f"thresholds{args.suffix}.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     log("\n".join(md))
     return 0
