@@ -92,57 +92,6 @@ trap 'rm -rf "$work" "$work2"' EXIT
   "$root/parameter-files/masada/ratchet-earthquakes-block1.prm") || status=1
 out2="$work2/output-ratchet-earthquakes-block1"
 cp "$out2/ratchet_earthquakes.png" "$here/ratchet_earthquakes.png" || status=1
-python3 - "$out2" "$here/results-ratchet.md" <<'PY' || status=1
-import os, sys
-sys.path.insert(0, os.environ["ROCKDDA_BENCHMARKS"])
-from run_prm import Checks, finish, summary, table  # noqa: E402
-out, md = sys.argv[1], sys.argv[2]
-summ = summary(out)
-f = lambda k: float(summ[k])
-hist = table(out, "earthquake_histories.csv")
-events = table(out, "earthquake_events.csv")
-check = Checks()
-years = f("cycles")
-lines = ["# Earthquakes inside the coupled DDA ratchet (measured by run.sh)", "",
-         f"`parameter-files/masada/ratchet-earthquakes-block1.prm`: "
-         f"{len(hist)} catalogues over {years:.0f} cycles (one a year), "
-         f"{f('quake_events'):.0f} events, all through dynamic DDA on the "
-         f"ratchet scene; DDA {f('quake_dda_seconds'):.0f} s on "
-         f"{f('quake_concurrent_runs'):.0f} threads (thermal run "
-         f"{f('dda_seconds'):.0f} s), whole run {f('wall_time'):.0f} s.", "",
-         "| catalogue | events | thermal alone (mm) | quakes alone, scene (mm) "
-         "| quakes alone, Block 1 (mm) | coupled (mm) | quake slips in the coupled "
-         "run (mm) | coupled / (thermal + scene) | coupled / (thermal + Block 1) |",
-         "|---|---|---|---|---|---|---|---|---|"]
-for h in hist:
-    lines.append(
-        f"| {h['catalogue']:.0f} | {h['events']:.0f} | {1e3 * h['thermal_m']:.2f} "
-        f"| {1e3 * h['quakes_scene_m']:.2f} | {1e3 * h['quakes_block1_m']:.2f} "
-        f"| {1e3 * h['coupled_m']:.2f} | {1e3 * h['coupled_episodes_m']:.2f} "
-        f"| {h['coupled_over_sum_scene']:.4f} | {h['coupled_over_sum_block1']:.4f} |")
-    if h["episodes"] == 0:
-        check(h["coupled_m"] == h["thermal_m"],
-              f"catalogue {h['catalogue']:.0f} without episodes = thermal run")
-lines += ["", f"coupled / (thermal + quakes alone on the scene): median "
-          f"{f('quake_coupled_over_sum_median'):.4f} (16-84 %: "
-          f"{f('quake_coupled_over_sum_p16'):.4f}-"
-          f"{f('quake_coupled_over_sum_p84'):.4f}); with Block 1 alone as the "
-          f"seismic part: median {f('quake_coupled_over_sum_block1_median'):.4f}."]
-lines += ["", f"{f('quake_failed_catalogues'):.0f} of {len(hist)} catalogues "
-          "stopped (DDA could not continue; left out of the spreads)."]
-# A catalogue may stop where the static open-close iteration of the infill
-# on the crack face cycles (README, "The combined history in DDA"); most
-# must finish.
-check(f("quake_failed_catalogues") <= 0.2 * len(hist),
-      "at least 80 % of the catalogues complete")
-if f("quake_episodes") > 0:
-    # The engine's ledger is not exact across lock/slide changes
-    # (dda::Controls::energy_tolerance): one episode of seeds 11-20 gained
-    # 0.25 % of the energy in play; a blow-up creates many times it.
-    check(f("quake_episode_energy_gain_max") <= 1e-2,
-          "no episode gains more than 1 % of the energy in play")
-    check(f("quake_episode_slip_min") >= -1e-5 * 15., "no episode slides upslope")
-finish(md, lines, check)
-PY
+python3 "$here/ratchet_results.py" "$out2" "$here/results-ratchet.md" || status=1
 run_unit ratchet_earthquakes "RatchetEarthquakes"
 exit $status
