@@ -41,12 +41,30 @@ def spread(values):
             f"{quantile(values, .84):.4f})")
 
 
+def first_seed(out):
+    """'Ratchet earthquakes/Seed' of run OUT (its parameters.prm): catalogue
+    c has the seed first_seed + c - 1."""
+    section = False
+    with open(os.path.join(out, "parameters.prm")) as f:
+        for line in f:
+            words = line.split()
+            if words == ["subsection", "Ratchet", "earthquakes"]:
+                section = True
+            elif section and words[:2] == ["set", "Seed"]:
+                return int(words[-1])
+    return 1
+
+
 def statistics(outs):
-    """Pooled statistics of the runs in OUTS as lines of text."""
+    """Pooled statistics of the runs in OUTS as lines of text (catalogues
+    named by their seed)."""
     hist, events, wall, gain_max = [], [], 0., -float("inf")
     for out in outs:
+        seed = first_seed(out)
         hist += table(out, "earthquake_histories.csv")
         events += table(out, "earthquake_events.csv")
+        for e in events:
+            e.setdefault("seed", seed + e["catalogue"] - 1)
         s = summary(out)
         wall += float(s["wall_time"])
         if "quake_episode_energy_gain_max" in s:
@@ -79,7 +97,7 @@ def statistics(outs):
              f"{max(per_event):.2f}.",
              f"Scene-alone outliers (> {OUTLIER_FACTOR:g}x Block 1 alone and > "
              f"{1e3 * OUTLIER_SLIP:g} mm): {len(outliers)}" +
-             "".join(f"; catalogue {e['catalogue']:.0f}, year {e['time_yr']:.0f}, "
+             "".join(f"; seed {e['seed']:.0f}, year {e['time_yr']:.0f}, "
                      f"Mw {e['magnitude']:.2f}, PGA {e['pga_g']:.2f} g: "
                      f"{1e3 * e['alone_slip_m']:.1f} mm against "
                      f"{1e3 * e['block1_slip_m']:.1f} mm (coupled "
