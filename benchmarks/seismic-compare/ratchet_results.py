@@ -107,20 +107,19 @@ def statistics(outs):
 
 
 def step_change(coarse, fine):
-    """Per-catalogue relative change of the coupled displacement and of
-    the ratio from run COARSE to run FINE."""
+    """Per-catalogue relative change (fine / coarse - 1) of the coupled
+    displacement, the quakes alone on the scene and the ratio from run
+    COARSE to run FINE (same seeds, another episode time step)."""
     a = table(coarse, "earthquake_histories.csv")
     b = table(fine, "earthquake_histories.csv")
-    dc = [y["coupled_m"] / x["coupled_m"] - 1 for x, y in zip(a, b)]
-    dr = [y["coupled_over_sum_scene"] / x["coupled_over_sum_scene"] - 1
-          for x, y in zip(a, b)]
-    return [f"coupled displacement, fine / coarse - 1 per catalogue: "
-            f"median |change| {quantile([abs(x) for x in dc], .5):.3f}, "
-            f"largest {max(dc, key=abs):+.3f} ("
-            + ", ".join(f"{x:+.3f}" for x in dc) + ")",
-            f"coupled / (thermal + scene), fine / coarse - 1: largest "
-            f"{max(dr, key=abs):+.3f}, median |change| "
-            f"{quantile([abs(x) for x in dr], .5):.3f}"]
+    lines = []
+    for key in ("coupled_m", "quakes_scene_m", "coupled_over_sum_scene"):
+        d = [y[key] / x[key] - 1 for x, y in zip(a, b) if x[key] > 0]
+        lines.append(f"{key}, fine / coarse - 1 per catalogue: median |change| "
+                     f"{quantile([abs(x) for x in d], .5):.3f}, largest "
+                     f"{max(d, key=abs):+.3f} ("
+                     + ", ".join(f"{x:+.3f}" for x in d) + ")")
+    return lines
 
 
 def results(out, md):
