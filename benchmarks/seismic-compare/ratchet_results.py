@@ -81,6 +81,13 @@ def statistics(outs):
                  if e["block1_slip_m"] > 1e-3]
     outliers = [e for e in ran if e["alone_slip_m"] > OUTLIER_SLIP and
                 e["alone_slip_m"] > OUTLIER_FACTOR * max(e["block1_slip_m"], 0.)]
+    ep = [e for e in ran if e["coupled_dynamic_steps"] > 0]
+    slips = [e["coupled_slip_m"] for e in ep]
+    opening = [e["coupled_aperture_m"] / e["coupled_slip_m"] for e in ep
+               if e["coupled_slip_m"] > 1e-3]
+    settle = max(abs(e["coupled_slip_m"] - e["coupled_dynamic_slip_m"])
+                 for e in ep)
+    thermal_part = [h["coupled_m"] - h["coupled_episodes_m"] for h in hist]
     lines = [f"{len(hist)} catalogues, {len(ran)} events, wall time "
              f"{wall:.0f} s.",
              "coupled / (thermal + quakes alone on the scene): " +
@@ -95,6 +102,14 @@ def statistics(outs):
              f"Block 1 alone per event (Block 1 > 1 mm): median "
              f"{quantile(per_event, .5):.2f}, {min(per_event):.2f}-"
              f"{max(per_event):.2f}.",
+             f"Coupled episodes: slip {1e3 * min(slips):.3g}-"
+             f"{1e3 * max(slips):.3g} mm; crack opening / slip (slip > 1 mm) "
+             f"median {quantile(opening, .5):.3f}; return to static steps "
+             f"moves the block by at most {settle:.1e} m. Thermal part of the "
+             f"coupled runs (coupled - quake slips): "
+             f"{1e3 * min(thermal_part):.0f}-{1e3 * max(thermal_part):.0f} mm, "
+             f"median {1e3 * quantile(thermal_part, .5):.0f} mm (thermal alone "
+             f"{1e3 * hist[0]['thermal_m']:.1f} mm).",
              f"Scene-alone outliers (> {OUTLIER_FACTOR:g}x Block 1 alone and > "
              f"{1e3 * OUTLIER_SLIP:g} mm): {len(outliers)}" +
              "".join(f"; seed {e['seed']:.0f}, year {e['time_yr']:.0f}, "
