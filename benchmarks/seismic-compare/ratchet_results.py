@@ -165,7 +165,7 @@ def results(out, md):
         if h["episodes"] == 0:
             check(h["coupled_m"] == h["thermal_m"],
                   f"catalogue {h['catalogue']:.0f} without episodes = thermal run")
-    lines += [""] + statistics([out])[1:]
+    lines += [""] + ["- " + line for line in statistics([out])[1:]]
     lines += ["", f"{f('quake_failed_catalogues'):.0f} of {len(hist)} catalogues "
               "stopped (DDA could not continue; left out of the spreads)."]
     # A catalogue may stop where the static open-close iteration of the

@@ -81,11 +81,13 @@ run_unit compare "event at"
 
 # Part 2: the combined history in DDA (parameter-files/masada/
 # ratchet-earthquakes-block1.prm, analysis 'ratchet' with 'Ratchet
-# earthquakes'; about 15 minutes on 2 cores): results-ratchet.md and
+# earthquakes'; about 19 minutes on 2 cores at its 1.25 ms episode step):
+# results-ratchet.md (ratchet_results.py) and
 # ratchet_earthquakes.png. Checks (physics, not numbers): at least 80 % of
-# the catalogues complete; a catalogue without episodes ends exactly where the thermal run
-# does; no episode gains more than 1 % of the energy in play; no
-# episode moves the block upslope by more than 1e-5 of its height.
+# the catalogues complete; a catalogue without episodes ends exactly
+# where the thermal run does; no episode gains more than 1 % of the
+# energy in play; no episode moves the block upslope by more than 1e-5 of
+# its height.
 work2=$(mktemp -d)
 trap 'rm -rf "$work" "$work2"' EXIT
 (cd "$work2" && "$build/rockdda" --quiet \
