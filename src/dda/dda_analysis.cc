@@ -8,22 +8,19 @@
 #include <rockdda/dda/block_file.h>
 #include <rockdda/dda/engine.h>
 #include <rockdda/dda/hdf5_output.h>
+#include <rockdda/dda/run_loop.h>
 #include <rockdda/dda/vtu_output.h>
 #include <rockdda/io/checkpoint.h>
 #include <rockdda/io/error.h>
-#include <rockdda/io/interrupt.h>
 #include <rockdda/io/parameters.h>
-#include <rockdda/io/progress.h>
 #include <rockdda/seismic/ground_motion.h>
 
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <limits>
 #include <sstream>
 
 namespace rockdda::dda
@@ -276,7 +273,7 @@ namespace rockdda::dda
         prm.enter_subsection(AnalysisParameters<2>::section());
         AnalysisParameters<2> shared;
         shared.parse_parameters(prm, prm_file);
-        end_time = shared.end_time;
+        settings = run_settings(shared, prm);
         Controls c;
         c.time_step              = shared.time_step;
         c.min_time_step          = prm.get_double("Minimum time step");
@@ -325,13 +322,8 @@ namespace rockdda::dda
         c.solver.preconditioner = prm.get("Preconditioner") == "block-jacobi"
                                     ? Preconditioner::block_jacobi
                                     : Preconditioner::block_dilu;
-        checkpoint_interval     = prm.get_double("Checkpoint interval");
-        resume                  = prm.get_bool("Resume");
         const std::string mode  = prm.get("Seismic input");
         hdf5_snapshots          = prm.get("Snapshot format") == "hdf5";
-        settling_steps          = shared.settling_steps;
-        output_interval         = shared.output_interval;
-        statistics_interval     = shared.statistics_interval;
         const double gravity    = shared.gravity;
         prm.leave_subsection();
 
@@ -376,21 +368,18 @@ namespace rockdda::dda
           {
             throw InputError("block file '" + path + "': " + e.what());
           }
-        {
-          std::ostringstream f;
-          f.precision(17);
-          f << "blocks " << dda->system().blocks.size() << ", time step "
-            << c.time_step << " s, penalty " << c.law.normal_penalty
-            << " N/m, dynamic control " << c.dynamic << ", settling steps "
-            << settling_steps << ", seismic input " << mode;
-          fingerprint = f.str();
-        }
+        settings.fingerprint = run_fingerprint(dda->system().blocks.size(),
+                                               c.time_step,
+                                               c.law.normal_penalty,
+                                               c.dynamic,
+                                               settings.settling_steps,
+                                               mode);
       }
 
       bool
       resumes() const override
       {
-        return resume;
+        return settings.resume;
       }
 
       std::vector<std::string>
@@ -415,36 +404,6 @@ namespace rockdda::dda
           + " N/m, time step " + io::format_number(dda->controls().time_step, 4)
           + " s, domain " + io::format_number(dda->domain_size(), 4) + " m");
 
-        if (settling_steps > 0 && !resume)
-          {
-            // Static steps before t = 0, with progress, stopped by SIGINT /
-            // SIGTERM like the time loop.
-            unsigned int done = 0;
-            {
-              io::ProgressBar progress("dda settling",
-                                       0.,
-                                       double(settling_steps),
-                                       settling_steps);
-              dda->settle(settling_steps, [&](const unsigned int k) {
-                done = k;
-                progress.update(k, double(k));
-                return io::interrupt_signal() == 0;
-              });
-            }
-            if (done < settling_steps)
-              {
-                context.stopped_early = true;
-                context.stopped_note
-                  = "DDA stopped while settling, after " + std::to_string(done)
-                    + " of " + std::to_string(settling_steps)
-                    + " static steps (before t = 0: there is no time series "
-                      "to keep; run again to settle)";
-                context.log.line(context.stopped_note);
-                return;
-              }
-            context.log.line("settled with " + std::to_string(settling_steps)
-                             + " static steps");
-          }
         io::Table table;
         for (const auto &[n, u] :
              std::vector<std::pair<std::string, std::string>>{
@@ -477,27 +436,26 @@ namespace rockdda::dda
           }
         // The cuts column counts every cut since the previous row (a row
         // may follow several steps); the column sums to time_step_cuts.
-        unsigned long cuts_reported = 0;
-        auto          add_row       = [&](const StepReport &r) {
-          const unsigned long cuts = dda->n_cuts - cuts_reported;
-          cuts_reported            = dda->n_cuts;
-          const EnergyLedger  e    = dda->energy();
-          std::vector<double> row  = {dda->time(),
-                                      r.dt,
-                                      double(r.iterations),
-                                      double(cuts),
-                                      double(r.n_open),
-                                      double(r.n_sliding),
-                                      double(r.n_locked),
-                                      e.kinetic,
-                                      e.strain,
-                                      e.contact,
-                                      e.potential,
-                                      e.fixed,
-                                      e.friction,
-                                      e.load_work,
-                                      e.balance(),
-                                      r.max_displacement};
+        StepReport last;
+        auto       add_row = [&](const unsigned long cuts) {
+          const StepReport   &r   = last;
+          const EnergyLedger  e   = dda->energy();
+          std::vector<double> row = {dda->time(),
+                                     r.dt,
+                                     double(r.iterations),
+                                     double(cuts),
+                                     double(r.n_open),
+                                     double(r.n_sliding),
+                                     double(r.n_locked),
+                                     e.kinetic,
+                                     e.strain,
+                                     e.contact,
+                                     e.potential,
+                                     e.fixed,
+                                     e.friction,
+                                     e.load_work,
+                                     e.balance(),
+                                     r.max_displacement};
           for (const auto &m : dda->system().measurement_points)
             {
               const auto  d = m.point - m.initial;
@@ -507,9 +465,11 @@ namespace rockdda::dda
           table.add_row(row);
         };
 
-        std::vector<std::pair<double, std::string>> block_files, contact_files;
-        Hdf5Series                                  series(context.output);
-        auto                                        snapshot = [&]() {
+        RunLoop<DdaSystem> loop(*dda, settings, context, table);
+        auto              &block_files   = loop.progress.block_files;
+        auto              &contact_files = loop.progress.contact_files;
+        Hdf5Series         series(context.output);
+        auto               snapshot = [&]() {
           if (hdf5_snapshots)
             {
               const std::string f = series.write(dda->time(),
@@ -530,193 +490,22 @@ namespace rockdda::dda
           context.output.write("blocks.pvd", pvd(block_files));
           context.output.write("contacts.pvd", pvd(contact_files));
         };
-
-        StepReport last;
-        double next_output = output_interval, next_row = statistics_interval;
-        double next_checkpoint         = checkpoint_interval;
-        unsigned int  max_iterations   = 0;
-        unsigned long iterations_total = 0;
+        if (hdf5_snapshots)
+          loop.on_resume = [&]() { series.restore(block_files); };
+        const auto step = [&](const double target) {
+          last
+            = dda->run_until(std::min(target, dda->time() + dda->time_step()));
+          return last.iterations;
+        };
+        if (!loop.run(step, add_row, snapshot))
+          return;
         // Energy ledger over every accepted step (not only the rows): the
         // balance at the start, the largest gain over it (created energy,
         // > 0 only through the ledger's known inexactness) and the largest
         // energy in play.
-        const EnergyLedger      ledger0        = dda->energy();
-        double                  balance0       = ledger0.balance();
-        double                  created_max    = 0.;
-        double                  energy_in_play = ledger0.scale();
-        const io::RunCheckpoint checkpoint_file(context.output,
-                                                "DDA",
-                                                fingerprint,
-                                                "DDA");
-        double saved_at = std::numeric_limits<double>::quiet_NaN();
-        // A checkpoint: the engine's state and the run's progress (rows of
-        // statistics.csv, VTU series, next output times, counters).
-        const auto save_checkpoint = [&]() {
-          io::BinaryWriter w = checkpoint_file.begin();
-          w.put_string(dda->checkpoint());
-          io::RunCheckpoint::put_rows(w, table);
-          for (const auto *files : {&block_files, &contact_files})
-            {
-              w.put<std::uint64_t>(files->size());
-              for (const auto &[time, name] : *files)
-                {
-                  w.put(time);
-                  w.put_string(name);
-                }
-            }
-          for (const double v : {next_output, next_row, next_checkpoint})
-            w.put(v);
-          w.put<std::uint32_t>(max_iterations);
-          w.put<std::uint64_t>(iterations_total);
-          w.put<std::uint64_t>(cuts_reported);
-          for (const double v : {balance0, created_max, energy_in_play})
-            w.put(v);
-          checkpoint_file.write(w, table);
-          saved_at = dda->time();
-        };
-        const auto load_checkpoint = [&]() {
-          const std::string bytes = checkpoint_file.read();
-          io::BinaryReader  r     = checkpoint_file.reader(bytes);
-          dda->restore(r.get_string(), checkpoint_file.file());
-          io::RunCheckpoint::get_rows(r, table);
-          for (auto *files : {&block_files, &contact_files})
-            {
-              files->clear();
-              const auto n = r.get<std::uint64_t>();
-              for (std::uint64_t i = 0; i < n; ++i)
-                {
-                  const double time = r.get<double>();
-                  files->emplace_back(time, r.get_string());
-                }
-            }
-          for (double *v : {&next_output, &next_row, &next_checkpoint})
-            *v = r.get<double>();
-          max_iterations   = r.get<std::uint32_t>();
-          iterations_total = r.get<std::uint64_t>();
-          cuts_reported    = r.get<std::uint64_t>();
-          for (double *v : {&balance0, &created_max, &energy_in_play})
-            *v = r.get<double>();
-          if (!r.at_end())
-            throw InputError(checkpoint_file.file() + ": trailing data");
-          context.log.line("resumed from " + checkpoint_file.file()
-                           + " at t = " + io::format_number(dda->time(), 8)
-                           + " s (step " + std::to_string(dda->n_steps) + ")");
-        };
-        if (resume)
-          {
-            load_checkpoint();
-            if (hdf5_snapshots)
-              series.restore(block_files);
-          }
-        else
-          {
-            add_row(last);
-            if (output_interval > 0.)
-              snapshot();
-          }
-        std::string         failure;
-        const auto          start = std::chrono::steady_clock::now();
-        const unsigned long step_limit
-          = static_cast<unsigned long>(100. * end_time
-                                       / dda->controls().time_step)
-            + 1000;
-        // Stopped early by SIGINT / SIGTERM (polled after every step).
-        int interrupted = 0;
-        {
-          io::ProgressBar progress(
-            "dda",
-            dda->time(),
-            end_time,
-            dda->n_steps
-              + static_cast<unsigned long>(io::planned_steps(
-                dda->time(), end_time, dda->controls().time_step)));
-          try
-            {
-              while (dda->time() < end_time - 1e-9 * dda->controls().time_step
-                     && (interrupted = io::interrupt_signal()) == 0)
-                {
-                  // One step, landing exactly on output times.
-                  double target
-                    = std::min(end_time, dda->time() + dda->time_step());
-                  if (output_interval > 0.)
-                    target = std::min(target, next_output);
-                  if (checkpoint_interval > 0.)
-                    target = std::min(target, next_checkpoint);
-                  last = dda->run_until(target);
-                  if (dda->n_steps > step_limit)
-                    throw DdaFailure(
-                      "stopped at t = " + io::format_number(dda->time(), 6)
-                      + " s after " + std::to_string(step_limit)
-                      + " steps (100 x End time / Time step + 1000): the time "
-                        "step stayed far below the requested one (now "
-                      + io::format_number(dda->time_step(), 4) + " s)");
-                  max_iterations = std::max(max_iterations, last.iterations);
-                  iterations_total += last.iterations;
-                  {
-                    const EnergyLedger e = dda->energy();
-                    created_max = std::max(created_max, e.balance() - balance0);
-                    energy_in_play = std::max(energy_in_play, e.scale());
-                  }
-                  if (statistics_interval <= 0.
-                      || dda->time() >= next_row - 1e-12)
-                    {
-                      add_row(last);
-                      while (statistics_interval > 0.
-                             && next_row <= dda->time() + 1e-12)
-                        next_row += statistics_interval;
-                    }
-                  if (output_interval > 0.
-                      && dda->time() >= next_output - 1e-12)
-                    {
-                      snapshot();
-                      next_output += output_interval;
-                    }
-                  if (checkpoint_interval > 0.
-                      && dda->time() >= next_checkpoint - 1e-12)
-                    {
-                      while (next_checkpoint <= dda->time() + 1e-12)
-                        next_checkpoint += checkpoint_interval;
-                      save_checkpoint();
-                    }
-                  progress.update(dda->n_steps, dda->time());
-                }
-            }
-          catch (const DdaFailure &e)
-            {
-              failure = e.what();
-            }
-        }
-        const double wall = std::chrono::duration<double>(
-                              std::chrono::steady_clock::now() - start)
-                              .count();
-        // At the End time, unless just taken there (the run can be
-        // extended); a checkpoint writes statistics.csv too.
-        // An interrupted run always writes a checkpoint (Resume = true
-        // continues it bit for bit), with statistics.csv so far.
-        if ((checkpoint_interval > 0. || interrupted != 0) && failure.empty()
-            && saved_at != dda->time())
-          save_checkpoint();
-        else if ((checkpoint_interval <= 0. && interrupted == 0)
-                 || !failure.empty())
-          context.output.write("statistics.csv", table.csv());
-        if (interrupted != 0 && failure.empty())
-          {
-            // statistics.csv has the rows reported so far; the state
-            // reached is in the summary and the checkpoint.
-            context.stopped_early = true;
-            context.stopped_note
-              = "DDA stopped at t = " + io::format_number(dda->time(), 8)
-                + " s of " + io::format_number(end_time, 8) + " s (step "
-                + std::to_string(dda->n_steps)
-                + "); statistics.csv so far and checkpoint.bin written (set "
-                  "'DDA/Resume' = true to continue).";
-            context.log.line(context.stopped_note);
-          }
-        if (!failure.empty())
-          {
-            context.log.line("DDA stopped: " + failure);
-            throw DdaFailure(failure);
-          }
+        const double balance0       = loop.progress.balance0;
+        const double created_max    = loop.progress.created_max;
+        const double energy_in_play = loop.progress.energy_in_play;
 
         auto &s = context.summary;
         s.add("final_time", dda->time(), "s");
@@ -777,11 +566,7 @@ namespace rockdda::dda
                          + std::to_string(ls.n_threads())
                          + " for detection and state checks";
         context.log.line("linear solver (last step): " + solver_text);
-        context.log.line(std::string(interrupted != 0 ? "DDA stopped early: "
-                                                      : "DDA finished: ")
-                         + std::to_string(dda->n_steps) + " steps, "
-                         + std::to_string(dda->n_cuts) + " cuts, "
-                         + io::format_number(wall, 3) + " s wall");
+        context.log.line(loop.finished_line());
       }
 
     private:
@@ -790,15 +575,11 @@ namespace rockdda::dda
       /// Log lines on the integration drift of the seismic records.
       std::vector<std::string> drift_text;
       std::string              motion_text;
-      double end_time = 1., output_interval = 0.1, statistics_interval = 0.;
+      /// End time, intervals, Checkpoint interval, Resume, settling steps
+      /// and the fingerprint of the run's controls.
+      RunSettings settings;
       /// Snapshots as HDF5 + XDMF instead of VTU + PVD.
-      bool         hdf5_snapshots      = false;
-      double       checkpoint_interval = 0.;
-      bool         resume              = false;
-      unsigned int settling_steps      = 0;
-      /// Identifies the run a checkpoint belongs to (controls and scene
-      /// size; End time excluded).
-      std::string fingerprint;
+      bool hdf5_snapshots = false;
     };
   } // namespace
 

@@ -5,6 +5,7 @@
  * continues exactly as the uninterrupted one.
  */
 #include <rockdda/dda/engine.h>
+#include <rockdda/dda/scene_checkpoint.h>
 #include <rockdda/io/binary_stream.h>
 #include <rockdda/io/error.h>
 
@@ -21,50 +22,12 @@ namespace rockdda::dda
     using io::BinaryReader;
     using io::BinaryWriter;
 
-    void
-    put_point(BinaryWriter &w, const geometry::Point &p)
-    {
-      w.put(p.x());
-      w.put(p.y());
-    }
-
     geometry::Point
     get_point(BinaryReader &r)
     {
-      const double x = r.get<double>();
-      const double y = r.get<double>();
-      return geometry::Point(x, y);
-    }
-
-    template <int n>
-    void
-    put_vector(BinaryWriter &w, const Eigen::Matrix<double, n, 1> &v)
-    {
-      for (int i = 0; i < n; ++i)
-        w.put(v[i]);
-    }
-
-    template <int n>
-    void
-    get_vector(BinaryReader &r, Eigen::Matrix<double, n, 1> &v)
-    {
-      for (int i = 0; i < n; ++i)
-        v[i] = r.get<double>();
-    }
-
-    /// Read a count and check it against the scene's.
-    void
-    expect_count(BinaryReader      &r,
-                 const std::size_t  expected,
-                 const std::string &what,
-                 const std::string &source)
-    {
-      const auto n = r.get<std::uint64_t>();
-      if (n != expected)
-        throw InputError(source + ": the checkpoint has " + std::to_string(n)
-                         + " " + what + ", the scene "
-                         + std::to_string(expected)
-                         + ": it belongs to another scene");
+      geometry::Point p;
+      r.get_fixed(p);
+      return p;
     }
   } // namespace
 
@@ -74,8 +37,7 @@ namespace rockdda::dda
   DdaSystem::checkpoint() const
   {
     BinaryWriter w;
-    w.put_string(magic);
-    w.put(format_version);
+    w.put_header(magic, format_version);
     w.put<std::uint64_t>(scene.blocks.size());
     w.put<std::uint64_t>(n_scene_blocks);
     for (std::size_t k = 0; k < scene.blocks.size(); ++k)
@@ -94,34 +56,23 @@ namespace rockdda::dda
           }
         w.put<std::uint64_t>(b.polygon.vertices.size());
         for (const auto &v : b.polygon.vertices)
-          put_point(w, v);
-        put_vector<6>(w, b.velocity);
-        put_vector<3>(w, b.stress);
-        put_vector<3>(w, b.strain);
-        put_vector<3>(w, b.eigenstrain);
-        put_vector<3>(w, b.applied_eigenstrain);
-        put_point(w, b.initial_centroid);
+          w.put_fixed(v);
+        w.put_fixed(b.velocity);
+        w.put_fixed(b.stress);
+        w.put_fixed(b.strain);
+        w.put_fixed(b.eigenstrain);
+        w.put_fixed(b.applied_eigenstrain);
+        w.put_fixed(b.initial_centroid);
         w.put(b.rotation);
       }
-    w.put<std::uint64_t>(scene.fixed_points.size());
-    for (const auto &f : scene.fixed_points)
-      put_point(w, f.point);
-    w.put<std::uint64_t>(scene.load_points.size());
-    for (const auto &l : scene.load_points)
-      put_point(w, l.point);
-    w.put<std::uint64_t>(scene.measurement_points.size());
-    for (const auto &m : scene.measurement_points)
-      {
-        put_point(w, m.point);
-        put_point(w, m.initial);
-      }
+    dda::put_scene_points(w, scene);
     w.put<std::uint64_t>(current_contacts.size());
     for (const auto &c : current_contacts)
       {
         const auto &g = c.geometry;
         for (const int i : {g.block_i, g.vertex, g.block_j, g.edge})
           w.put<std::int32_t>(i);
-        put_point(w, g.normal);
+        w.put_fixed(g.normal);
         w.put(g.xi);
         w.put(g.gap);
         w.put<std::int32_t>(static_cast<std::int32_t>(c.state));
@@ -158,17 +109,11 @@ namespace rockdda::dda
   DdaSystem::restore(const std::string &bytes, const std::string &source)
   {
     BinaryReader r(bytes, source);
-    if (r.get_string() != magic)
-      throw InputError(source + ": not a rockdda DDA checkpoint");
-    const auto version = r.get<std::uint32_t>();
-    if (version != format_version)
-      throw InputError(source + ": checkpoint format " + std::to_string(version)
-                       + "; this build reads format "
-                       + std::to_string(format_version));
+    r.check_header(magic, format_version);
     // Read into a copy: the engine is untouched if the file is rejected.
     BlockSystem s       = scene;
     const auto  n_total = r.get<std::uint64_t>();
-    expect_count(r, n_scene_blocks, "blocks in the scene", source);
+    r.expect_count(n_scene_blocks, "blocks in the scene");
     // Blocks added after the checkpoint's own (add_block) cannot be undone.
     if (n_total < s.blocks.size() || n_total > bytes.size() / 64)
       throw InputError(source + ": the checkpoint has "
@@ -210,59 +155,36 @@ namespace rockdda::dda
             b.polygon.vertices.resize(n_vertices);
           }
         else
-          expect_count(r,
-                       b.polygon.vertices.size(),
-                       "vertices in block " + std::to_string(b.id),
-                       source);
+          r.expect_count(b.polygon.vertices.size(),
+                         "vertices in block " + std::to_string(b.id));
         for (auto &v : b.polygon.vertices)
           v = get_point(r);
-        get_vector<6>(r, b.velocity);
-        get_vector<3>(r, b.stress);
-        get_vector<3>(r, b.strain);
-        get_vector<3>(r, b.eigenstrain);
-        get_vector<3>(r, b.applied_eigenstrain);
+        r.get_fixed(b.velocity);
+        r.get_fixed(b.stress);
+        r.get_fixed(b.strain);
+        r.get_fixed(b.eigenstrain);
+        r.get_fixed(b.applied_eigenstrain);
         b.initial_centroid = get_point(r);
         b.rotation         = r.get<double>();
       }
-    expect_count(r, s.fixed_points.size(), "fixed points", source);
-    for (auto &f : s.fixed_points)
-      f.point = get_point(r);
-    expect_count(r, s.load_points.size(), "load points", source);
-    for (auto &l : s.load_points)
-      l.point = get_point(r);
-    expect_count(r, s.measurement_points.size(), "measurement points", source);
-    for (auto &m : s.measurement_points)
-      {
-        m.point   = get_point(r);
-        m.initial = get_point(r);
-      }
-    const auto n_contacts = r.get<std::uint64_t>();
-    // Each contact takes 93 bytes: a larger count is a damaged file.
-    if (n_contacts > bytes.size() / 93)
-      throw InputError(source + ": the checkpoint is damaged ("
-                       + std::to_string(n_contacts) + " contacts in "
-                       + std::to_string(bytes.size()) + " bytes)");
+    dda::get_scene_points(r, s);
+    // Each contact takes 97 bytes: a larger count is a damaged file.
+    const auto           n_contacts = r.get_count(97, "contacts");
     std::vector<Contact> contacts(n_contacts);
     for (auto &c : contacts)
       {
-        auto &g             = c.geometry;
-        g.block_i           = r.get<std::int32_t>();
-        g.vertex            = r.get<std::int32_t>();
-        g.block_j           = r.get<std::int32_t>();
-        g.edge              = r.get<std::int32_t>();
-        g.normal            = get_point(r);
-        g.xi                = r.get<double>();
-        g.projection        = g.xi;
-        g.gap               = r.get<double>();
-        const auto state    = r.get<std::int32_t>();
-        const auto at_start = r.get<std::int32_t>();
-        if (state < 0 || state > 2 || at_start < 0 || at_start > 2)
-          throw InputError(source
-                           + ": the checkpoint is damaged (contact "
-                             "state "
-                           + std::to_string(state) + ")");
-        c.state            = static_cast<ContactState>(state);
-        c.state_at_start   = static_cast<ContactState>(at_start);
+        auto &g      = c.geometry;
+        g.block_i    = r.get<std::int32_t>();
+        g.vertex     = r.get<std::int32_t>();
+        g.block_j    = r.get<std::int32_t>();
+        g.edge       = r.get<std::int32_t>();
+        g.normal     = get_point(r);
+        g.xi         = r.get<double>();
+        g.projection = g.xi;
+        g.gap        = r.get<double>();
+        c.state = static_cast<ContactState>(r.get_index(2, "contact state"));
+        c.state_at_start
+          = static_cast<ContactState>(r.get_index(2, "contact state"));
         c.xi_ref           = r.get<double>();
         c.normal_force     = r.get<double>();
         c.shear_force      = r.get<double>();

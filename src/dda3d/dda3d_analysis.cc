@@ -7,15 +7,14 @@
  */
 #include <rockdda/dda/analysis_parameters.h>
 #include <rockdda/dda/block_system.h>
+#include <rockdda/dda/run_loop.h>
 #include <rockdda/dda/vtu_output.h>
 #include <rockdda/dda3d/analyses.h>
 #include <rockdda/dda3d/block_file.h>
 #include <rockdda/dda3d/engine.h>
 #include <rockdda/dda3d/vtu_output.h>
 #include <rockdda/io/error.h>
-#include <rockdda/io/interrupt.h>
 #include <rockdda/io/parameters.h>
-#include <rockdda/io/progress.h>
 #include <rockdda/io/time_expression.h>
 #include <rockdda/seismic/ground_motion.h>
 
@@ -23,7 +22,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -113,6 +111,10 @@ namespace rockdda::dda3d
                     "Thesis Fig. 4-2A, r = [0.5 sin 10t, 0, -1] g, is "
                     "'-0.5*sin(10*t); 0; 0'. A ramp is written into the "
                     "expression, e.g. 'min(t/5,1)*0.21*sin(4*pi*t); 0; 0'.");
+        io::RunCheckpoint::declare_parameters(
+          prm,
+          "at multiples of this interval (steps land on them, as on output "
+          "times) and at the End time");
         io::declare(prm,
                     "Ground motion azimuth",
                     "90",
@@ -132,8 +134,9 @@ namespace rockdda::dda3d
         shared.parse_parameters(prm, prm_file);
         c.min_dt_ratio       = prm.get_double("Minimum time step ratio");
         c.law.normal_penalty = prm.get_double("Contact penalty");
+        settings             = dda::run_settings(shared, prm);
+        const std::string seismic_mode = prm.get("Seismic input");
         prm.leave_subsection();
-        end_time                  = shared.end_time;
         c.dt                      = shared.time_step;
         c.dynamic                 = shared.dynamic;
         c.max_open_close          = shared.max_open_close;
@@ -141,9 +144,6 @@ namespace rockdda::dda3d
         c.law.shear_ratio         = shared.shear_ratio;
         c.law.force_tolerance     = shared.force_tolerance;
         c.fixed_penalty           = shared.fixed_penalty;
-        settling_steps            = shared.settling_steps;
-        output_interval           = shared.output_interval;
-        statistics_interval       = shared.statistics_interval;
         const double      gravity = shared.gravity;
         const std::string s       = shared.section() + "/";
         io::require(c.min_dt_ratio > 0. && c.min_dt_ratio <= 1.,
@@ -160,8 +160,11 @@ namespace rockdda::dda3d
         BlockSystem        scene = read_block_file(path);
         scene.gravity            = Point(0., 0., -gravity);
         shared.apply_friction_law(scene.joints);
-        seismic = parse_seismic_input(
-          prm, prm_file, end_time, c.dt, gravity > 0. ? gravity : 9.80665);
+        seismic = parse_seismic_input(prm,
+                                      prm_file,
+                                      settings.end_time,
+                                      c.dt,
+                                      gravity > 0. ? gravity : 9.80665);
         if (seismic.mode == SeismicInput3d::Mode::loading)
           c.ground_acceleration = seismic.acceleration;
         else if (seismic.mode == SeismicInput3d::Mode::displacement)
@@ -174,6 +177,19 @@ namespace rockdda::dda3d
           {
             throw InputError("block file '" + path + "': " + e.what());
           }
+        settings.fingerprint
+          = dda::run_fingerprint(engine->scene().blocks.size(),
+                                 c.dt,
+                                 c.law.normal_penalty,
+                                 c.dynamic,
+                                 settings.settling_steps,
+                                 seismic_mode);
+      }
+
+      bool
+      resumes() const override
+      {
+        return settings.resume;
       }
 
       void
@@ -186,12 +202,6 @@ namespace rockdda::dda3d
           "DDA 3d: " + std::to_string(sys.blocks.size()) + " blocks, penalty "
           + io::format_number(c.law.normal_penalty, 4) + " N/m, time step "
           + io::format_number(c.dt, 4) + " s");
-        if (settling_steps > 0)
-          {
-            engine->settle(settling_steps);
-            context.log.line("settled with " + std::to_string(settling_steps)
-                             + " static steps");
-          }
         io::Table table;
         for (const auto &[n, u] :
              std::vector<std::pair<std::string, std::string>>{
@@ -227,14 +237,13 @@ namespace rockdda::dda3d
           const auto &mp = engine->scene().measurement_points[m];
           return Point(mp.point - mp.initial);
         };
-        int  cuts_since_row = 0;
-        auto add_row        = [&]() {
+        auto add_row = [&](const unsigned long cuts) {
           const auto         &st = engine->statistics();
           const Energy        e  = engine->energy();
           std::vector<double> row{engine->time(),
                                   st.dt,
                                   double(st.iterations),
-                                  double(cuts_since_row),
+                                  double(cuts),
                                   double(st.open),
                                   double(st.sliding),
                                   double(st.locked),
@@ -245,7 +254,6 @@ namespace rockdda::dda3d
                                   e.friction,
                                   e.load_work,
                                   e.balance()};
-          cuts_since_row = 0;
           if (ground)
             {
               const Point u = seismic.displacement(engine->time());
@@ -263,8 +271,10 @@ namespace rockdda::dda3d
             }
           table.add_row(row);
         };
-        std::vector<std::pair<double, std::string>> files, contact_files;
-        auto                                        snapshot = [&]() {
+        dda::RunLoop<Engine> loop(*engine, settings, context, table);
+        auto                &files         = loop.progress.block_files;
+        auto                &contact_files = loop.progress.contact_files;
+        auto                 snapshot      = [&]() {
           char name[64];
           std::snprintf(name, sizeof(name), "blocks-%05zu.vtu", files.size());
           context.output.write(name,
@@ -279,93 +289,34 @@ namespace rockdda::dda3d
           contact_files.emplace_back(engine->time(), name);
           context.output.write("contacts.pvd", dda::pvd(contact_files));
         };
-
-        add_row();
-        if (output_interval > 0.)
-          snapshot();
-        double        next_output = output_interval;
-        double        next_row    = statistics_interval;
-        unsigned long steps = 0, cuts = 0, iterations = 0;
-        const double  balance0    = engine->energy().balance();
-        double        created_max = 0.;
-        int           interrupted = 0;
-        std::string   failure;
-        const auto    start = std::chrono::steady_clock::now();
-        {
-          io::ProgressBar progress("dda3d",
-                                   0.,
-                                   end_time,
-                                   static_cast<unsigned long>(
-                                     io::planned_steps(0., end_time, c.dt)));
-          try
-            {
-              while (engine->time() < end_time - 1e-9 * c.dt
-                     && (interrupted = io::interrupt_signal()) == 0)
-                {
-                  double target = end_time;
-                  if (output_interval > 0.)
-                    target = std::min(target, next_output);
-                  // One step (the last before an output time shortened to
-                  // land on it).
-                  const double t0 = engine->time();
-                  engine->advance_to(std::min(target, t0 + c.dt));
-                  ++steps;
-                  cuts += engine->statistics().cuts;
-                  cuts_since_row += engine->statistics().cuts;
-                  iterations += engine->statistics().iterations;
-                  created_max = std::max(created_max,
-                                         engine->energy().balance() - balance0);
-                  if (statistics_interval <= 0.
-                      || engine->time() >= next_row - 1e-12)
-                    {
-                      add_row();
-                      while (statistics_interval > 0.
-                             && next_row <= engine->time() + 1e-12)
-                        next_row += statistics_interval;
-                    }
-                  if (output_interval > 0.
-                      && engine->time() >= next_output - 1e-12)
-                    {
-                      snapshot();
-                      next_output += output_interval;
-                    }
-                  progress.update(steps, engine->time());
-                }
-            }
-          catch (const dda::DdaFailure &e)
-            {
-              failure = e.what();
-            }
-        }
-        const double wall = std::chrono::duration<double>(
-                              std::chrono::steady_clock::now() - start)
-                              .count();
-        context.output.write("statistics.csv", table.csv());
-        if (!failure.empty())
-          {
-            context.log.line("DDA 3d stopped: " + failure);
-            throw dda::DdaFailure(failure);
-          }
-        if (interrupted != 0)
-          {
-            context.stopped_early = true;
-            context.stopped_note
-              = "DDA 3d stopped at t = " + io::format_number(engine->time(), 8)
-                + " s of " + io::format_number(end_time, 8)
-                + " s; statistics.csv so far written";
-            context.log.line(context.stopped_note);
-          }
-        auto &sm = context.summary;
+        // One step (the last before an output or checkpoint time
+        // shortened to land on it).
+        const auto step = [&](const double target) {
+          const unsigned long before = engine->n_iterations;
+          engine->advance_to(std::min(target, engine->time() + c.dt));
+          return static_cast<unsigned int>(engine->n_iterations - before);
+        };
+        if (!loop.run(step, add_row, snapshot))
+          return;
+        const double balance0    = loop.progress.balance0;
+        const double created_max = loop.progress.created_max;
+        auto        &sm          = context.summary;
         sm.add("final_time", engine->time(), "s");
-        sm.add("steps", double(steps), "-");
-        sm.add("time_step_cuts", double(cuts), "-");
+        sm.add("steps", double(engine->n_steps), "-");
+        sm.add("time_step_cuts", double(engine->n_cuts), "-");
         sm.add("open_close_iterations_per_step",
-               double(iterations) / double(std::max(1ul, steps)),
+               double(engine->n_iterations)
+                 / double(std::max(1ul, engine->n_steps)),
                "-");
         const Energy e = engine->energy();
         sm.add("kinetic_energy", e.kinetic, "J");
         sm.add("energy_balance_change", e.balance() - balance0, "J");
         sm.add("energy_created_max", created_max, "J");
+        sm.add("energy_created_relative",
+               loop.progress.energy_in_play > 0.
+                 ? created_max / loop.progress.energy_in_play
+                 : 0.,
+               "-");
         sm.add("contacts_final", double(engine->contacts().size()), "-");
         double max_disp = 0.;
         for (std::size_t b = 0; b < sys.blocks.size(); ++b)
@@ -386,18 +337,17 @@ namespace rockdda::dda3d
             sm.add("ground_uy", u.y(), "m");
             sm.add("ground_uz", u.z(), "m");
           }
-        sm.add("wall_time", wall, "s");
-        context.log.line("DDA 3d finished: " + std::to_string(steps)
-                         + " steps, " + std::to_string(cuts) + " cuts, "
-                         + io::format_number(wall, 3) + " s wall");
+        sm.add("wall_time", loop.wall, "s");
+        context.log.line(loop.finished_line());
       }
 
     private:
       std::unique_ptr<Engine> engine;
       EngineControls          c;
       SeismicInput3d          seismic;
-      double end_time = 1., output_interval = 0.1, statistics_interval = 0.;
-      unsigned int settling_steps = 0;
+      /// End time, intervals, Checkpoint interval, Resume, settling steps
+      /// and the fingerprint of the run's controls.
+      dda::RunSettings settings;
     };
   } // namespace
 

@@ -252,6 +252,9 @@ namespace rockdda::dda3d
               "move too far per step)");
       }
     t += h;
+    ++n_steps;
+    n_cuts += cuts;
+    n_iterations += stats.iterations;
     stats.cuts      = cuts;
     stats.dt        = h;
     first_detection = false;
@@ -293,7 +296,8 @@ namespace rockdda::dda3d
 
 
   void
-  Engine::settle(const unsigned int n)
+  Engine::settle(const unsigned int                             n,
+                 const std::function<bool(const unsigned int)> &after_step)
   {
     const EngineControls saved = ctrl;
     const double         t0    = t;
@@ -303,7 +307,11 @@ namespace rockdda::dda3d
     try
       {
         for (unsigned int k = 0; k < n; ++k)
-          step();
+          {
+            step();
+            if (after_step && !after_step(k + 1))
+              break;
+          }
       }
     catch (...)
       {
@@ -322,6 +330,8 @@ namespace rockdda::dda3d
       m.initial = m.point;
     friction_work = 0.;
     load_work     = 0.;
+    n_steps       = 0;
+    n_iterations  = 0;
   }
 
 

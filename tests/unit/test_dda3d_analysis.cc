@@ -3,8 +3,9 @@
  * 3D DDA scene checks and the analysis type "dda3d" (issue 17): overlap at
  * t = 0, the block on an incline run through the analysis type
  * (statistics.csv, summary, VTU series), the seismic loading and
- * displacement modes, and the thesis's Fig. 4-2A/B against
- * analytical::slide_3d.
+ * displacement modes, the thesis's Fig. 4-2A/B against
+ * analytical::slide_3d, and checkpoints (a resumed run is bit for bit the
+ * uninterrupted one).
  */
 #include <rockdda/analytical/sliding3d.h>
 #include <rockdda/analytical/yield.h>
@@ -12,6 +13,7 @@
 #include <rockdda/dda3d/block_file.h>
 #include <rockdda/dda3d/engine.h>
 #include <rockdda/dda3d/generators.h>
+#include <rockdda/io/binary_stream.h>
 #include <rockdda/io/error.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -156,22 +158,14 @@ namespace
     return rows;
   }
 
-  /**
-   * Run the analysis type "dda3d" on the parameter text @p prm_text (the
-   * "DDA 3d" and "Ground motion" sections) with the block file text
-   * @p blocks in a scratch folder @p name; returns summary.csv's values.
-   * @p wall receives the run's wall time (s), @p history the rows of
-   * statistics.csv.
-   */
+  /// Run "dda3d" on @p prm_text in the folder @p dir (kept: its output
+  /// folder "out" may hold a checkpoint); returns summary.csv's values,
+  /// @p wall the run's wall time (s).
   Summary
-  run_dda3d(const std::string                          &name,
-            const std::string                          &blocks,
-            const std::string                          &prm_text,
-            double                                     *wall    = nullptr,
-            std::vector<std::map<std::string, double>> *history = nullptr)
+  run_dda3d_in(const std::filesystem::path &dir,
+               const std::string           &prm_text,
+               double                      *wall = nullptr)
   {
-    const auto dir = test_files::scratch(name);
-    test_files::write_file(dir / "scene.blocks", blocks);
     const std::string prm_file = (dir / "run.prm").string();
     test_files::write_file(prm_file, prm_text);
     auto  analyses = make_analyses();
@@ -201,6 +195,26 @@ namespace
         s[line.substr(0, c1)]
           = std::atof(line.substr(c1 + 1, c2 - c1 - 1).c_str());
       }
+    return s;
+  }
+
+  /**
+   * Run the analysis type "dda3d" on the parameter text @p prm_text (the
+   * "DDA 3d" and "Ground motion" sections) with the block file text
+   * @p blocks in a scratch folder @p name; returns summary.csv's values.
+   * @p wall receives the run's wall time (s), @p history the rows of
+   * statistics.csv.
+   */
+  Summary
+  run_dda3d(const std::string                          &name,
+            const std::string                          &blocks,
+            const std::string                          &prm_text,
+            double                                     *wall    = nullptr,
+            std::vector<std::map<std::string, double>> *history = nullptr)
+  {
+    const auto dir = test_files::scratch(name);
+    test_files::write_file(dir / "scene.blocks", blocks);
+    const Summary s = run_dda3d_in(dir, prm_text, wall);
     // The output files exist (written atomically through OutputDirectory).
     EXPECT_TRUE(std::ifstream(dir / "out" / "statistics.csv").good());
     if (history)
@@ -977,4 +991,233 @@ TEST(Dda3dSeismic, ShakingTableWedgeRunsOutWithVelocityWeakeningAsSliding3d)
     }
   EXPECT_GT(exact_final["A-B=-0.0174"], 20. * exact_final["constant"]);
   EXPECT_GT(final_slide["A-B=-0.0174"], 20. * final_slide["constant"]);
+}
+
+
+
+// A 3D run resumed from a checkpoint continues bit for bit (issue 17,
+// checkpoints as in 2D): the shaking-table wedge, settled by 20 static
+// steps and shaken in the loading mode (0.5 g at 4 Hz along the line of
+// intersection, friction 30 deg: it slides and sticks) to 0.15 s,
+// checkpoint, on to 0.3 s; a fresh engine of the same scene (not settled)
+// restored from the checkpoint takes the same steps to the same vertex
+// coordinates, velocities, stresses, contact states, shear references and
+// forces, energy ledger and counters, exactly. A checkpoint of another
+// scene, a truncated one and the 2D engine's are rejected naming the
+// source, leaving the engine as it was.
+TEST(Dda3dCheckpoint, ResumedRunIsIdentical)
+{
+  dda::JointMaterial joint;
+  joint.friction_deg      = 30.;
+  const BlockSystem scene = wedge_in_trough_scene(
+    make_wedge_in_trough({51.4, 65.8, 51.4, 295.2, 80., 0.5}, 0.1, 0.1),
+    {1700., 2e11, 0.25, 1},
+    joint);
+  EngineControls c;
+  c.dt                 = 1e-3;
+  c.law.normal_penalty = 4e10;
+  const Point axis(std::sin(0.5 * pi / 180.), std::cos(0.5 * pi / 180.), 0.);
+  c.ground_acceleration = [axis](const double t) {
+    return Point(0.5 * 9.80665 * std::sin(8. * pi * t) * axis);
+  };
+  Engine original(scene, c);
+  original.settle(20);
+  while (original.time() < 0.15)
+    original.step();
+  const std::string   saved    = original.checkpoint();
+  const unsigned long n_before = original.n_steps;
+  const double        t_saved  = original.time();
+  // Steps with a sliding contact (the run is not trivial).
+  unsigned long sliding_steps = 0;
+  while (original.time() < 0.3)
+    {
+      original.step();
+      sliding_steps += original.statistics().sliding > 0;
+    }
+  const unsigned long n_after = original.n_steps - n_before;
+
+  Engine resumed(scene, c);
+  resumed.restore(saved, "test checkpoint");
+  EXPECT_EQ(resumed.n_steps, n_before);
+  for (unsigned long k = 0; k < n_after; ++k)
+    resumed.step();
+
+  EXPECT_EQ(resumed.time(), original.time());
+  EXPECT_EQ(resumed.time_step(), original.time_step());
+  EXPECT_EQ(resumed.n_steps, original.n_steps);
+  EXPECT_EQ(resumed.n_cuts, original.n_cuts);
+  EXPECT_EQ(resumed.n_iterations, original.n_iterations);
+  for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+    {
+      const Block &x = original.scene().blocks[b];
+      const Block &y = resumed.scene().blocks[b];
+      EXPECT_EQ(x.polyhedron.vertices, y.polyhedron.vertices);
+      EXPECT_EQ(x.velocity, y.velocity);
+      EXPECT_EQ(x.stress, y.stress);
+      EXPECT_EQ(x.strain, y.strain);
+      EXPECT_EQ(original.displacement(b), resumed.displacement(b));
+    }
+  ASSERT_EQ(resumed.contacts().size(), original.contacts().size());
+  for (std::size_t k = 0; k < original.contacts().size(); ++k)
+    {
+      const Contact &x = original.contacts()[k], &y = resumed.contacts()[k];
+      EXPECT_EQ(x.state, y.state);
+      EXPECT_EQ(x.reference, y.reference);
+      EXPECT_EQ(x.direction, y.direction);
+      EXPECT_EQ(x.normal_force, y.normal_force);
+      EXPECT_EQ(x.shear_force, y.shear_force);
+      EXPECT_EQ(x.slip_rate, y.slip_rate);
+    }
+  const Energy ex = original.energy(), ey = resumed.energy();
+  for (const auto &[a, b] : {std::pair{ex.kinetic, ey.kinetic},
+                             {ex.strain, ey.strain},
+                             {ex.contact, ey.contact},
+                             {ex.potential, ey.potential},
+                             {ex.friction, ey.friction},
+                             {ex.load_work, ey.load_work}})
+    EXPECT_EQ(a, b);
+  const double slide = original.displacement(2).norm();
+  std::printf("dda3d resumed run: checkpoint at t = %.4f s after %lu steps, "
+              "%lu more to %.4f s (%lu with a sliding contact, %lu cuts in "
+              "all); %zu contacts, wedge displaced %.3e m, friction work "
+              "%.3e J: identical\n",
+              t_saved,
+              n_before,
+              n_after,
+              original.time(),
+              sliding_steps,
+              original.n_cuts,
+              original.contacts().size(),
+              slide,
+              ex.friction);
+  EXPECT_GT(sliding_steps, 10u); // the wedge slides and sticks
+  EXPECT_GT(slide, 1e-4);
+
+  // Another scene (the slider on an incline), a truncated file, the 2D
+  // engine's checkpoint: rejected, naming the source.
+  Engine            other(test_scenes::incline_scene(30.,
+                                          20.,
+                                          Point(-4., -2., -1.),
+                                          Point(4., 2., 0.),
+                                          Point(-1., -0.5, 0.),
+                                          Point(0., 0.5, 1.))
+                 .system,
+               c);
+  const std::string m1
+    = error_of([&]() { other.restore(saved, "run/checkpoint.bin"); });
+  EXPECT_NE(m1.find("run/checkpoint.bin"), std::string::npos) << m1;
+  EXPECT_NE(m1.find("another scene"), std::string::npos) << m1;
+  Engine            same(scene, c);
+  const std::string m2 = error_of(
+    [&]() { same.restore(saved.substr(0, saved.size() / 2), "half.bin"); });
+  EXPECT_NE(m2.find("half.bin: the checkpoint is "), std::string::npos) << m2;
+  io::BinaryWriter w2d;
+  w2d.put_header("rockdda DDA checkpoint", 7);
+  const std::string m3 = error_of([&]() { same.restore(w2d.bytes, "2d.bin"); });
+  EXPECT_NE(m3.find("2d.bin: not a rockdda DDA 3d checkpoint"),
+            std::string::npos)
+    << m3;
+  // A rejected checkpoint leaves the engine as it was.
+  EXPECT_EQ(same.time(), 0.);
+  EXPECT_EQ(same.n_steps, 0u);
+  EXPECT_TRUE(same.contacts().empty());
+}
+
+
+
+namespace
+{
+  std::string
+  file_text(const std::filesystem::path &file)
+  {
+    std::ifstream      in(file, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+} // namespace
+
+
+
+// The analysis type continues a checkpointed run bit for bit, as the 2D
+// one does (tests/regression/run_resume.cmake): the shaking-table wedge
+// (friction 20 deg: it slides; 20 settling steps, skipped on resume) run
+// to 1 s at once, and to 0.5 s with checkpoints every 0.25 s then resumed
+// to 1 s (settings the same, 'Resume' = true): statistics.csv, the VTU
+// series' blocks.pvd and contacts.pvd and every summary value but the
+// wall time are identical. Resume without a checkpoint, a damaged
+// checkpoint and one of another run are rejected naming the key or file.
+TEST(Dda3dCheckpoint, AnalysisResumesBitForBit)
+{
+  const double       T = 1., dt = 0.005, penalty = 4e10;
+  const ShakingTable table  = shaking_table(20., 0.1, 0.5, 2., T, dt);
+  const std::string  blocks = block_text(table.scene);
+  auto               prm    = [&](const double end, const bool resume) {
+    return table.ground
+           + shaking_table_prm(end,
+                               dt,
+                               penalty,
+                               "loading",
+                               "  set Output interval = 0.25\n"
+                                                "  set Checkpoint interval = 0.25\n"
+                                                "  set Resume = "
+                                 + std::string(resume ? "true" : "false")
+                                 + "\n");
+  };
+  const auto full = test_files::scratch("dda3d-resume-full");
+  const auto part = test_files::scratch("dda3d-resume-part");
+  for (const auto &d : {full, part})
+    test_files::write_file(d / "scene.blocks", blocks);
+  Summary a = run_dda3d_in(full, prm(T, false));
+  run_dda3d_in(part, prm(0.5, false));
+  ASSERT_TRUE(std::filesystem::exists(part / "out" / "checkpoint.bin"));
+  Summary b = run_dda3d_in(part, prm(T, true));
+  for (const char *f : {"statistics.csv", "blocks.pvd", "contacts.pvd"})
+    EXPECT_EQ(file_text(full / "out" / f), file_text(part / "out" / f)) << f;
+  a.erase("wall_time");
+  b.erase("wall_time");
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(a.at("final_time"), T);
+  const auto rows         = read_table(full / "out" / "statistics.csv");
+  int        sliding_rows = 0;
+  for (const auto &r : rows)
+    sliding_rows += r.at("contacts_sliding") > 0.;
+  std::printf("dda3d resumed analysis: %zu rows (%d with sliding contacts), "
+              "%g steps, wedge at %.4e m: identical\n",
+              rows.size(),
+              sliding_rows,
+              a.at("steps"),
+              a.at("max_block_displacement"));
+  EXPECT_GT(sliding_rows, 0);
+
+  // Resume without a checkpoint: the key and the file.
+  const auto  none = test_files::scratch("dda3d-resume-none");
+  std::string m    = error_of([&]() {
+    test_files::write_file(none / "scene.blocks", blocks);
+    run_dda3d_in(none, prm(T, true));
+  });
+  EXPECT_NE(m.find("key 'DDA 3d/Resume' is true but there is no checkpoint"),
+            std::string::npos)
+    << m;
+  // A damaged checkpoint (cut short) and one of another run (another time
+  // step): errors naming the file.
+  const std::string bytes = file_text(part / "out" / "checkpoint.bin");
+  test_files::write_file(part / "out" / "checkpoint.bin",
+                         bytes.substr(0, bytes.size() - 100));
+  m = error_of([&]() { run_dda3d_in(part, prm(T, true)); });
+  EXPECT_NE(m.find((part / "out" / "checkpoint.bin").string()),
+            std::string::npos)
+    << m;
+  EXPECT_NE(m.find("truncated"), std::string::npos) << m;
+  test_files::write_file(part / "out" / "checkpoint.bin", bytes);
+  m = error_of([&]() {
+    run_dda3d_in(part,
+                 table.ground
+                   + shaking_table_prm(
+                     T, 0.004, penalty, "loading", "  set Resume = true\n"));
+  });
+  EXPECT_NE(m.find((part / "out" / "checkpoint.bin").string()),
+            std::string::npos)
+    << m;
+  EXPECT_NE(m.find("written for another run"), std::string::npos) << m;
 }

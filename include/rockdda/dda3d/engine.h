@@ -18,7 +18,9 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace rockdda::dda3d
@@ -191,6 +193,14 @@ namespace rockdda::dda3d
     {
       return kinetic + strain + contact + potential + friction - load_work;
     }
+
+    /// Sum of the magnitudes of the terms (J): the energy in play.
+    double
+    scale() const
+    {
+      return std::abs(kinetic) + std::abs(strain) + std::abs(contact)
+             + std::abs(potential) + std::abs(friction) + std::abs(load_work);
+    }
   };
 
   /// Statistics of the last accepted step.
@@ -239,7 +249,33 @@ namespace rockdda::dda3d
      * friction and load work.
      */
     void
-    settle(const unsigned int n);
+    settle(const unsigned int                             n,
+           const std::function<bool(const unsigned int)> &after_step = {});
+
+    /**
+     * The state a run continues from, as raw bytes (the 2D engine's
+     * binary format, dda::DdaSystem::checkpoint()): block geometry,
+     * velocities, stresses and strains, fixed, load and measurement points,
+     * the contacts with their states, shear references and forces, the
+     * time, the current step length, the counters and the energy ledger.
+     * restore() on an engine built from the same scene and controls
+     * continues bit for bit.
+     */
+    std::string
+    checkpoint() const;
+
+    /**
+     * Continue from checkpoint() bytes @p bytes; throws InputError naming
+     * @p source (the file) for a truncated, damaged or foreign checkpoint
+     * (another format or scene), leaving the engine unchanged.
+     */
+    void
+    restore(const std::string &bytes, const std::string &source);
+
+    /// Accepted steps, time-step cuts and open-close iterations of the
+    /// accepted steps so far (settling steps excluded, their cuts
+    /// included, as in 2D).
+    unsigned long n_steps = 0, n_cuts = 0, n_iterations = 0;
 
 
     /// The contacts at the end of the last accepted step.
@@ -252,6 +288,14 @@ namespace rockdda::dda3d
     /// The energy ledger at the end of the last accepted step.
     Energy
     energy() const;
+
+    /// Length of the next step (s): the time step, or less after a cut
+    /// until it has grown back.
+    double
+    time_step() const
+    {
+      return dt_now;
+    }
 
     /// Statistics of the last accepted step.
     const StepStatistics &

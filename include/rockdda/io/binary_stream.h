@@ -46,6 +46,24 @@ namespace rockdda::io
         put(v);
     }
 
+    /// The values of a fixed-size vector (Eigen, std::array) as doubles,
+    /// without a count (the reader knows the size).
+    template <typename Vector>
+    void
+    put_fixed(const Vector &v)
+    {
+      for (int i = 0; i < static_cast<int>(v.size()); ++i)
+        put<double>(v[i]);
+    }
+
+    /// The header of a checkpoint: its kind (@p magic) and format version.
+    void
+    put_header(const std::string &magic, const std::uint32_t version)
+    {
+      put_string(magic);
+      put(version);
+    }
+
     /// The bytes written so far.
     std::string bytes;
   };
@@ -93,6 +111,69 @@ namespace rockdda::io
       for (double &v : values)
         v = get<double>();
       return values;
+    }
+
+    /// Read a vector written by BinaryWriter::put_fixed() into @p v.
+    template <typename Vector>
+    void
+    get_fixed(Vector &v)
+    {
+      for (int i = 0; i < static_cast<int>(v.size()); ++i)
+        v[i] = get<double>();
+    }
+
+    /// Read and check a header written by BinaryWriter::put_header();
+    /// throws InputError naming the source if the kind or the version
+    /// differ.
+    void
+    check_header(const std::string &magic, const std::uint32_t version)
+    {
+      if (get_string() != magic)
+        throw InputError(source + ": not a " + magic);
+      const auto v = get<std::uint32_t>();
+      if (v != version)
+        throw InputError(source + ": checkpoint format " + std::to_string(v)
+                         + "; this build reads format "
+                         + std::to_string(version));
+    }
+
+    /// Read a count and check it against the scene's @p expected; throws
+    /// InputError ("it belongs to another scene") if they differ.
+    void
+    expect_count(const std::size_t expected, const std::string &what)
+    {
+      const auto n = get<std::uint64_t>();
+      if (n != expected)
+        throw InputError(source + ": the checkpoint has " + std::to_string(n)
+                         + " " + what + ", the scene "
+                         + std::to_string(expected)
+                         + ": it belongs to another scene");
+    }
+
+    /// Read the count of a list whose items take at least @p bytes_each
+    /// bytes; throws InputError (damaged) if the rest of the data cannot
+    /// hold them.
+    std::uint64_t
+    get_count(const std::size_t bytes_each, const std::string &what)
+    {
+      const auto n = get<std::uint64_t>();
+      if (n > (bytes.size() - position) / bytes_each)
+        throw InputError(source + ": the checkpoint is damaged ("
+                         + std::to_string(n) + " " + what + " in "
+                         + std::to_string(bytes.size()) + " bytes)");
+      return n;
+    }
+
+    /// An int32 in [0, @p max] (an enumeration); throws InputError
+    /// (damaged, naming @p what) otherwise.
+    std::int32_t
+    get_index(const std::int32_t max, const std::string &what)
+    {
+      const auto i = get<std::int32_t>();
+      if (i < 0 || i > max)
+        throw InputError(source + ": the checkpoint is damaged (" + what + " "
+                         + std::to_string(i) + ")");
+      return i;
     }
 
     /// True if every byte has been read.
