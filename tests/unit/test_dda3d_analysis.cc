@@ -998,8 +998,9 @@ TEST(Dda3dSeismic, ShakingTableWedgeRunsOutWithVelocityWeakeningAsSliding3d)
 // A 3D run resumed from a checkpoint continues bit for bit (issue 17,
 // checkpoints as in 2D): the shaking-table wedge, settled by 20 static
 // steps and shaken in the loading mode (0.5 g at 4 Hz along the line of
-// intersection, friction 30 deg: it slides and sticks) to 0.15 s,
-// checkpoint, on to 0.3 s; a fresh engine of the same scene (not settled)
+// intersection, friction 30 deg: it slides and sticks) to 0.1 s (stuck,
+// its locked contacts' shear springs stretched), checkpoint, on to 0.3 s
+// (it slides, sticks again); a fresh engine of the same scene (not settled)
 // restored from the checkpoint takes the same steps to the same vertex
 // coordinates, velocities, stresses, contact states, shear references and
 // forces, energy ledger and counters, exactly. A checkpoint of another
@@ -1022,13 +1023,16 @@ TEST(Dda3dCheckpoint, ResumedRunIsIdentical)
   };
   Engine original(scene, c);
   original.settle(20);
-  while (original.time() < 0.15)
+  while (original.time() < 0.1)
     original.step();
   const std::string   saved    = original.checkpoint();
   const unsigned long n_before = original.n_steps;
   const double        t_saved  = original.time();
   // Steps with a sliding contact (the run is not trivial).
-  unsigned long sliding_steps = 0;
+  unsigned long sliding_steps = 0, locked_at_checkpoint = 0;
+  for (const Contact &x : original.contacts())
+    locked_at_checkpoint
+      += x.state == ContactState::locked && x.shear_force.norm() > 0.;
   while (original.time() < 0.3)
     {
       original.step();
@@ -1078,11 +1082,13 @@ TEST(Dda3dCheckpoint, ResumedRunIsIdentical)
     EXPECT_EQ(a, b);
   const double slide = original.displacement(2).norm();
   std::printf("dda3d resumed run: checkpoint at t = %.4f s after %lu steps, "
-              "%lu more to %.4f s (%lu with a sliding contact, %lu cuts in "
-              "all); %zu contacts, wedge displaced %.3e m, friction work "
+              "%lu locked contacts under shear, %lu more steps to %.4f s (%lu "
+              "with a sliding contact, %lu cuts in all); %zu contacts, wedge "
+              "displaced %.3e m, friction work "
               "%.3e J: identical\n",
               t_saved,
               n_before,
+              locked_at_checkpoint,
               n_after,
               original.time(),
               sliding_steps,
@@ -1091,6 +1097,7 @@ TEST(Dda3dCheckpoint, ResumedRunIsIdentical)
               slide,
               ex.friction);
   EXPECT_GT(sliding_steps, 10u); // the wedge slides and sticks
+  EXPECT_GT(locked_at_checkpoint, 0u);
   EXPECT_GT(slide, 1e-4);
 
   // Another scene (the slider on an incline), a truncated file, the 2D
