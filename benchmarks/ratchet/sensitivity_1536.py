@@ -14,10 +14,8 @@ Pasten's rates from the same run's summary.csv. About 1 minute per run.
 import argparse
 import csv
 import os
-import statistics
-import subprocess
+import shutil
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import study  # noqa: E402
@@ -39,29 +37,22 @@ def main():
     ap.add_argument("--out", default=here)
     args = ap.parse_args()
     base = open(study.BASE_PRM).read()
+    folder, rockdda = study.scratch(args.rockdda, "ratchet-sensitivity-")
     rows = []
-    with tempfile.TemporaryDirectory(prefix="ratchet-sensitivity-") as tmp:
+    try:
         for k, (name, change) in enumerate(CASES):
-            out = os.path.join(tmp, f"run{k}")
-            prm = os.path.join(tmp, f"run{k}.prm")
-            keys = {(None, "Output directory"): out,
-                    ("Ratchet", "Cycles"): args.cycles,
-                    ("Ratchet", "Checkpoint cycles"): 0,
-                    ("Ratchet", "Steps per cycle"): args.samples,
-                    ("Thermal forcing", "Samples per cycle"): args.samples,
-                    **change}
-            with open(prm, "w") as f:
-                f.write(study.derive_prm(base, keys))
-            subprocess.run([os.path.abspath(args.rockdda), prm], check=True,
-                           stdout=subprocess.DEVNULL)
-            stats = list(csv.DictReader(open(os.path.join(out,
-                                                          "statistics.csv"))))
-            perm = [1e3 * float(r["permanent_m"]) for r in stats]
-            summ = {line.split(",")[0]: line.split(",")[1]
-                    for line in open(os.path.join(out, "summary.csv"))}
+            text = study.derive_prm(base, {("Ratchet", "Cycles"): args.cycles,
+                                           ("Ratchet", "Checkpoint cycles"): 0,
+                                           **study.sampling(args.samples),
+                                           **change})
+            run = study.run_one(rockdda, folder, f"run{k}", text, 7200)
+            if not run["ok"]:
+                sys.stderr.write(f"{name}: {run['error']}\n")
+                return 1
+            summ = run["summary"]
             row = {"case": name,
                    "dda_rate_mm_per_yr":
-                       f"{statistics.fmean(perm[len(perm) // 2:]):.4f}",
+                       f"{study.measures(run)['rate']:.4f}",
                    "pasten_045_mm_per_yr":
                        f"{float(summ['analytical_rate_beta_0.45']):.3f}",
                    "pasten_07_mm_per_yr":
@@ -69,6 +60,8 @@ def main():
                    "dda_seconds": f"{float(summ['dda_seconds']):.1f}"}
             print(row, flush=True)
             rows.append(row)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
     with open(os.path.join(args.out, "sensitivity-1536.csv"), "w",
               newline="") as f:
         w = csv.DictWriter(f, list(rows[0].keys()))

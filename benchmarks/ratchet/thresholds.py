@@ -79,9 +79,7 @@ def main():
     ap.add_argument("--samples", type=int, default=0)
     ap.add_argument("--suffix", default="")
     args = ap.parse_args()
-    extra = ({("Ratchet", "Steps per cycle"): args.samples,
-              ("Thermal forcing", "Samples per cycle"): args.samples}
-             if args.samples > 0 else {})
+    extra = study.sampling(args.samples)
     base = open(study.BASE_PRM).read()
     folder, rockdda = study.scratch(args.rockdda, "ratchet-thresholds-")
     log = lambda s: print(s, flush=True)  # noqa: E731

@@ -22,13 +22,6 @@ namespace rockdda::dda
     using io::BinaryReader;
     using io::BinaryWriter;
 
-    geometry::Point
-    get_point(BinaryReader &r)
-    {
-      geometry::Point p;
-      r.get_fixed(p);
-      return p;
-    }
   } // namespace
 
 
@@ -158,13 +151,13 @@ namespace rockdda::dda
           r.expect_count(b.polygon.vertices.size(),
                          "vertices in block " + std::to_string(b.id));
         for (auto &v : b.polygon.vertices)
-          v = get_point(r);
+          v = r.get_fixed<geometry::Point>();
         r.get_fixed(b.velocity);
         r.get_fixed(b.stress);
         r.get_fixed(b.strain);
         r.get_fixed(b.eigenstrain);
         r.get_fixed(b.applied_eigenstrain);
-        b.initial_centroid = get_point(r);
+        b.initial_centroid = r.get_fixed<geometry::Point>();
         b.rotation         = r.get<double>();
       }
     dda::get_scene_points(r, s);
@@ -178,7 +171,7 @@ namespace rockdda::dda
         g.vertex     = r.get<std::int32_t>();
         g.block_j    = r.get<std::int32_t>();
         g.edge       = r.get<std::int32_t>();
-        g.normal     = get_point(r);
+        g.normal     = r.get_fixed<geometry::Point>();
         g.xi         = r.get<double>();
         g.projection = g.xi;
         g.gap        = r.get<double>();

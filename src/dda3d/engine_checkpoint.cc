@@ -23,14 +23,6 @@ namespace rockdda::dda3d
     constexpr std::size_t contact_bytes = 217;
     using io::BinaryReader;
     using io::BinaryWriter;
-
-    Point
-    get_point(BinaryReader &r)
-    {
-      Point p;
-      r.get_fixed(p);
-      return p;
-    }
   } // namespace
 
 
@@ -101,7 +93,7 @@ namespace rockdda::dda3d
   {
     BinaryReader r(bytes, source);
     r.check_header(magic, format_version);
-    if (get_point(r) != origin_)
+    if (r.get_fixed<Point>() != origin_)
       throw InputError(source
                        + ": the checkpoint's scene has another local origin "
                          "(lower corner of the blocks' bounding box): it "
@@ -114,11 +106,11 @@ namespace rockdda::dda3d
         r.expect_count(b.polyhedron.vertices.size(),
                        "vertices in block " + std::to_string(b.id));
         for (auto &v : b.polyhedron.vertices)
-          v = get_point(r);
+          v = r.get_fixed<Point>();
         r.get_fixed(b.velocity);
         r.get_fixed(b.stress);
         r.get_fixed(b.strain);
-        b.initial_centroid = get_point(r);
+        b.initial_centroid = r.get_fixed<Point>();
       }
     dda::get_scene_points(r, s);
     std::vector<Contact> contacts(r.get_count(contact_bytes, "contacts"));
@@ -130,19 +122,19 @@ namespace rockdda::dda3d
         for (int *i : {&g.i, &g.a, &g.j, &g.b})
           *i = r.get<std::int32_t>();
         for (Point *p : {&g.p, &g.q, &g.normal})
-          *p = get_point(r);
+          *p = r.get_fixed<Point>();
         g.gap   = r.get<double>();
         g.score = r.get<double>();
         c.state = static_cast<ContactState>(r.get_index(2, "contact state"));
         c.state_at_start
           = static_cast<ContactState>(r.get_index(2, "contact state"));
-        c.reference      = get_point(r);
+        c.reference      = r.get_fixed<Point>();
         const auto flags = r.get<std::uint8_t>();
         c.broken         = (flags & 1) != 0;
         c.has_reference  = (flags & 2) != 0;
-        c.direction      = get_point(r);
+        c.direction      = r.get_fixed<Point>();
         c.normal_force   = r.get<double>();
-        c.shear_force    = get_point(r);
+        c.shear_force    = r.get_fixed<Point>();
         c.joint          = r.get<std::int32_t>();
         c.area           = r.get<double>();
         c.slip_rate      = r.get<double>();

@@ -122,6 +122,16 @@ namespace rockdda::io
         v[i] = get<double>();
     }
 
+    /// The same, returning a fixed-size vector of type @p Vector.
+    template <typename Vector>
+    Vector
+    get_fixed()
+    {
+      Vector v;
+      get_fixed(v);
+      return v;
+    }
+
     /// Read and check a header written by BinaryWriter::put_header();
     /// throws InputError naming the source if the kind or the version
     /// differ.
