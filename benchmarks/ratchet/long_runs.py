@@ -2,6 +2,7 @@
 """Long-run convergence of the coupled DDA ratchet of Masada Block 1.
 
 usage: long_runs.py ROCKDDA [--cycles N] [--skip K] [--batch B] [--out DIR]
+                    [--samples S] [--only LABEL,...] [--suffix X]
                     [--jobs J] [--replicates R]
 
 The per-cycle permanent displacement of the ratchet is erratic (its
@@ -42,16 +43,22 @@ import study  # noqa: E402  (derive_prm, run_one)
 
 R = "Ratchet"
 T = "Thermal forcing"
-SETTINGS = [
-    ("default", {}),
-    ("slices 2", {(R, "Slices"): 2}),
-    ("slices 8", {(R, "Slices"): 8}),
-    ("steps 12", {(R, "Steps per cycle"): 12, (T, "Samples per cycle"): 12}),
-    ("steps 48", {(R, "Steps per cycle"): 48, (T, "Samples per cycle"): 48}),
-    ("penalty 4e12", {(R, "Contact penalty"): 4e12}),
-    ("penalty 2e13", {(R, "Contact penalty"): 2e13}),
-    ("pseudo step 20 s", {(R, "Pseudo time step"): 20}),
-]
+
+
+def settings(samples=0):
+    """(label, overrides); SAMPLES > 0 sets the sampling of every run and
+    the steps settings bracket it (half, double)."""
+    lo, hi = (samples // 2, 2 * samples) if samples > 0 else (12, 48)
+    return [
+        ("default", {}),
+        ("slices 2", {(R, "Slices"): 2}),
+        ("slices 8", {(R, "Slices"): 8}),
+        (f"steps {lo}", study.sampling(lo)),
+        (f"steps {hi}", study.sampling(hi)),
+        ("penalty 4e12", {(R, "Contact penalty"): 4e12}),
+        ("penalty 2e13", {(R, "Contact penalty"): 2e13}),
+        ("pseudo step 20 s", {(R, "Pseudo time step"): 20}),
+    ]
 
 
 def batch_means(x, b):
@@ -77,14 +84,25 @@ def main():
                     "by 1 + 1e-6 r (r = 0, 1, ...): independent draws of the "
                     "same process (the slip sequence changes at 1e-9), "
                     "pooled")
+    ap.add_argument("--samples", type=int, default=0,
+                    help="Steps per cycle = Samples per cycle of every run "
+                    "(default: the base file's)")
+    ap.add_argument("--only", default="",
+                    help="comma-separated setting labels to run (default: "
+                    "all)")
+    ap.add_argument("--suffix", default="",
+                    help="appended to long-runs(.csv/.md)")
     args = ap.parse_args()
+    chosen = [(label, {**study.sampling(args.samples), **over})
+              for label, over in settings(args.samples)
+              if not args.only or label in args.only.split(",")]
     base = open(study.BASE_PRM).read()
     base_penalty = float(re.search(r"set\s+Contact penalty\s*=\s*(\S+)",
                                    base).group(1))
     folder, rockdda = study.scratch(args.rockdda, "ratchet-long-")
     jobs = {}
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-        for i, (label, over) in enumerate(SETTINGS):
+        for i, (label, over) in enumerate(chosen):
             for rep in range(args.replicates):
                 o = dict(over)
                 o[(R, "Cycles")] = args.cycles
@@ -98,7 +116,7 @@ def main():
                     3600)
     rows = []
     failed = False
-    for label, _ in SETTINGS:
+    for label, _ in chosen:
         runs = [jobs[(label, rep)].result() for rep in range(args.replicates)]
         bad = [r for r in runs if not r["ok"]]
         if bad:
@@ -136,7 +154,7 @@ def main():
             "standard_error",
             "std_per_cycle", "cumulative_mm", "infill_descent_mm",
             "dda_seconds", "heat_seconds", "pseudo_time_step"]
-    with open(os.path.join(args.out, "long-runs.csv"), "w",
+    with open(os.path.join(args.out, f"long-runs{args.suffix}.csv"), "w",
               newline="") as f:
         w = csv.DictWriter(f, keys)
         w.writeheader()
@@ -147,7 +165,9 @@ def main():
     lines = [
         "# Long runs of the DDA ratchet: rates with standard errors",
         "",
-        f"{args.cycles} cycles per setting, {args.replicates} replicate(s) "
+        f"{args.cycles} cycles per setting, "
+        + (f"{args.samples} samples per cycle, " if args.samples else "")
+        + f"{args.replicates} replicate(s) "
         "(contact penalty x (1 + 1e-6 r)); rate = mean permanent "
         f"displacement per cycle over cycles {args.skip + 1}-{args.cycles} "
         f"(mm/yr), pooled over the replicates; standard error from the batch "
@@ -176,7 +196,7 @@ def main():
             f"| {z} | {r['cumulative_mm']:.2f} "
             f"| {r['infill_descent_mm'] / 1e3:.2f} | {r['dda_seconds']:.1f} "
             f"| {100 * r['dda_seconds'] / r['cycles']:.1f} |")
-    with open(os.path.join(args.out, "long-runs.md"), "w") as f:
+    with open(os.path.join(args.out, f"long-runs{args.suffix}.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
     return 1 if failed else 0

@@ -115,13 +115,15 @@ def sensitivity_sweeps():
     ]
 
 
-def convergence_sweeps():
+def convergence_sweeps(samples=0):
+    """SAMPLES > 0: the steps sweep brackets it (half, it, double)."""
+    steps = (samples // 2, samples, 2 * samples) if samples > 0 \
+        else (12, 24, 48)
     return [
         ("slices", "Slices", "-",
          [(n, {(R, "Slices"): n}) for n in (1, 2, 3, 4, 8, 16)]),
         ("steps", "Steps per cycle (= Samples per cycle)", "-",
-         [(n, sampling(n))
-          for n in (12, 24, 48)]),
+         [(n, sampling(n)) for n in steps]),
         ("penalty", "Contact penalty", "N/m",
          [(p, {(R, "Contact penalty"): p})
           for p in (4e11, 1e12, 4e12, 1e13, 2e13)]),
@@ -368,6 +370,11 @@ def main():
     ap.add_argument("--allow-failures", action="store_true",
                     help="exit 0 even if runs failed (they are reported)")
     ap.add_argument("--strict", action="store_true")
+    ap.add_argument("--samples", type=int, default=0,
+                    help="Steps per cycle = Samples per cycle of every run "
+                    "(default: the base file's; the rate converges at about "
+                    "1536, README \"Steps per season\"); the steps sweep "
+                    "then brackets it")
     ap.add_argument("--penalty", type=float, default=None,
                     help="Contact penalty (N/m) of every run but the "
                     "penalty sweep (default: the base file's)")
@@ -380,6 +387,7 @@ def main():
     common = {(R, "Cycles"): args.cycles, (R, "Checkpoint cycles"): 0}
     if args.penalty is not None:
         common[(R, "Contact penalty")] = args.penalty
+    common.update(sampling(args.samples))
 
     folder, rockdda = scratch(args.rockdda, "ratchet-study-", args.keep)
     version = subprocess.run([rockdda, "--version"], stdout=subprocess.PIPE,
@@ -393,7 +401,7 @@ def main():
         for v, over in values:
             plan.append(("sensitivity", study, label, unit, v,
                          {**common, **over}))
-    for study, label, unit, values in convergence_sweeps():
+    for study, label, unit, values in convergence_sweeps(args.samples):
         for v, over in values:
             plan.append(("convergence", study, label, unit, v,
                          {**common, **over}))
@@ -538,7 +546,7 @@ def sensitivity_report(rows):
 
 def convergence_report(rows):
     out = {}
-    for study, label, unit, values in convergence_sweeps():
+    for study, label, unit, values in convergence_sweeps(args.samples):
         rs = by_study(rows, study)
         done = [r for r in rs if r["status"] == "ok"]
         finest = done[-1] if done else rs[-1]
@@ -658,7 +666,7 @@ def write_md(out, rows, sens, conv, cost, version, args, total, n_runs):
         L.append("")
     L.append("## 2. Convergence")
     L.append("")
-    for study, label, unit, values in convergence_sweeps():
+    for study, label, unit, values in convergence_sweeps(args.samples):
         info = conv[study]
         L.append(f"### {label}")
         L.append("")
