@@ -143,10 +143,12 @@ def diagnosis(folder):
     return ""
 
 
-def run_model(rockdda, work, name, end_time, timeout, retry_failed, jobs):
+def run_model(rockdda, work, name, end_time, timeout, retry_failed, jobs,
+              overrides=None):
     """Cut, measurement points and DDA of one model, resumed if possible,
     while holding the model's lock (another study process running the same
-    folder skips it). Returns a dict with its status."""
+    folder skips it); OVERRIDES {key: value} replace keys of the DDA
+    section of table-3-2.prm. Returns a dict with its status."""
     folder = os.path.join(work, name)
     os.makedirs(folder, exist_ok=True)
     if STOP.is_set():
@@ -158,17 +160,13 @@ def run_model(rockdda, work, name, end_time, timeout, retry_failed, jobs):
             return {"status": "stopped",
                     "diagnosis": "busy: another study process runs it"}
         return run_model_locked(rockdda, folder, name, end_time, timeout,
-                                retry_failed, jobs)
+                                retry_failed, jobs, overrides or {})
 
 
-def run_model_locked(rockdda, folder, name, end_time, timeout, retry_failed,
-                     jobs):
-    failed_marker = os.path.join(folder, "FAILED")
-    if os.path.exists(failed_marker) and not retry_failed:
-        return {"status": "failed", "diagnosis": open(failed_marker).read()
-                .strip()}
-    if os.path.exists(failed_marker):
-        os.remove(failed_marker)
+def prepare_model(rockdda, folder, name):
+    """Cut the blocks of model NAME into FOLDER/cut and write
+    FOLDER/scene.dda with the measurement points 1-5 (each once). Returns
+    None, or the diagnosis of a failed cut."""
     # 1. cut (once).
     blocks = os.path.join(folder, "cut", "blocks.dda")
     if not os.path.exists(blocks):
@@ -180,10 +178,7 @@ def run_model_locked(rockdda, folder, name, end_time, timeout, retry_failed,
         rc, _ = run([rockdda, "--quiet", prm],
                     os.path.join(folder, "driver.log"))
         if rc != 0:
-            d = diagnosis(os.path.join(folder, "cut")) or "cut failed"
-            with open(failed_marker, "w") as f:
-                f.write(d + "\n")
-            return {"status": "failed", "diagnosis": d}
+            return diagnosis(os.path.join(folder, "cut")) or "cut failed"
     # 2. measurement points.
     scene_file = os.path.join(folder, "scene.dda")
     if not os.path.exists(scene_file):
@@ -195,7 +190,24 @@ def run_model_locked(rockdda, folder, name, end_time, timeout, retry_failed,
         with open(scene_file + ".tmp", "w") as f:
             f.write(text)
         os.replace(scene_file + ".tmp", scene_file)
+    return None
+
+
+def run_model_locked(rockdda, folder, name, end_time, timeout, retry_failed,
+                     jobs, overrides):
+    failed_marker = os.path.join(folder, "FAILED")
+    if os.path.exists(failed_marker) and not retry_failed:
+        return {"status": "failed", "diagnosis": open(failed_marker).read()
+                .strip()}
+    if os.path.exists(failed_marker):
+        os.remove(failed_marker)
+    d = prepare_model(rockdda, folder, name)
+    if d is not None:
+        with open(failed_marker, "w") as f:
+            f.write(d + "\n")
+        return {"status": "failed", "diagnosis": d}
     # 3. DDA, resumed from the checkpoint when there is one.
+    scene_file = os.path.join(folder, "scene.dda")
     out = os.path.join(folder, "dda")
     s = summary(os.path.join(out, "summary.csv"))
     if s.get("completed") == "1" and \
@@ -207,8 +219,14 @@ def run_model_locked(rockdda, folder, name, end_time, timeout, retry_failed,
     text = set_key(text, "Block file", scene_file)
     text = set_key(text, "End time", repr(end_time))
     text = set_key(text, "Resume", "true" if resume else "false")
-    text += "\nsubsection DDA\n  set Threads = %d\nend\n" % (
-        1 if jobs > 1 else 0)
+    extra = {"Threads": 1 if jobs > 1 else 0}
+    for key, value in overrides.items():
+        if re.search(r"^\s*set\s+%s\s*=" % re.escape(key), text, re.M):
+            text = set_key(text, key, str(value))
+        else:
+            extra[key] = value
+    text += "\nsubsection DDA\n%send\n" % "".join(
+        "  set %s = %s\n" % kv for kv in extra.items())
     prm = os.path.join(folder, "dda.prm")
     with open(prm, "w") as f:
         f.write(text)
