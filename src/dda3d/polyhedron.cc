@@ -3,6 +3,7 @@
  * Polyhedron checks and exact moments (doc/theory/dda3d.md).
  */
 #include <rockdda/dda3d/polyhedron.h>
+#include <rockdda/geometry/polygon.h>
 
 #include <Eigen/Geometry>
 
@@ -307,6 +308,19 @@ namespace rockdda::dda3d
                 return bad(f, buf);
               }
           }
+        // Simple: the point-in-face test of the contact detection (a
+        // crossing rule in the face's plane) needs a polygon whose edges
+        // do not cross; non-convex faces are fine.
+        const Point       e1 = (v[face[1]] - v[face[0]]).normalized();
+        const Point       e2 = n.cross(e1);
+        geometry::Polygon in_plane;
+        for (const int k : face)
+          in_plane.vertices.emplace_back((v[k] - v[face[0]]).dot(e1),
+                                         (v[k] - v[face[0]]).dot(e2));
+        if (in_plane.self_intersects())
+          return bad(f,
+                     "is not a simple polygon: two of its edges cross or "
+                     "fold back onto each other");
       }
     const double volume = poly.signed_volume();
     if (volume < 0.)

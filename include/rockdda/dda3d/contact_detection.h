@@ -47,19 +47,76 @@ namespace rockdda::dda3d
     edge_edge = 1
   };
 
+  /// Convexity of an edge or a vertex of a polyhedron.
+  enum class Convexity : int
+  {
+    /// Edge: interior dihedral angle below pi - flat_angle; vertex: no
+    /// reflex edge.
+    convex = 0,
+    /// Edge: dihedral angle within flat_angle of pi (coplanar faces).
+    flat = 1,
+    /// Edge: dihedral angle above pi + flat_angle; vertex: every edge
+    /// reflex.
+    reflex = 2,
+    /// Vertex: both convex (or flat) and reflex edges.
+    saddle = 3
+  };
+
   /**
    * The edges of a polyhedron with their two faces: edge k runs from
    * vertex v[0] to v[1] (v[0] < v[1]); face[0] traverses it as v[0] -> v[1],
-   * face[1] as v[1] -> v[0].
+   * face[1] as v[1] -> v[0]. With the convexity of every edge and vertex
+   * on the geometry it was computed from (the narrow phase computes it
+   * once per block and detection, so it follows the blocks' deformation).
    */
   struct PolyhedronEdges
   {
     std::vector<std::array<int, 2>> v, face;
+    /// Edge k of face f's loop (loop[k] -> loop[k + 1]): face_edges[f][k].
+    std::vector<std::vector<int>> face_edges;
+    /// Interior dihedral angle of each edge (rad, in (0, 2 pi)): the
+    /// angle the solid fills about the edge, > pi at a reflex (concave)
+    /// edge.
+    std::vector<double> dihedral;
+    /// Convexity of each edge (convex, flat or reflex).
+    std::vector<Convexity> edge_convexity;
+    /// Convexity of each vertex (convex, saddle or reflex).
+    std::vector<Convexity> vertex_convexity;
+    /// Whether no edge is reflex (the polyhedron is convex).
+    bool convex = true;
   };
 
-  /// The edges of @p p (which must be closed, polyhedron_defect()).
+  /// Dihedral angles within this of pi (rad) are flat: round-off and the
+  /// strain of a block tilt coplanar faces by 1e-6 to 1e-4 rad (the 2D
+  /// engine's flat-corner angle, doc/theory/dda.md).
+  constexpr double flat_angle = 1e-3;
+
+  /// The edges of @p p (which must be closed, polyhedron_defect()) with
+  /// their convexity.
   PolyhedronEdges
   polyhedron_edges(const Polyhedron &p);
+
+  /**
+   * Where the projection of @p x on face @p f's plane lies relative to the
+   * face polygon (planar and simple; convex or not): inside (crossing
+   * rule in the face's plane), and its distance (m) to the polygon's
+   * boundary with the loop position k of the nearest edge
+   * (loop[k] -> loop[k + 1]).
+   */
+  struct FaceLocation
+  {
+    bool   inside   = false;
+    double distance = 0.;
+    int    edge     = -1;
+  };
+
+  /// FaceLocation of @p x on face @p f of @p p, whose unit normal is
+  /// @p normal.
+  FaceLocation
+  locate_on_face(const Polyhedron &p,
+                 const std::size_t f,
+                 const Point      &normal,
+                 const Point      &x);
 
   /**
    * One contact found by the narrow phase. Block i owns the vertex (or the
