@@ -9,7 +9,7 @@ Runs one model of the layering study (default DL02: L = 5 m, b = 2 m,
 control at a time:
 
   time step         0.002, 0.001, 0.0005 (Table 3-2), 0.00025 s
-  contact penalty   1e8 (Table 3-2), 1e9, 1e10 N/m
+  contact penalty   1e8 (Table 3-2), 1e9, 1e10, 1e11 N/m
   force tolerance   1e-2, 1e-3 (default), 1e-4 of the contact's scale
 
 and writes speed-accuracy.csv and speed-accuracy.md into DIR (default:
@@ -17,8 +17,10 @@ this folder): for each run the final vertical displacement at points 1-5,
 steps, cuts, open-close iterations per step and wall time; the error of
 each run against the finest setting of its sweep (the smallest time step,
 the stiffest penalty, the tightest tolerance), as the largest over points
-1-5 of |u - u_ref| / max(|u_ref|, 1 cm); and the cheapest setting of each
-sweep within 5 % of its finest marked.
+3-5 of |u - u_ref| / max(|u_ref|, 1 cm) (and separately over points 1-2,
+in the loosened zone: blocks still falling at the end time, whose speed
+the dynamic control limits to g dt / (1 - 0.99)); and the cheapest setting
+of each sweep within 5 % of its finest marked.
 
 The end time (default 1 s) is shorter than the study's 5 s: the roof
 collapses and points 3-5 come to rest by 0.5 s (fig-3-7.png), so the
@@ -40,8 +42,8 @@ import study  # noqa: E402
 SWEEPS = [
     ("time step", "s", "Time step", ["0.002", "0.001", "0.0005", "0.00025"],
      "0.00025"),
-    ("contact penalty", "N/m", "Contact penalty", ["1e8", "1e9", "1e10"],
-     "1e10"),
+    ("contact penalty", "N/m", "Contact penalty",
+     ["1e8", "1e9", "1e10", "1e11"], "1e11"),
     ("force tolerance", "-", "Contact force tolerance",
      ["1e-2", "1e-3", "1e-4"], "1e-4"),
 ]
@@ -117,13 +119,15 @@ def main():
             r = next(r for r in rows.values()
                      if r[key] == v and all(r[k] == BASE[k]
                                             for k in BASE if k != key))
-            err = float("nan")
+            err = err12 = float("nan")
             if r["status"] == "done" and ref["status"] == "done":
-                err = max(abs(float(r[f"uy{p}_m"]) - float(ref[f"uy{p}_m"]))
-                          / max(abs(float(ref[f"uy{p}_m"])), 0.01)
-                          for p in range(1, 6))
+                e = [abs(float(r[f"uy{p}_m"]) - float(ref[f"uy{p}_m"]))
+                     / max(abs(float(ref[f"uy{p}_m"])), 0.01)
+                     for p in range(1, 6)]
+                err, err12 = max(e[2:]), max(e[:2])
             sweep_rows.append({"sweep": sweep, "unit": unit, "value": v,
-                               "error": err, **r})
+                               "error": err, "error_points_1_2": err12,
+                               **r})
         ok = [s for s in sweep_rows if s["error"] <= 0.05]
         cheapest = min(ok, key=lambda s: float(s.get("wall_time") or 1e30),
                        default=None)
@@ -131,6 +135,7 @@ def main():
             s["cheapest_within_5pct"] = "yes" if s is cheapest else ""
         table += sweep_rows
     fields = ["sweep", "value", "unit", "status", "error",
+              "error_points_1_2",
               "cheapest_within_5pct", "wall_time", "steps",
               "time_step_cuts", "open_close_iterations_per_step"] + \
         [f"uy{p}_m" for p in range(1, 6)] + ["run"]
@@ -144,22 +149,26 @@ def main():
         "",
         "One numerical control changed at a time from Table 3-2 (time "
         "step 0.0005 s, penalty 1e8 N/m, force tolerance 1e-3). Error: the "
-        "largest over points 1-5 of |u - u_ref| / max(|u_ref|, 1 cm), u_ref "
-        "the finest setting of the sweep. **Bold**: the cheapest setting "
-        "within 5 % of the finest.",
+        "largest over points 3-5 (the rock above the loosened zone, whose "
+        "settlement thesis Fig. 3-9 plots) of |u - u_ref| / max(|u_ref|, "
+        "1 cm), u_ref the finest setting of the sweep; the same over points "
+        "1-2 (blocks of the loosened zone, falling at t) beside it. "
+        "**Bold**: the cheapest setting within 5 % (points 3-5) of the "
+        "finest.",
         "",
-        "| sweep | value | error | wall (s) | steps | cuts | it/step "
-        "| uy1 | uy2 | uy3 | uy4 | uy5 (m) |",
-        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        "| sweep | value | error 3-5 | error 1-2 | wall (s) | steps | cuts "
+        "| it/step | uy1 | uy2 | uy3 | uy4 | uy5 (m) |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for s in table:
         v = f"**{s['value']}**" if s["cheapest_within_5pct"] else s["value"]
         if s["status"] != "done":
             lines.append(f"| {s['sweep']} | {v} | {s['status']} "
-                         + "|" * 10)
+                         + "|" * 11)
             continue
         lines.append(
             f"| {s['sweep']} ({s['unit']}) | {v} | {s['error']:.3f} "
+            f"| {s['error_points_1_2']:.3f} "
             f"| {s.get('wall_time', '')} | {s['steps']} "
             f"| {s['time_step_cuts']} "
             f"| {float(s['open_close_iterations_per_step']):.2f} | "
