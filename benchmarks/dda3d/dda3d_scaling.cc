@@ -6,12 +6,16 @@
  * (dynamic control 0) and dynamic (1), medians of 3 runs; the same
  * structure as the 2D benchmark (benchmarks/dda-scaling/dda_scaling.cc).
  *
- *   dda3d_scaling scaling [max_blocks] [steps_10k] > scaling.csv
- *   dda3d_scaling single rows columns dynamic steps
+ *   dda3d_scaling scaling [max_blocks] [steps_10k] [solver] > scaling.csv
+ *   dda3d_scaling single rows columns dynamic steps [solver]
+ *
+ * solver: automatic (default: direct up to 60 blocks, D-ILU CG above),
+ * direct or iterative (dda::SolverOptions).
  */
 #include <rockdda/dda3d/engine.h>
 #include <rockdda/dda3d/generators.h>
 
+#include "../../tests/unit/dda3d_test_scenes.h"
 #include "../timing.h"
 #include <algorithm>
 #include <chrono>
@@ -27,55 +31,15 @@ namespace
 {
   using benchmarks::median;
   using benchmarks::seconds_since;
-
-  /**
-   * A running-bond wall of @p rows x @p columns bricks (2 m long in x, 1 m
-   * thick in y, 1 m high in z; odd rows start and end with a half brick)
-   * on a clamped base 1 m thick, 2 m wider than the wall on every side;
-   * granite-like material (2700 kg/m^3, 10 GPa, 0.25), friction 35 deg.
-   */
-  BlockSystem
-  brick_wall(const int rows, const int columns)
-  {
-    BlockSystem s;
-    s.materials.push_back({2700., 1e10, 0.25, 1});
-    dda::JointMaterial j;
-    j.friction_deg = 35.;
-    s.joints.push_back(j);
-    auto brick = [&](const Point &lo, const Point &hi) {
-      Block b;
-      b.id         = int(s.blocks.size()) + 1;
-      b.material   = 0;
-      b.polyhedron = make_box(lo, hi);
-      s.blocks.push_back(b);
-    };
-    brick(Point(-2., -2., -1.), Point(2. * columns + 2., 3., 0.));
-    for (const auto &v : s.blocks[0].polyhedron.vertices)
-      s.fixed_points.push_back({0, v, Point::Zero()});
-    for (int r = 0; r < rows; ++r)
-      {
-        const double z0 = r, z1 = r + 1.;
-        if (r % 2 == 0)
-          for (int c = 0; c < columns; ++c)
-            brick(Point(2. * c, 0., z0), Point(2. * c + 2., 1., z1));
-        else
-          {
-            brick(Point(0., 0., z0), Point(1., 1., z1));
-            for (int c = 0; c < columns - 1; ++c)
-              brick(Point(2. * c + 1., 0., z0), Point(2. * c + 3., 1., z1));
-            brick(Point(2. * columns - 1., 0., z0),
-                  Point(2. * columns, 1., z1));
-          }
-      }
-    return s;
-  }
+  using test_scenes::brick_wall;
 
   /// Controls of the wall cases: dt 1 ms, penalty 1e11 N/m (10 E x 1 m),
-  /// @p dynamic control.
+  /// @p dynamic control, linear @p solver.
   EngineControls
-  wall_controls(const double dynamic)
+  wall_controls(const double dynamic, const dda::SolverType solver)
   {
     EngineControls c;
+    c.solver.type        = solver;
     c.dt                 = 1e-3;
     c.dynamic            = dynamic;
     c.law.normal_penalty = 1e11;
@@ -85,7 +49,7 @@ namespace
   /// What the timed steps of one run gave.
   struct Timed
   {
-    double      seconds_per_step = 0., iterations = 0.;
+    double      seconds_per_step = 0., iterations = 0., cg_iterations = 0.;
     int         cuts     = 0;
     std::size_t contacts = 0;
     double      drift    = 0.;
@@ -93,26 +57,29 @@ namespace
 
   /// @p warmup warm-up steps, then @p steps timed steps of a new wall.
   Timed
-  timed_run(const int    rows,
-            const int    columns,
-            const double dynamic,
-            const int    steps,
-            const int    warmup = 3)
+  timed_run(const int             rows,
+            const int             columns,
+            const double          dynamic,
+            const int             steps,
+            const dda::SolverType solver,
+            const int             warmup = 3)
   {
-    Engine engine(brick_wall(rows, columns), wall_controls(dynamic));
+    Engine engine(brick_wall(rows, columns), wall_controls(dynamic, solver));
     for (int k = 0; k < warmup; ++k)
       engine.step();
     Timed      out;
     const auto t0 = std::chrono::steady_clock::now();
-    int        it = 0;
+    int        it = 0, cg = 0;
     for (int k = 0; k < steps; ++k)
       {
         engine.step();
         it += engine.statistics().iterations;
+        cg += engine.statistics().solver_iterations;
         out.cuts += engine.statistics().cuts;
       }
     out.seconds_per_step = seconds_since(t0) / steps;
     out.iterations       = double(it) / steps;
+    out.cg_iterations    = double(cg) / steps;
     out.contacts         = engine.contacts().size();
     for (std::size_t b = 0; b < engine.scene().blocks.size(); ++b)
       out.drift = std::max(out.drift, engine.displacement(b).norm());
@@ -120,11 +87,13 @@ namespace
   }
 
   void
-  scaling(const int max_blocks, const int steps_10k)
+  scaling(const int             max_blocks,
+          const int             steps_10k,
+          const dda::SolverType solver)
   {
     std::printf("blocks,mode,ms_per_step,block_steps_per_s,timed_steps,"
                 "warmup_steps,iterations_per_step,cuts,contacts,"
-                "max_displacement_m\n");
+                "max_displacement_m,cg_iterations_per_step\n");
     const int sizes[][2] = {{10, 10}, {25, 40}, {80, 125}};
     for (const auto &sz : sizes)
       {
@@ -143,11 +112,11 @@ namespace
             Timed               last;
             for (int repeat = 0; repeat < 3; ++repeat)
               {
-                last = timed_run(rows, columns, dynamic, steps, warmup);
+                last = timed_run(rows, columns, dynamic, steps, solver, warmup);
                 times.push_back(last.seconds_per_step);
               }
             const double t = median(times);
-            std::printf("%d,%s,%.4f,%.0f,%d,%d,%.2f,%d,%zu,%.3e\n",
+            std::printf("%d,%s,%.4f,%.0f,%d,%d,%.2f,%d,%zu,%.3e,%.1f\n",
                         n,
                         dynamic > 0. ? "dynamic" : "static",
                         1e3 * t,
@@ -157,7 +126,8 @@ namespace
                         last.iterations,
                         last.cuts,
                         last.contacts,
-                        last.drift);
+                        last.drift,
+                        last.cg_iterations);
             std::fflush(stdout);
           }
       }
@@ -168,19 +138,29 @@ int
 main(int argc, char **argv)
 {
   const std::string what = argc > 1 ? argv[1] : "scaling";
+  // The solver: the last argument of either command, if given.
+  const auto solver_of = [&](const int at) {
+    const std::string s = argc > at ? argv[at] : "automatic";
+    return s == "direct"      ? dda::SolverType::direct
+           : s == "iterative" ? dda::SolverType::iterative
+                              : dda::SolverType::automatic;
+  };
   if (what == "scaling")
     scaling(argc > 2 ? std::atoi(argv[2]) : 20000,
-            argc > 3 ? std::atoi(argv[3]) : 10);
+            argc > 3 ? std::atoi(argv[3]) : 10,
+            solver_of(4));
   else if (what == "single" && argc > 5)
     {
       const Timed r = timed_run(std::atoi(argv[2]),
                                 std::atoi(argv[3]),
                                 std::atof(argv[4]),
-                                std::atoi(argv[5]));
-      std::printf("%.3f ms/step, %.2f open-close it./step, %d cuts, %zu "
-                  "contacts, largest displacement %.3e m\n",
+                                std::atoi(argv[5]),
+                                solver_of(6));
+      std::printf("%.3f ms/step, %.2f open-close it./step, %.1f CG it./step, "
+                  "%d cuts, %zu contacts, largest displacement %.3e m\n",
                   1e3 * r.seconds_per_step,
                   r.iterations,
+                  r.cg_iterations,
                   r.cuts,
                   r.contacts,
                   r.drift);
@@ -188,8 +168,9 @@ main(int argc, char **argv)
   else
     {
       std::fprintf(stderr,
-                   "usage: dda3d_scaling scaling [max_blocks] [steps_10k] | "
-                   "single rows columns dynamic steps\n");
+                   "usage: dda3d_scaling scaling [max_blocks] [steps_10k] "
+                   "[solver] | single rows columns dynamic steps [solver]\n"
+                   "  solver: automatic (default), direct or iterative\n");
       return 2;
     }
   return 0;

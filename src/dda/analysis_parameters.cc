@@ -8,6 +8,8 @@
 #include <rockdda/io/parameters.h>
 #include <rockdda/io/progress.h>
 
+#include <deal.II/base/mpi.h>
+
 namespace rockdda::dda
 {
   template <int dim>
@@ -289,6 +291,129 @@ namespace rockdda::dda
 
 
 
+  template <int dim>
+  void
+  SolverParameters<dim>::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    using dealii::Patterns::Double;
+    using dealii::Patterns::Integer;
+    using dealii::Patterns::Selection;
+    if (dim == 2)
+      {
+        io::declare(prm,
+                    "Linear solver",
+                    "automatic",
+                    Selection("automatic|direct|iterative|distributed"),
+                    "-",
+                    "'direct': sparse LDL^T; 'iterative': preconditioned CG "
+                    "with warm start; 'distributed' (mpirun -np N only): CG "
+                    "on a Trilinos matrix whose block rows are partitioned "
+                    "over the ranks (doc/theory/dda-mpi.md); 'automatic': "
+                    "direct up to 60 blocks, above that iterative on one "
+                    "process and distributed on several MPI ranks.");
+        io::declare(prm,
+                    "Distributed preconditioner",
+                    "ilu",
+                    Selection("ilu|block-jacobi|amg"),
+                    "-",
+                    "Preconditioner of the distributed solver, from "
+                    "Trilinos: 'ilu' (Ifpack ILU(0) on each rank's rows, "
+                    "additive Schwarz without overlap; the fastest on the "
+                    "brick walls), 'block-jacobi' (Ifpack, the 6x6 blocks "
+                    "of the blocks) or 'amg' (ML smoothed aggregation); "
+                    "doc/theory/dda-mpi.md.");
+      }
+    else
+      io::declare(prm,
+                  "Linear solver",
+                  "automatic",
+                  Selection("automatic|direct|iterative"),
+                  "-",
+                  "The 2D engine's solvers on 12x12 blocks: 'direct': sparse "
+                  "LDL^T; 'iterative': preconditioned CG with warm start; "
+                  "'automatic': direct up to 60 blocks, iterative above "
+                  "(benchmarks/dda3d). No distributed solver in 3D.");
+    io::declare(prm,
+                "Preconditioner",
+                "block-dilu",
+                Selection("block-dilu|block-jacobi"),
+                "-",
+                std::string("Preconditioner of the iterative solver: "
+                            "'block-dilu' (")
+                  + (dim == 2 ? "6x6" : "12x12")
+                  + "-block diagonal ILU with Eisenstat's trick, about "
+                    "2.4x fewer CG iterations in 2D) or 'block-jacobi'.");
+    io::declare(prm,
+                "Solver tolerance",
+                "1e-8",
+                io::DoubleInterval(0., true, 1., true),
+                "-",
+                "Relative tolerance of the iterative solver (on the "
+                "preconditioned residual), 0 < tolerance < 1. 1e-8 keeps "
+                "block positions within ~1e-11 m of the direct solver on "
+                "the 2D brick-wall test; each decade tighter costs ~25 % "
+                "more CG iterations.");
+    io::declare(prm,
+                "Threads",
+                "0",
+                Integer(0, 1024),
+                "-",
+                dim == 2
+                  ? "Threads of the run (a TBB task arena): contact "
+                    "detection, contact kinematics and state checks run in "
+                    "chunks on all of them; the block-dilu CG from 300 "
+                    "blocks on orders the blocks as two subdomains and "
+                    "their separator and sweeps the two in parallel (at "
+                    "most 2 threads there). 0 = one per core. Results do "
+                    "not depend on it."
+                  : "Threads of the linear solver: the block-dilu CG from "
+                    "300 blocks on orders the blocks as two subdomains and "
+                    "their separator and sweeps the two in parallel (2 "
+                    "threads if this is >= 2 or 0 on a machine with >= 2 "
+                    "cores; contact detection and kinematics are serial in "
+                    "3D). 0 = one per core. Results do not depend on it.");
+  }
+
+
+
+  template <int dim>
+  SolverOptions
+  SolverParameters<dim>::parse_parameters(dealii::ParameterHandler &prm,
+                                          const std::string        &prm_file)
+  {
+    const std::string s = AnalysisParameters<dim>::section() + "/";
+    SolverOptions     o;
+    const std::string solver = prm.get("Linear solver");
+    o.type                   = solver == "direct"        ? SolverType::direct
+                               : solver == "iterative"   ? SolverType::iterative
+                               : solver == "distributed" ? SolverType::distributed
+                                                         : SolverType::automatic;
+    if (dim == 2)
+      {
+        const std::string dpc = prm.get("Distributed preconditioner");
+        o.distributed_preconditioner
+          = dpc == "amg"   ? DistributedPreconditioner::amg
+            : dpc == "ilu" ? DistributedPreconditioner::ilu
+                           : DistributedPreconditioner::block_jacobi;
+      }
+    if (o.type == SolverType::distributed
+        && !dealii::Utilities::MPI::job_supports_mpi())
+      throw InputError(prm_file + ": key '" + s
+                       + "Linear solver' = 'distributed' needs a run under "
+                         "MPI (mpirun -np N rockdda FILE.prm); valid here: "
+                         "automatic, direct, iterative");
+    o.tolerance      = prm.get_double("Solver tolerance");
+    o.threads        = prm.get_integer("Threads");
+    o.preconditioner = prm.get("Preconditioner") == "block-jacobi"
+                         ? Preconditioner::block_jacobi
+                         : Preconditioner::block_dilu;
+    return o;
+  }
+
+
+
   template struct AnalysisParameters<2>;
   template struct AnalysisParameters<3>;
+  template struct SolverParameters<2>;
+  template struct SolverParameters<3>;
 } // namespace rockdda::dda

@@ -32,20 +32,6 @@ namespace rockdda::dda
     using dealii::Patterns::Integer;
     using dealii::Patterns::Selection;
 
-    /// The log's description of the distributed solver of @p ls.
-    std::string
-    distributed_solver_text(const LinearSolver &ls, const Controls &c)
-    {
-      const auto p = c.solver.distributed_preconditioner;
-      return std::string("CG (Trilinos) + ")
-             + (p == DistributedPreconditioner::amg   ? "ML AMG"
-                : p == DistributedPreconditioner::ilu ? "Ifpack ILU(0)"
-                                                      : "Ifpack block-Jacobi")
-             + " on " + std::to_string(ls.n_ranks())
-             + " MPI ranks (blocks partitioned along a Hilbert curve; "
-               "geometry, contacts and assembly replicated)";
-    }
-
     /**
      * Log lines on the ground motion the fixed points follow: for each
      * record its peak velocity and the velocity and displacement at its
@@ -176,58 +162,7 @@ namespace rockdda::dda
                     "each contact's length l: keep the penalty at 100 x "
                     "k l or more for the joint's own stiffness within 1 % "
                     "(doc/theory/dda.md, Joint stiffness).");
-        io::declare(prm,
-                    "Linear solver",
-                    "automatic",
-                    Selection("automatic|direct|iterative|distributed"),
-                    "-",
-                    "'direct': sparse LDL^T; 'iterative': preconditioned CG "
-                    "with warm start; 'distributed' (mpirun -np N only): CG "
-                    "on a Trilinos matrix whose block rows are partitioned "
-                    "over the ranks (doc/theory/dda-mpi.md); 'automatic': "
-                    "direct up to 60 blocks, above that iterative on one "
-                    "process and distributed on several MPI ranks.");
-        io::declare(prm,
-                    "Distributed preconditioner",
-                    "ilu",
-                    Selection("ilu|block-jacobi|amg"),
-                    "-",
-                    "Preconditioner of the distributed solver, from "
-                    "Trilinos: 'ilu' (Ifpack ILU(0) on each rank's rows, "
-                    "additive Schwarz without overlap; the fastest on the "
-                    "brick walls), 'block-jacobi' (Ifpack, the 6x6 blocks "
-                    "of the blocks) or 'amg' (ML smoothed aggregation); "
-                    "doc/theory/dda-mpi.md.");
-        io::declare(prm,
-                    "Preconditioner",
-                    "block-dilu",
-                    Selection("block-dilu|block-jacobi"),
-                    "-",
-                    "Preconditioner of the iterative solver: 'block-dilu' "
-                    "(6x6-block diagonal ILU with Eisenstat's trick, about "
-                    "2.4x fewer CG iterations) or 'block-jacobi'.");
-        io::declare(prm,
-                    "Solver tolerance",
-                    "1e-8",
-                    Double(0.),
-                    "-",
-                    "Relative tolerance of the iterative solver (on the "
-                    "preconditioned residual). 1e-8 keeps block positions "
-                    "within ~1e-11 m of the direct solver on the brick-wall "
-                    "test; each decade tighter costs ~25 % more CG "
-                    "iterations.");
-        io::declare(prm,
-                    "Threads",
-                    "0",
-                    Integer(0, 1024),
-                    "-",
-                    "Threads of the run (a TBB task arena): contact "
-                    "detection, contact kinematics and state checks run in "
-                    "chunks on all of them; the block-dilu CG from 300 "
-                    "blocks on orders the blocks as two subdomains and "
-                    "their separator and sweeps the two in parallel (at "
-                    "most 2 threads there). 0 = one per core. Results do "
-                    "not depend on it.");
+        SolverParameters<2>::declare_parameters(prm);
         io::RunCheckpoint::declare_parameters(
           prm,
           "at multiples of this interval (steps land on them, as on output "
@@ -297,41 +232,15 @@ namespace rockdda::dda
                              + "'; valid: 'auto' or a stiffness >= 0 N/m "
                                "(0 = auto)");
         }
-        c.law.shear_ratio        = shared.shear_ratio;
-        c.law.force_tolerance    = shared.force_tolerance;
-        c.fixed_penalty          = shared.fixed_penalty;
-        const std::string solver = prm.get("Linear solver");
-        c.solver.type            = solver == "direct"      ? SolverType::direct
-                                   : solver == "iterative" ? SolverType::iterative
-                                   : solver == "distributed" ? SolverType::distributed
-                                                             : SolverType::automatic;
-        const std::string dpc    = prm.get("Distributed preconditioner");
-        c.solver.distributed_preconditioner
-          = dpc == "amg"   ? DistributedPreconditioner::amg
-            : dpc == "ilu" ? DistributedPreconditioner::ilu
-                           : DistributedPreconditioner::block_jacobi;
-        if (c.solver.type == SolverType::distributed
-            && !dealii::Utilities::MPI::job_supports_mpi())
-          throw InputError(prm_file
-                           + ": key 'DDA/Linear solver' = 'distributed' "
-                             "needs a run under MPI (mpirun -np N rockdda "
-                             "FILE.prm); valid here: automatic, direct, "
-                             "iterative");
-        c.solver.tolerance      = prm.get_double("Solver tolerance");
-        c.solver.threads        = prm.get_integer("Threads");
-        c.solver.preconditioner = prm.get("Preconditioner") == "block-jacobi"
-                                    ? Preconditioner::block_jacobi
-                                    : Preconditioner::block_dilu;
-        const std::string mode  = prm.get("Seismic input");
-        hdf5_snapshots          = prm.get("Snapshot format") == "hdf5";
-        const double gravity    = shared.gravity;
+        c.law.shear_ratio     = shared.shear_ratio;
+        c.law.force_tolerance = shared.force_tolerance;
+        c.fixed_penalty       = shared.fixed_penalty;
+        c.solver = SolverParameters<2>::parse_parameters(prm, prm_file);
+        const std::string mode = prm.get("Seismic input");
+        hdf5_snapshots         = prm.get("Snapshot format") == "hdf5";
+        const double gravity   = shared.gravity;
         prm.leave_subsection();
 
-        io::require(c.solver.tolerance > 0. && c.solver.tolerance < 1.,
-                    prm_file,
-                    "DDA/Solver tolerance",
-                    c.solver.tolerance,
-                    "0 < tolerance < 1");
         const std::string &path  = shared.block_file;
         BlockSystem        scene = read_block_file(path);
         scene.gravity            = geometry::Point(0., -gravity);
@@ -549,21 +458,10 @@ namespace rockdda::dda
                   dda->system().blocks[mp.block].stress[1],
                   "Pa");
           }
-        const LinearSolver &ls = dda->linear_solver();
-        std::string         solver_text
-          = ls.type() == SolverType::direct ? "sparse LDL^T (direct)"
-            : ls.type() == SolverType::distributed
-              ? distributed_solver_text(ls, dda->controls())
-            : dda->controls().solver.preconditioner
-                == Preconditioner::block_jacobi
-              ? "CG + block-Jacobi"
-              : "CG + block D-ILU";
+        const LinearSolver &ls          = dda->linear_solver();
+        std::string         solver_text = ls.description();
         if (ls.separator_size() > 0)
-          solver_text += ", two subdomains and a separator of "
-                         + std::to_string(ls.separator_size()) + " blocks, "
-                         + std::to_string(std::min(2u, ls.n_threads()))
-                         + " thread(s) for its sweeps, "
-                         + std::to_string(ls.n_threads())
+          solver_text += ", " + std::to_string(ls.n_threads())
                          + " for detection and state checks";
         context.log.line("linear solver (last step): " + solver_text);
         context.log.line(loop.finished_line());

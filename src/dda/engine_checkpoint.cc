@@ -86,9 +86,7 @@ namespace rockdda::dda
     w.put<std::uint64_t>(n_iterations);
     w.put<std::uint64_t>(n_solves);
     w.put<std::uint64_t>(n_solver_iterations);
-    w.put<std::uint64_t>(last_solution.size());
-    for (Eigen::Index i = 0; i < last_solution.size(); ++i)
-      w.put(last_solution[i]);
+    put_warm_start(w, last_solution);
     w.put(friction_work);
     w.put(load_work);
     w.put<std::uint8_t>(first_detection ? 1 : 0);
@@ -204,17 +202,11 @@ namespace rockdda::dda
     const std::uint64_t iterations        = r.get<std::uint64_t>();
     const std::uint64_t solves            = r.get<std::uint64_t>();
     const std::uint64_t solver_iterations = r.get<std::uint64_t>();
-    const auto          n_x               = r.get<std::uint64_t>();
-    if (n_x != 0 && n_x != 6 * s.blocks.size())
-      throw InputError(source + ": the checkpoint is damaged (warm start of "
-                       + std::to_string(n_x) + " values)");
-    Eigen::VectorXd x(static_cast<Eigen::Index>(n_x));
-    for (Eigen::Index i = 0; i < x.size(); ++i)
-      x[i] = r.get<double>();
-    const double friction = r.get<double>();
-    const double loads    = r.get<double>();
-    const bool   first    = r.get<std::uint8_t>() != 0;
-    const double strength = r.get<double>();
+    Eigen::VectorXd     x = get_warm_start(r, 6 * s.blocks.size(), source);
+    const double        friction = r.get<double>();
+    const double        loads    = r.get<double>();
+    const bool          first    = r.get<std::uint8_t>() != 0;
+    const double        strength = r.get<double>();
     if (!r.at_end())
       throw InputError(source + ": the checkpoint has trailing data");
     if (!(std::isfinite(time) && step > 0.))

@@ -1,6 +1,7 @@
 /**
  * @file
- * Block sparse matrix and its direct and iterative solvers.
+ * Block sparse matrix and its direct and iterative solvers, over the
+ * number of unknowns per block (explicitly instantiated for 6 and 12).
  */
 #include <rockdda/dda/linear_solver.h>
 
@@ -15,6 +16,7 @@
 #include "thread_pair.h"
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <thread>
 
 namespace rockdda::dda
@@ -45,14 +47,16 @@ namespace rockdda::dda
       return n;
     }
 
-    /// Inverse of a symmetric positive definite 6x6 matrix by Cholesky
+    /// Inverse of a symmetric positive definite m x m matrix by Cholesky
     /// (fixed-size loops; Eigen's LLT::solve takes a generic path here).
     /// Returns false if a pivot is not positive.
+    template <int m>
     bool
-    invert_spd(const Matrix6 &A, Matrix6 &inverse)
+    invert_spd(const Eigen::Matrix<double, m, m> &A,
+               Eigen::Matrix<double, m, m>       &inverse)
     {
-      double L[6][6] = {};
-      for (int j = 0; j < 6; ++j)
+      double L[m][m] = {};
+      for (int j = 0; j < m; ++j)
         {
           double d = A(j, j);
           for (int k = 0; k < j; ++k)
@@ -60,7 +64,7 @@ namespace rockdda::dda
           if (!(d > 0.))
             return false;
           L[j][j] = std::sqrt(d);
-          for (int i = j + 1; i < 6; ++i)
+          for (int i = j + 1; i < m; ++i)
             {
               double v = A(i, j);
               for (int k = 0; k < j; ++k)
@@ -69,11 +73,11 @@ namespace rockdda::dda
             }
         }
       // W = L^-1 (lower triangular), inverse = W^T W.
-      double W[6][6] = {};
-      for (int c = 0; c < 6; ++c)
+      double W[m][m] = {};
+      for (int c = 0; c < m; ++c)
         {
           W[c][c] = 1. / L[c][c];
-          for (int i = c + 1; i < 6; ++i)
+          for (int i = c + 1; i < m; ++i)
             {
               double v = 0.;
               for (int k = c; k < i; ++k)
@@ -81,11 +85,11 @@ namespace rockdda::dda
               W[i][c] = v / L[i][i];
             }
         }
-      for (int a = 0; a < 6; ++a)
-        for (int b = a; b < 6; ++b)
+      for (int a = 0; a < m; ++a)
+        for (int b = a; b < m; ++b)
           {
             double v = 0.;
-            for (int k = b; k < 6; ++k)
+            for (int k = b; k < m; ++k)
               v += W[k][a] * W[k][b];
             inverse(a, b) = inverse(b, a) = v;
           }
@@ -95,19 +99,21 @@ namespace rockdda::dda
 
 
 
+  template <int dofs>
   void
-  BlockSparseMatrix::reinit(const int                               n,
-                            const std::vector<std::pair<int, int>> &p)
+  BlockSparseMatrixOf<dofs>::reinit(const int                               n,
+                                    const std::vector<std::pair<int, int>> &p)
   {
-    diag.assign(n, Matrix6::Zero());
+    diag.assign(n, Dense::Zero());
     pairs = p;
-    off.assign(pairs.size(), Matrix6::Zero());
+    off.assign(pairs.size(), Dense::Zero());
   }
 
 
 
+  template <int dofs>
   void
-  BlockSparseMatrix::set_zero()
+  BlockSparseMatrixOf<dofs>::set_zero()
   {
     for (auto &m : diag)
       m.setZero();
@@ -117,23 +123,27 @@ namespace rockdda::dda
 
 
 
+  template <int dofs>
   void
-  BlockSparseMatrix::vmult(const Eigen::VectorXd &x, Eigen::VectorXd &y) const
+  BlockSparseMatrixOf<dofs>::vmult(const Eigen::VectorXd &x,
+                                   Eigen::VectorXd       &y) const
   {
     y.resize(x.size());
     const int n = n_blocks();
     for (int i = 0; i < n; ++i)
-      y.segment<6>(6 * i).noalias() = diag[i] * x.segment<6>(6 * i);
+      y.template segment<dofs>(dofs * i).noalias()
+        = diag[i] * x.template segment<dofs>(dofs * i);
     for (std::size_t k = 0; k < pairs.size(); ++k)
       {
-        const int      i = pairs[k].first, j = pairs[k].second;
-        const Matrix6 &A  = off[k];
-        const auto     xi = x.segment<6>(6 * i);
-        y.segment<6>(6 * i).noalias() += A * x.segment<6>(6 * j);
+        const int    i = pairs[k].first, j = pairs[k].second;
+        const Dense &A  = off[k];
+        const auto   xi = x.template segment<dofs>(dofs * i);
+        y.template segment<dofs>(dofs * i).noalias()
+          += A * x.template segment<dofs>(dofs * j);
         // y_j += A^T x_i, column by column (vectorises, unlike the lazy
         // transposed product).
-        for (int c = 0; c < 6; ++c)
-          y[6 * j + c] += A.col(c).dot(xi);
+        for (int c = 0; c < dofs; ++c)
+          y[dofs * j + c] += A.col(c).dot(xi);
       }
   }
 
@@ -145,7 +155,8 @@ namespace rockdda::dda
   /// The symbolic analysis is kept while the block pattern is unchanged.
   /// (CHOLMOD's supernodal LL^T was measured 1.3-3x slower at 1,000
   /// blocks with the reference BLAS of this machine and is not used.)
-  struct LinearSolver::Direct
+  template <int dofs>
+  struct LinearSolverOf<dofs>::Direct
   {
     using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
     Sparse                                                               matrix;
@@ -167,7 +178,7 @@ namespace rockdda::dda
     }
 
     void
-    analyse(const BlockSparseMatrix &K)
+    analyse(const Matrix &K)
     {
       const int n = K.n_blocks();
       if (n == analysed_blocks && K.pairs == analysed_pairs)
@@ -182,8 +193,11 @@ namespace rockdda::dda
                                              static_cast<int>(k));
       for (auto &b : below)
         std::sort(b.begin(), b.end());
-      matrix.resize(6 * n, 6 * n);
-      std::size_t nnz = 21 * static_cast<std::size_t>(n) + 36 * K.pairs.size();
+      matrix.resize(dofs * n, dofs * n);
+      // Per block row: the lower triangle of the diagonal block and the
+      // full off-diagonal blocks.
+      std::size_t nnz = (dofs * (dofs + 1) / 2) * static_cast<std::size_t>(n)
+                        + dofs * dofs * K.pairs.size();
       matrix.resizeNonZeros(nnz);
       source_block.resize(nnz);
       source_entry.resize(nnz);
@@ -192,35 +206,35 @@ namespace rockdda::dda
       int *inner = matrix.innerIndexPtr();
       int  pos   = 0;
       for (int c = 0; c < n; ++c)
-        for (int a = 0; a < 6; ++a)
+        for (int a = 0; a < dofs; ++a)
           {
-            outer[6 * c + a] = pos;
-            for (int b = a; b < 6; ++b)
+            outer[dofs * c + a] = pos;
+            for (int b = a; b < dofs; ++b)
               {
-                inner[pos]        = 6 * c + b;
+                inner[pos]        = dofs * c + b;
                 source_kind[pos]  = 0;
                 source_block[pos] = c;
-                source_entry[pos] = b + 6 * a; // (b, a) column-major
+                source_entry[pos] = b + dofs * a; // (b, a) column-major
                 ++pos;
               }
             for (const auto &[j, k] : below[c])
-              for (int b = 0; b < 6; ++b)
+              for (int b = 0; b < dofs; ++b)
                 {
-                  // entry (6j + b, 6c + a) = K_cj(a, b)
-                  inner[pos]        = 6 * j + b;
+                  // entry (dofs j + b, dofs c + a) = K_cj(a, b)
+                  inner[pos]        = dofs * j + b;
                   source_kind[pos]  = 1;
                   source_block[pos] = k;
-                  source_entry[pos] = a + 6 * b;
+                  source_entry[pos] = a + dofs * b;
                   ++pos;
                 }
           }
-      outer[6 * n] = pos;
+      outer[dofs * n] = pos;
       gather(K);
       ldlt.analyzePattern(matrix);
     }
 
     void
-    gather(const BlockSparseMatrix &K)
+    gather(const Matrix &K)
     {
       double    *v = matrix.valuePtr();
       const auto n = source_kind.size();
@@ -317,26 +331,30 @@ namespace rockdda::dda
    * separator is eliminated last. The operations and their order are the
    * same for one and two threads.
    */
-  struct LinearSolver::Dilu
+  template <int dofs>
+  struct LinearSolverOf<dofs>::Dilu
   {
+    using Dense  = typename Matrix::Dense;
+    using Vector = Eigen::Matrix<double, dofs, 1>;
+
     /// Renumbered (new -> old), or the natural order.
     bool             renumbered = false;
     std::vector<int> order;
     /// Source pair of each renumbered pair, and whether it is transposed.
     std::vector<int>  pair_source;
     std::vector<char> pair_transposed;
-    BlockSparseMatrix renumbered_matrix;
+    Matrix            renumbered_matrix;
     /// Subdomain 0 = [0, end0), subdomain 1 = [end0, end1), separator =
     /// [end1, n).
     int n = 0, end0 = 0, end1 = 0;
     /// The matrix the sweeps use (renumbered_matrix or the caller's).
-    const BlockSparseMatrix *M = nullptr;
-    std::vector<int>         row_start;
+    const Matrix    *M = nullptr;
+    std::vector<int> row_start;
     /// Pivots P_i, their inverses and K_ii - 2 P_i.
-    std::vector<Matrix6> pivot, inverse_pivot, diag_shift;
+    std::vector<Dense> pivot, inverse_pivot, diag_shift;
     /// Contributions of each subdomain to the separator's pivots.
-    std::vector<Matrix6> pivot_update[2];
-    Eigen::VectorXd      f, x, r, z, p, q, t, y;
+    std::vector<Dense> pivot_update[2];
+    Eigen::VectorXd    f, x, r, z, p, q, t, y;
     /// Contributions of each subdomain to q on the separator.
     Eigen::VectorXd q_update[2];
     double          partial[2] = {0., 0.};
@@ -351,7 +369,7 @@ namespace rockdda::dda
     }
 
     void
-    new_pattern(const BlockSparseMatrix &K, const int subdomain_limit)
+    new_pattern(const Matrix &K, const int subdomain_limit)
     {
       n          = K.n_blocks();
       renumbered = n >= subdomain_limit && n >= 3;
@@ -408,14 +426,14 @@ namespace rockdda::dda
       for (auto &u : pivot_update)
         u.resize(n - end1);
       for (auto &v : {&f, &x, &r, &z, &p, &q, &t, &y})
-        v->resize(6 * n);
+        v->resize(dofs * n);
       for (auto &u : q_update)
-        u.resize(6 * (n - end1));
+        u.resize(dofs * (n - end1));
     }
 
     /// Copy the values of @p K into the renumbered matrix.
     void
-    gather(const BlockSparseMatrix &K)
+    gather(const Matrix &K)
     {
       if (!renumbered)
         {
@@ -449,9 +467,9 @@ namespace rockdda::dda
     /// Pivot of row @p i (its P_i accumulated), then its updates of later
     /// pivots; those of the separator go to @p separator_update when given.
     bool
-    eliminate(const int i, std::vector<Matrix6> *separator_update)
+    eliminate(const int i, std::vector<Dense> *separator_update)
     {
-      const BlockSparseMatrix &K = *M;
+      const Matrix &K = *M;
       if (!invert_spd(pivot[i], inverse_pivot[i]))
         {
           // Modified pivot not positive definite: fall back to the
@@ -463,12 +481,12 @@ namespace rockdda::dda
       diag_shift[i] = K.diag[i] - 2. * pivot[i];
       for (int k = row_start[i]; k < row_start[i + 1]; ++k)
         {
-          const Matrix6 &A      = K.off[k];
-          const Matrix6  PiA    = inverse_pivot[i].lazyProduct(A);
-          const int      j      = K.pairs[k].second;
-          Matrix6       &target = (separator_update != nullptr && j >= end1)
-                                    ? (*separator_update)[j - end1]
-                                    : pivot[j];
+          const Dense &A      = K.off[k];
+          const Dense  PiA    = inverse_pivot[i].lazyProduct(A);
+          const int    j      = K.pairs[k].second;
+          Dense       &target = (separator_update != nullptr && j >= end1)
+                                  ? (*separator_update)[j - end1]
+                                  : pivot[j];
           target.noalias() -= A.transpose().lazyProduct(PiA);
         }
       return true;
@@ -476,12 +494,12 @@ namespace rockdda::dda
 
     /// Pivots P_i = K_ii - sum_{j<i} K_ij P_j^-1 K_ji.
     bool
-    setup(const BlockSparseMatrix &K_in, internal::ThreadPair &team)
+    setup(const Matrix &K_in, internal::ThreadPair &team)
     {
       gather(K_in);
-      const BlockSparseMatrix &K     = *M;
-      bool                     ok[2] = {true, true};
-      auto                     part  = [&](const int d) {
+      const Matrix &K     = *M;
+      bool          ok[2] = {true, true};
+      auto          part  = [&](const int d) {
         const auto [begin, end] = rows(d);
         for (auto &u : pivot_update[d])
           u.setZero();
@@ -506,13 +524,16 @@ namespace rockdda::dda
     void
     backward_sweep(const Eigen::VectorXd &v, Eigen::VectorXd &out) const
     {
-      const BlockSparseMatrix &K = *M;
+      const Matrix &K = *M;
       for (int i = n - 1; i >= 0; --i)
         {
-          Vector6 acc = v.segment<6>(6 * i);
+          Vector acc = v.template segment<dofs>(dofs * i);
           for (int k = row_start[i]; k < row_start[i + 1]; ++k)
-            acc.noalias() -= K.off[k] * out.segment<6>(6 * K.pairs[k].second);
-          out.segment<6>(6 * i).noalias() = inverse_pivot[i] * acc;
+            acc.noalias()
+              -= K.off[k]
+                 * out.template segment<dofs>(dofs * K.pairs[k].second);
+          out.template segment<dofs>(dofs * i).noalias()
+            = inverse_pivot[i] * acc;
         }
     }
 
@@ -520,17 +541,18 @@ namespace rockdda::dda
     void
     forward_sweep(Eigen::VectorXd &w) const
     {
-      const BlockSparseMatrix &K = *M;
+      const Matrix &K = *M;
       for (int i = 0; i < n; ++i)
         {
-          const Vector6 s     = inverse_pivot[i] * w.segment<6>(6 * i);
-          w.segment<6>(6 * i) = s;
+          const Vector s
+            = inverse_pivot[i] * w.template segment<dofs>(dofs * i);
+          w.template segment<dofs>(dofs * i) = s;
           for (int k = row_start[i]; k < row_start[i + 1]; ++k)
             {
-              const Matrix6 &A = K.off[k];
-              const int      j = K.pairs[k].second;
-              for (int c = 0; c < 6; ++c)
-                w[6 * j + c] -= A.col(c).dot(s);
+              const Dense &A = K.off[k];
+              const int    j = K.pairs[k].second;
+              for (int c = 0; c < dofs; ++c)
+                w[dofs * j + c] -= A.col(c).dot(s);
             }
         }
     }
@@ -540,15 +562,16 @@ namespace rockdda::dda
     void
     backward_rows(const int begin, const int end, const double beta)
     {
-      const BlockSparseMatrix &K = *M;
+      const Matrix &K = *M;
       for (int i = end - 1; i >= begin; --i)
         {
-          auto pi     = p.segment<6>(6 * i);
-          pi          = z.segment<6>(6 * i) + beta * pi;
-          Vector6 acc = pi;
+          auto pi    = p.template segment<dofs>(dofs * i);
+          pi         = z.template segment<dofs>(dofs * i) + beta * pi;
+          Vector acc = pi;
           for (int k = row_start[i]; k < row_start[i + 1]; ++k)
-            acc.noalias() -= K.off[k] * t.segment<6>(6 * K.pairs[k].second);
-          t.segment<6>(6 * i).noalias() = inverse_pivot[i] * acc;
+            acc.noalias()
+              -= K.off[k] * t.template segment<dofs>(dofs * K.pairs[k].second);
+          t.template segment<dofs>(dofs * i).noalias() = inverse_pivot[i] * acc;
         }
     }
 
@@ -561,25 +584,25 @@ namespace rockdda::dda
                  const int        end,
                  Eigen::VectorXd *separator_update)
     {
-      const BlockSparseMatrix &K  = *M;
-      double                   pq = 0.;
+      const Matrix &K  = *M;
+      double        pq = 0.;
       for (int i = begin; i < end; ++i)
         {
-          const auto ti = t.segment<6>(6 * i);
-          auto       qi = q.segment<6>(6 * i);
-          Vector6    w  = qi + p.segment<6>(6 * i);
+          const auto ti = t.template segment<dofs>(dofs * i);
+          auto       qi = q.template segment<dofs>(dofs * i);
+          Vector     w  = qi + p.template segment<dofs>(dofs * i);
           w.noalias() += diag_shift[i] * ti;
-          const Vector6 si = inverse_pivot[i] * w;
-          qi               = si + ti;
-          pq += p.segment<6>(6 * i).dot(qi);
+          const Vector si = inverse_pivot[i] * w;
+          qi              = si + ti;
+          pq += p.template segment<dofs>(dofs * i).dot(qi);
           for (int k = row_start[i]; k < row_start[i + 1]; ++k)
             {
-              const Matrix6 &A      = K.off[k];
-              const int      j      = K.pairs[k].second;
-              double        *target = (separator_update != nullptr && j >= end1)
-                                        ? separator_update->data() + 6 * (j - end1)
-                                        : q.data() + 6 * j;
-              for (int c = 0; c < 6; ++c)
+              const Dense &A      = K.off[k];
+              const int    j      = K.pairs[k].second;
+              double      *target = (separator_update != nullptr && j >= end1)
+                                      ? separator_update->data() + dofs * (j - end1)
+                                      : q.data() + dofs * j;
+              for (int c = 0; c < dofs; ++c)
                 target[c] -= A.col(c).dot(si);
             }
         }
@@ -594,10 +617,11 @@ namespace rockdda::dda
       double rz = 0.;
       for (int i = begin; i < end; ++i)
         {
-          y.segment<6>(6 * i) += alpha * p.segment<6>(6 * i);
-          auto ri = r.segment<6>(6 * i);
-          ri -= alpha * q.segment<6>(6 * i);
-          auto zi      = z.segment<6>(6 * i);
+          y.template segment<dofs>(dofs * i)
+            += alpha * p.template segment<dofs>(dofs * i);
+          auto ri = r.template segment<dofs>(dofs * i);
+          ri -= alpha * q.template segment<dofs>(dofs * i);
+          auto zi      = z.template segment<dofs>(dofs * i);
           zi.noalias() = pivot[i] * ri;
           rz += ri.dot(zi);
         }
@@ -616,12 +640,14 @@ namespace rockdda::dda
        const int              max_iterations,
        int                   &iterations)
     {
-      const BlockSparseMatrix &K = *M;
+      const Matrix &K = *M;
       if (renumbered)
         for (int i = 0; i < n; ++i)
           {
-            f.segment<6>(6 * i) = f_in.segment<6>(6 * order[i]);
-            x.segment<6>(6 * i) = x_out.segment<6>(6 * order[i]);
+            f.template segment<dofs>(dofs * i)
+              = f_in.template segment<dofs>(dofs * order[i]);
+            x.template segment<dofs>(dofs * i)
+              = x_out.template segment<dofs>(dofs * order[i]);
           }
       else
         {
@@ -630,7 +656,8 @@ namespace rockdda::dda
         }
       auto times_pivot = [&](const Eigen::VectorXd &in, Eigen::VectorXd &out) {
         for (int i = 0; i < n; ++i)
-          out.segment<6>(6 * i).noalias() = pivot[i] * in.segment<6>(6 * i);
+          out.template segment<dofs>(dofs * i).noalias()
+            = pivot[i] * in.template segment<dofs>(dofs * i);
       };
       // Right-hand side norm r^T M^-1 r for the stopping test.
       r = f;
@@ -645,8 +672,8 @@ namespace rockdda::dda
       // y0 = (P + U) x0, r^0 = (P + L)^-1 (f - K x0).
       times_pivot(x, y);
       for (std::size_t k = 0; k < K.pairs.size(); ++k)
-        y.segment<6>(6 * K.pairs[k].first).noalias()
-          += K.off[k] * x.segment<6>(6 * K.pairs[k].second);
+        y.template segment<dofs>(dofs * K.pairs[k].first).noalias()
+          += K.off[k] * x.template segment<dofs>(dofs * K.pairs[k].second);
       K.vmult(x, q);
       r = f - q;
       forward_sweep(r);
@@ -667,13 +694,13 @@ namespace rockdda::dda
           backward_rows(end1, n, beta);
           auto sweeps = [&](const int d) {
             const auto [begin, end] = rows(d);
-            q.segment(6 * begin, 6 * (end - begin)).setZero();
+            q.segment(dofs * begin, dofs * (end - begin)).setZero();
             q_update[d].setZero();
             backward_rows(begin, end, beta);
             partial[d] = forward_rows(begin, end, &q_update[d]);
           };
           run(team, sweeps);
-          q.segment(6 * end1, 6 * (n - end1)) = q_update[0] + q_update[1];
+          q.segment(dofs * end1, dofs * (n - end1)) = q_update[0] + q_update[1];
           const double pq
             = (partial[0] + partial[1]) + forward_rows(end1, n, nullptr);
           if (!(pq > 0.))
@@ -695,7 +722,8 @@ namespace rockdda::dda
       backward_sweep(y, x);
       if (renumbered)
         for (int i = 0; i < n; ++i)
-          x_out.segment<6>(6 * order[i]) = x.segment<6>(6 * i);
+          x_out.template segment<dofs>(dofs * order[i])
+            = x.template segment<dofs>(dofs * i);
       else
         x_out = x;
       return x_out.allFinite();
@@ -704,43 +732,77 @@ namespace rockdda::dda
 
 
 
-  LinearSolver::LinearSolver(const SolverOptions &options)
+  template <int dofs>
+  LinearSolverOf<dofs>::LinearSolverOf(const SolverOptions &options)
       : options(options)
       , machine_ranks(ranks_on_this_machine())
   {}
 
 
 
-  LinearSolver::~LinearSolver() = default;
+  template <int dofs>
+  LinearSolverOf<dofs>::~LinearSolverOf() = default;
 
 
 
+  template <int dofs>
   int
-  LinearSolver::n_ranks() const
+  LinearSolverOf<dofs>::n_ranks() const
   {
     return distributed ? distributed->n_ranks() : 1;
   }
 
 
 
+  template <int dofs>
   unsigned int
-  LinearSolver::n_threads() const
+  LinearSolverOf<dofs>::n_threads() const
   {
     return team_of_run().n_threads();
   }
 
 
 
+  template <int dofs>
   int
-  LinearSolver::separator_size() const
+  LinearSolverOf<dofs>::separator_size() const
   {
     return dilu && dilu->renumbered ? dilu->n - dilu->end1 : 0;
   }
 
 
 
+  template <int dofs>
+  std::string
+  LinearSolverOf<dofs>::description() const
+  {
+    const auto  p = options.distributed_preconditioner;
+    std::string text
+      = current == SolverType::direct ? "sparse LDL^T (direct)"
+        : current == SolverType::distributed
+          ? std::string("CG (Trilinos) + ")
+              + (p == DistributedPreconditioner::amg   ? "ML AMG"
+                 : p == DistributedPreconditioner::ilu ? "Ifpack ILU(0)"
+                                                       : "Ifpack block-Jacobi")
+              + " on " + std::to_string(n_ranks())
+              + " MPI ranks (blocks partitioned along a Hilbert curve; "
+                "geometry, contacts and assembly replicated)"
+        : options.preconditioner == Preconditioner::block_jacobi
+          ? "CG + block-Jacobi"
+          : "CG + block D-ILU";
+    if (separator_size() > 0)
+      text += ", two subdomains and a separator of "
+              + std::to_string(separator_size()) + " blocks, "
+              + std::to_string(std::min(2u, n_threads()))
+              + " thread(s) for its sweeps";
+    return text;
+  }
+
+
+
+  template <int dofs>
   internal::TaskTeam &
-  LinearSolver::team_of_run() const
+  LinearSolverOf<dofs>::team_of_run() const
   {
     if (!team)
       {
@@ -759,8 +821,9 @@ namespace rockdda::dda
 
 
 
+  template <int dofs>
   internal::ThreadPair &
-  LinearSolver::pair_of_run()
+  LinearSolverOf<dofs>::pair_of_run()
   {
     // A worker thread only where the sweeps use it (the subdomain order).
     if (!pair)
@@ -771,8 +834,9 @@ namespace rockdda::dda
 
 
 
+  template <int dofs>
   void
-  LinearSolver::for_chunks(
+  LinearSolverOf<dofs>::for_chunks(
     const std::size_t                                    n,
     const std::size_t                                    grain,
     const std::function<void(std::size_t, std::size_t)> &f)
@@ -782,27 +846,38 @@ namespace rockdda::dda
 
 
 
+  template <int dofs>
   void
-  LinearSolver::new_pattern(const BlockSparseMatrix  &K,
-                            const std::vector<Block> *blocks)
+  LinearSolverOf<dofs>::new_pattern(const Matrix             &K,
+                                    const std::vector<Block> *blocks)
   {
     factorised = false;
     current    = options.type;
+    // The distributed solver is written for 2D blocks (6 unknowns).
+    constexpr bool can_distribute = dofs == 6;
     if (current == SolverType::automatic)
       current = K.n_blocks() <= options.automatic_limit ? SolverType::direct
-                : world_ranks() > 1 ? SolverType::distributed
-                                    : SolverType::iterative;
+                : world_ranks() > 1 && can_distribute ? SolverType::distributed
+                                                      : SolverType::iterative;
     if (current == SolverType::distributed)
       {
-        if (!distributed)
-          distributed = std::make_unique<internal::DistributedSolver>(
-            options.distributed_preconditioner);
-        std::vector<geometry::Point> centroids(K.n_blocks(),
-                                               geometry::Point::Zero());
-        if (blocks != nullptr)
-          for (int b = 0; b < K.n_blocks(); ++b)
-            centroids[b] = (*blocks)[b].initial_centroid;
-        distributed->new_pattern(K, centroids);
+        if constexpr (!can_distribute)
+          throw std::invalid_argument(
+            "LinearSolver: the distributed solver is 2D only (6 unknowns "
+            "per block, not "
+            + std::to_string(dofs) + ")");
+        else
+          {
+            if (!distributed)
+              distributed = std::make_unique<internal::DistributedSolver>(
+                options.distributed_preconditioner);
+            std::vector<geometry::Point> centroids(K.n_blocks(),
+                                                   geometry::Point::Zero());
+            if (blocks != nullptr)
+              for (int b = 0; b < K.n_blocks(); ++b)
+                centroids[b] = (*blocks)[b].initial_centroid;
+            distributed->new_pattern(K, centroids);
+          }
       }
     else if (current == SolverType::direct)
       {
@@ -820,12 +895,13 @@ namespace rockdda::dda
 
 
 
+  template <int dofs>
   bool
-  LinearSolver::solve(const BlockSparseMatrix &K,
-                      const Eigen::VectorXd   &f,
-                      Eigen::VectorXd         &x,
-                      const bool               same_matrix,
-                      const double             tolerance)
+  LinearSolverOf<dofs>::solve(const Matrix          &K,
+                              const Eigen::VectorXd &f,
+                              Eigen::VectorXd       &x,
+                              const bool             same_matrix,
+                              const double           tolerance)
   {
     iterations = 0;
     if (current == SolverType::direct)
@@ -843,14 +919,16 @@ namespace rockdda::dda
         return x.allFinite();
       }
 
-    if (current == SolverType::distributed)
-      return distributed->solve(K,
-                                f,
-                                x,
-                                same_matrix,
-                                tolerance > 0. ? tolerance : options.tolerance,
-                                iteration_limit(K.n_blocks()),
-                                iterations);
+    if constexpr (dofs == 6)
+      if (current == SolverType::distributed)
+        return distributed->solve(K,
+                                  f,
+                                  x,
+                                  same_matrix,
+                                  tolerance > 0. ? tolerance
+                                                 : options.tolerance,
+                                  iteration_limit(K.n_blocks()),
+                                  iterations);
     if (x.size() != f.size() || !x.allFinite())
       x = Eigen::VectorXd::Zero(f.size());
     if (options.preconditioner == Preconditioner::block_jacobi)
@@ -887,8 +965,9 @@ namespace rockdda::dda
 
 
 
+  template <int dofs>
   int
-  LinearSolver::iteration_limit(const int n) const
+  LinearSolverOf<dofs>::iteration_limit(const int n) const
   {
     return options.max_iterations > 0 ? options.max_iterations
                                       : std::min(20000, 60 * n + 100);
@@ -896,17 +975,18 @@ namespace rockdda::dda
 
 
 
+  template <int dofs>
   bool
-  LinearSolver::jacobi_cg(const BlockSparseMatrix &K,
-                          const Eigen::VectorXd   &f,
-                          Eigen::VectorXd         &x)
+  LinearSolverOf<dofs>::jacobi_cg(const Matrix          &K,
+                                  const Eigen::VectorXd &f,
+                                  Eigen::VectorXd       &x)
   {
     const int n       = K.n_blocks();
     auto precondition = [&](const Eigen::VectorXd &in, Eigen::VectorXd &out) {
       out.resize(in.size());
       for (int i = 0; i < n; ++i)
-        out.segment<6>(6 * i).noalias()
-          = inverse_diag[i] * in.segment<6>(6 * i);
+        out.template segment<dofs>(dofs * i).noalias()
+          = inverse_diag[i] * in.template segment<dofs>(dofs * i);
     };
     precondition(f, z);
     const double bnorm = f.dot(z);
@@ -943,4 +1023,11 @@ namespace rockdda::dda
       }
     return x.allFinite();
   }
+
+
+
+  template class BlockSparseMatrixOf<6>;
+  template class BlockSparseMatrixOf<12>;
+  template class LinearSolverOf<6>;
+  template class LinearSolverOf<12>;
 } // namespace rockdda::dda

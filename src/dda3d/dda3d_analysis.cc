@@ -122,6 +122,7 @@ namespace rockdda::dda3d
                     "deg",
                     "Direction (clockwise from north, 0 to 360) of the "
                     "horizontal record of the Ground motion section.");
+        dda::SolverParameters<3>::declare_parameters(prm);
         prm.leave_subsection();
       }
 
@@ -136,6 +137,7 @@ namespace rockdda::dda3d
         c.law.normal_penalty = prm.get_double("Contact penalty");
         settings             = dda::run_settings(shared, prm);
         const std::string seismic_mode = prm.get("Seismic input");
+        c.solver = dda::SolverParameters<3>::parse_parameters(prm, prm_file);
         prm.leave_subsection();
         c.dt                      = shared.time_step;
         c.dynamic                 = shared.dynamic;
@@ -338,6 +340,8 @@ namespace rockdda::dda3d
             sm.add("ground_uz", u.z(), "m");
           }
         sm.add("wall_time", loop.wall, "s");
+        context.log.line("linear solver (last step): "
+                         + engine->linear_solver().description());
         context.log.line(loop.finished_line());
       }
 

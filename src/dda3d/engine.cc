@@ -12,7 +12,6 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
-#include <Eigen/Sparse>
 
 #include <algorithm>
 #include <cmath>
@@ -188,7 +187,11 @@ namespace rockdda::dda3d
   Engine::Engine(BlockSystem system_in, const EngineControls &c)
       : LocalScene(std::move(system_in))
       , ctrl(c)
+      , solver(c.solver)
   {
+    if (ctrl.solver.type == dda::SolverType::distributed)
+      throw InputError("3D DDA: the distributed linear solver is 2D only; "
+                       "valid: automatic, direct, iterative");
     if (!(ctrl.dt > 0.) || !std::isfinite(ctrl.dt))
       throw InputError("time step " + std::to_string(ctrl.dt)
                        + " s; valid: > 0");
@@ -593,9 +596,45 @@ namespace rockdda::dda3d
                                   : Eigen::Vector2d::Zero();
       }
 
+    // The matrix pattern: the pairs of blocks in contact (in any state: the
+    // states change within the step), clamped blocks decoupled; the slot
+    // of each contact's off-diagonal block.
+    std::vector<int> slot(contacts.size(), -1);
+    {
+      std::vector<std::pair<int, int>> pairs;
+      pairs.reserve(contacts.size());
+      for (const auto &c : contacts)
+        {
+          const int i = c.geometry.i, j = c.geometry.j;
+          if (!clamped_[i] && !clamped_[j] && i != j)
+            pairs.emplace_back(std::min(i, j), std::max(i, j));
+        }
+      std::sort(pairs.begin(), pairs.end());
+      pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+      for (std::size_t k = 0; k < contacts.size(); ++k)
+        {
+          const int i = contacts[k].geometry.i, j = contacts[k].geometry.j;
+          if (!clamped_[i] && !clamped_[j] && i != j)
+            slot[k] = static_cast<int>(
+              std::lower_bound(pairs.begin(),
+                               pairs.end(),
+                               std::make_pair(std::min(i, j), std::max(i, j)))
+              - pairs.begin());
+        }
+      matrix.reinit(static_cast<int>(n), pairs);
+    }
+    solver.new_pattern(matrix);
+
     // Open-close iteration.
-    const int        N = 12 * int(n);
-    Eigen::VectorXd  D(N);
+    const int       N = 12 * int(n);
+    Eigen::VectorXd D = last_solution.size() == N
+                          ? last_solution
+                          : Eigen::VectorXd(Eigen::VectorXd::Zero(N));
+    // Whether the contact states (hence the matrix) changed since the
+    // last solve: an iteration that only updated friction forces reuses
+    // the factorisation or preconditioner.
+    bool             states_changed    = true;
+    int              solver_iterations = 0;
     std::vector<int> changes(contacts.size(), 0);
     // The friction force of each sliding contact in the last solve (N, on
     // block i, in the tangent basis): the energy ledger books its work.
@@ -670,13 +709,14 @@ namespace rockdda::dda3d
         if (state_iterations > ctrl.max_open_close
             || iterations > 2 * ctrl.max_open_close)
           return false;
-        std::vector<Eigen::Triplet<double>> trip;
-        trip.reserve(144 * (n + 4 * contacts.size()));
-        Eigen::VectorXd       F  = Eigen::VectorXd::Zero(N);
-        std::vector<Matrix12> Kd = K0;
+        Eigen::VectorXd F = Eigen::VectorXd::Zero(N);
         for (std::size_t b = 0; b < n; ++b)
-          F.segment<12>(12 * b) = F0[b];
-        std::map<std::pair<int, int>, Matrix12> Koff;
+          {
+            matrix.diag[b]        = K0[b];
+            F.segment<12>(12 * b) = F0[b];
+          }
+        for (auto &m : matrix.off)
+          m.setZero();
         for (std::size_t k = 0; k < contacts.size(); ++k)
           {
             const auto &c = contacts[k];
@@ -708,7 +748,7 @@ namespace rockdda::dda3d
               }
             if (!clamped_[i])
               {
-                Kd[i] += Kc.block<12, 12>(0, 0);
+                matrix.diag[i] += Kc.block<12, 12>(0, 0);
                 F.segment<12>(12 * i) += Fc.head<12>();
                 // A clamped j's prescribed motion moves to the right side.
                 if (clamped_[j])
@@ -717,56 +757,26 @@ namespace rockdda::dda3d
               }
             if (!clamped_[j])
               {
-                Kd[j] += Kc.block<12, 12>(12, 12);
+                matrix.diag[j] += Kc.block<12, 12>(12, 12);
                 F.segment<12>(12 * j) += Fc.tail<12>();
                 if (clamped_[i])
                   F.segment<12>(12 * j)
                     -= Kc.block<12, 12>(12, 0) * prescribed[i];
               }
-            if (!clamped_[i] && !clamped_[j])
-              {
-                if (i < j)
-                  {
-                    auto it = Koff.try_emplace({i, j}, Matrix12::Zero()).first;
-                    it->second += Kc.block<12, 12>(0, 12);
-                  }
-                else
-                  {
-                    auto it = Koff.try_emplace({j, i}, Matrix12::Zero()).first;
-                    it->second += Kc.block<12, 12>(12, 0);
-                  }
-              }
+            // The upper block K_ij (i < j) of the pair.
+            if (slot[k] >= 0)
+              matrix.off[slot[k]]
+                += i < j ? Kc.block<12, 12>(0, 12) : Kc.block<12, 12>(12, 0);
           }
         for (std::size_t b = 0; b < n; ++b)
-          {
-            if (clamped_[b])
-              {
-                Kd[b].setIdentity();
-                F.segment<12>(12 * b) = prescribed[b];
-              }
-            for (int r = 0; r < 12; ++r)
-              for (int s = 0; s < 12; ++s)
-                trip.emplace_back(12 * b + r, 12 * b + s, Kd[b](r, s));
-          }
-        for (const auto &[ij, Kij] : Koff)
-          for (int r = 0; r < 12; ++r)
-            for (int s = 0; s < 12; ++s)
-              {
-                trip.emplace_back(12 * ij.first + r,
-                                  12 * ij.second + s,
-                                  Kij(r, s));
-                trip.emplace_back(12 * ij.second + s,
-                                  12 * ij.first + r,
-                                  Kij(r, s));
-              }
-        Eigen::SparseMatrix<double> A(N, N);
-        A.setFromTriplets(trip.begin(), trip.end());
-        Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
-        if (ldlt.info() != Eigen::Success)
+          if (clamped_[b])
+            {
+              matrix.diag[b].setIdentity();
+              F.segment<12>(12 * b) = prescribed[b];
+            }
+        if (!solver.solve(matrix, F, D, !states_changed) || !D.allFinite())
           return false;
-        D = ldlt.solve(F);
-        if (ldlt.info() != Eigen::Success || !D.allFinite())
-          return false;
+        solver_iterations += solver.last_iterations();
         for (std::size_t b = 0; b < n; ++b)
           Db[b] = D.segment<12>(12 * b);
 
@@ -882,7 +892,8 @@ namespace rockdda::dda3d
           }
         if (any_state)
           ++state_iterations;
-        converged = !any_state && !any_friction;
+        states_changed = any_state;
+        converged      = !any_state && !any_friction;
       }
 
     // Step size: no vertex moves further than the allowed displacement.
@@ -992,8 +1003,10 @@ namespace rockdda::dda3d
               ? Vector12(Db[b] / h)
               : Vector12((2. / h) * Db[b] - ctrl.dynamic * block.velocity);
       }
-    stored           = std::move(contacts);
-    stats.iterations = iterations;
+    stored                  = std::move(contacts);
+    last_solution           = D;
+    stats.iterations        = iterations;
+    stats.solver_iterations = solver_iterations;
     stats.open = stats.sliding = stats.locked = 0;
     for (const auto &c : stored)
       (c.state == ContactState::open      ? stats.open

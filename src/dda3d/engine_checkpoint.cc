@@ -18,7 +18,7 @@ namespace rockdda::dda3d
   namespace
   {
     constexpr char          magic[]        = "rockdda DDA 3d checkpoint";
-    constexpr std::uint32_t format_version = 1;
+    constexpr std::uint32_t format_version = 2;
     /// Bytes of one contact in the file (a larger count is a damaged file).
     constexpr std::size_t contact_bytes = 217;
     using io::BinaryReader;
@@ -83,6 +83,7 @@ namespace rockdda::dda3d
                         stats.locked})
       w.put<std::int32_t>(i);
     w.put(stats.dt);
+    dda::put_warm_start(w, last_solution);
     return w.bytes;
   }
 
@@ -158,7 +159,8 @@ namespace rockdda::dda3d
     StepStatistics st;
     for (int *i : {&st.iterations, &st.cuts, &st.open, &st.sliding, &st.locked})
       *i = r.get<std::int32_t>();
-    st.dt = r.get<double>();
+    st.dt             = r.get<double>();
+    Eigen::VectorXd x = dda::get_warm_start(r, 12 * s.blocks.size(), source);
     if (!r.at_end())
       throw InputError(source + ": the checkpoint has trailing data");
     if (!(std::isfinite(time) && step > 0. && std::isfinite(step)))
@@ -178,5 +180,6 @@ namespace rockdda::dda3d
     contact_energy  = contact;
     first_detection = first;
     stats           = st;
+    last_solution   = std::move(x);
   }
 } // namespace rockdda::dda3d

@@ -1,7 +1,8 @@
 /**
  * @file
  * Scene-building helper shared by the 3D DDA verification tests
- * (test_dda3d.cc, test_dda3d_stability.cc): the box-on-incline scene.
+ * (test_dda3d.cc, test_dda3d_stability.cc) and benchmarks/dda3d: the
+ * box-on-incline scene and the running-bond brick wall.
  */
 #ifndef ROCKDDA_TESTS_UNIT_DDA3D_TEST_SCENES_H
 #define ROCKDDA_TESTS_UNIT_DDA3D_TEST_SCENES_H
@@ -79,6 +80,49 @@ namespace rockdda::dda3d::test_scenes
       s.fixed_points.push_back({0, Q * p + shift, Point::Zero()});
     s.gravity = R * Point(0., 0., -9.80665);
     return out;
+  }
+
+
+  /**
+   * A running-bond wall of @p rows x @p columns bricks (2 m long in x, 1 m
+   * thick in y, 1 m high in z; odd rows start and end with a half brick)
+   * on a clamped base 1 m thick, 2 m wider than the wall on every side;
+   * granite-like material (2700 kg/m^3, 10 GPa, 0.25), friction 35 deg.
+   */
+  inline BlockSystem
+  brick_wall(const int rows, const int columns)
+  {
+    BlockSystem s;
+    s.materials.push_back({2700., 1e10, 0.25, 1});
+    dda::JointMaterial j;
+    j.friction_deg = 35.;
+    s.joints.push_back(j);
+    auto brick = [&](const Point &lo, const Point &hi) {
+      Block b;
+      b.id         = int(s.blocks.size()) + 1;
+      b.material   = 0;
+      b.polyhedron = make_box(lo, hi);
+      s.blocks.push_back(b);
+    };
+    brick(Point(-2., -2., -1.), Point(2. * columns + 2., 3., 0.));
+    for (const auto &v : s.blocks[0].polyhedron.vertices)
+      s.fixed_points.push_back({0, v, Point::Zero()});
+    for (int r = 0; r < rows; ++r)
+      {
+        const double z0 = r, z1 = r + 1.;
+        if (r % 2 == 0)
+          for (int c = 0; c < columns; ++c)
+            brick(Point(2. * c, 0., z0), Point(2. * c + 2., 1., z1));
+        else
+          {
+            brick(Point(0., 0., z0), Point(1., 1., z1));
+            for (int c = 0; c < columns - 1; ++c)
+              brick(Point(2. * c + 1., 0., z0), Point(2. * c + 3., 1., z1));
+            brick(Point(2. * columns - 1., 0., z0),
+                  Point(2. * columns, 1., z1));
+          }
+      }
+    return s;
   }
 } // namespace rockdda::dda3d::test_scenes
 

@@ -1547,3 +1547,107 @@ TEST(Dda3dOutput, ContactsVtuMatchesTheEngine)
   // BlockOnInclineBelowTheFrictionAngleSlides; 6.6e-3 at 0.1 s): 1e-3.
   EXPECT_NEAR(normal_sum / (2700. * 9.80665 * std::cos(pi / 6.)), 1., 1e-3);
 }
+
+
+
+TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
+{
+  // A 4 x 4 running-bond wall of 2 x 1 x 1 m bricks (18 and the clamped
+  // base) shaken in loading mode (0.9 g at 5 Hz along the wall, 0.3 g at
+  // 7 Hz across it), 80 dynamic steps of 1 ms: the top bricks start to
+  // slide (tan 35 deg = 0.7 < 0.9) while the rest rocks on its springs.
+  // The 12x12-block CG (D-ILU and block-Jacobi, the 2D engine's
+  // LinearSolverOf<dofs>) must give the direct solver's block positions:
+  // CG stops at a relative residual of 1e-8 (SolverOptions::tolerance), so
+  // each step's increment (at most 1e-2 L, the displacement limit) is off
+  // by ~1e-8 of it, and 80 steps add up to at most ~1e-8 L while the
+  // contact states follow the same path (a state that flips differently
+  // moves a brick by its elastic slip, ~W / k_s = 1e-6 m, or more).
+  // Bound: 1e-8 L (measured: 5e-13 m). On 1 and 2 threads (the D-ILU's two
+  // subdomains swept in parallel, ordering forced from 3 blocks on) the
+  // positions must agree bit for bit.
+  const BlockSystem wall = test_scenes::brick_wall(4, 4);
+  const double      L    = 1.; // the bricks' smallest dimension (m)
+  struct Result
+  {
+    std::vector<Point> vertices;
+    double             moved     = 0.;
+    unsigned long      cg        = 0;
+    int                separator = 0, sliding = 0;
+  };
+  auto run = [&](const dda::SolverType     type,
+                 const dda::Preconditioner preconditioner,
+                 const int                 threads,
+                 const int                 subdomain_limit) {
+    EngineControls c;
+    c.dt                  = 1e-3;
+    c.law.normal_penalty  = 1e11;
+    c.ground_acceleration = [](const double t) {
+      return Point(0.9 * 9.80665 * std::sin(2. * pi * 5. * t),
+                   0.3 * 9.80665 * std::sin(2. * pi * 7. * t),
+                   0.);
+    };
+    c.solver.type            = type;
+    c.solver.preconditioner  = preconditioner;
+    c.solver.threads         = threads;
+    c.solver.subdomain_limit = subdomain_limit;
+    Engine engine(wall, c);
+    Result r;
+    for (int k = 0; k < 80; ++k)
+      {
+        engine.step();
+        r.cg += engine.statistics().solver_iterations;
+      }
+    EXPECT_EQ(engine.linear_solver().type(), type);
+    for (const auto &b : engine.scene().blocks)
+      for (const auto &v : b.polyhedron.vertices)
+        r.vertices.push_back(v);
+    for (std::size_t b = 0; b < wall.blocks.size(); ++b)
+      r.moved = std::max(r.moved, engine.displacement(b).norm());
+    r.separator = engine.linear_solver().separator_size();
+    r.sliding   = engine.statistics().sliding;
+    return r;
+  };
+  auto difference = [](const Result &a, const Result &b) {
+    double d = 0.;
+    for (std::size_t k = 0; k < a.vertices.size(); ++k)
+      d = std::max(d, (a.vertices[k] - b.vertices[k]).norm());
+    return d;
+  };
+  const Result direct
+    = run(dda::SolverType::direct, dda::Preconditioner::block_dilu, 1, 300);
+  std::printf("direct: largest centroid displacement %.3e m, %d sliding "
+              "contacts at the end\n",
+              direct.moved,
+              direct.sliding);
+  EXPECT_GT(direct.moved, 1e-5 * L); // the wall moves: the test can fail
+  EXPECT_GT(direct.sliding, 0);
+  EXPECT_EQ(direct.cg, 0u);
+  for (const auto preconditioner :
+       {dda::Preconditioner::block_dilu, dda::Preconditioner::block_jacobi})
+    {
+      const Result cg = run(dda::SolverType::iterative, preconditioner, 1, 300);
+      const double d  = difference(direct, cg);
+      std::printf("iterative (%s): %lu CG iterations, max vertex difference "
+                  "from direct %.3e m\n",
+                  preconditioner == dda::Preconditioner::block_dilu
+                    ? "block-dilu"
+                    : "block-jacobi",
+                  cg.cg,
+                  d);
+      EXPECT_GT(cg.cg, 0u);
+      EXPECT_LT(d, 1e-8 * L);
+    }
+  const Result one
+    = run(dda::SolverType::iterative, dda::Preconditioner::block_dilu, 1, 3);
+  const Result two
+    = run(dda::SolverType::iterative, dda::Preconditioner::block_dilu, 2, 3);
+  std::printf("two subdomains, separator of %d blocks: 1 vs 2 threads "
+              "differ by %.3e m, from direct by %.3e m\n",
+              one.separator,
+              difference(one, two),
+              difference(direct, one));
+  EXPECT_GT(one.separator, 0);
+  EXPECT_EQ(difference(one, two), 0.);
+  EXPECT_LT(difference(direct, one), 1e-8 * L);
+}

@@ -7,6 +7,7 @@
 #define ROCKDDA_DDA_ANALYSIS_PARAMETERS_H
 
 #include <rockdda/dda/contact_mechanics.h>
+#include <rockdda/dda/linear_solver.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -91,6 +92,30 @@ namespace rockdda::dda
      * file and the key otherwise.
      */
     void
+    parse_parameters(dealii::ParameterHandler &prm,
+                     const std::string        &prm_file);
+  };
+
+  /**
+   * The linear solver keys of the DDA analysis of dimension @p dim, in its
+   * section (AnalysisParameters<dim>::section()): 'Linear solver',
+   * 'Preconditioner', 'Solver tolerance', 'Threads' and, in 2D only (the
+   * distributed solver is written for 6 unknowns per block), 'Distributed
+   * preconditioner'. Both engines solve with LinearSolverOf<6 or 12>.
+   */
+  template <int dim>
+  struct SolverParameters
+  {
+    /// Declare the keys in the subsection the caller has entered.
+    static void
+    declare_parameters(dealii::ParameterHandler &prm);
+
+    /**
+     * Read the keys from the subsection the caller has entered, of
+     * parameter file @p prm_file; throws InputError naming the file and
+     * the key for 'distributed' without MPI.
+     */
+    static SolverOptions
     parse_parameters(dealii::ParameterHandler &prm,
                      const std::string        &prm_file);
   };

@@ -1,8 +1,9 @@
 /**
  * @file
- * The linear system of 2D DDA: a symmetric sparse matrix of 6x6 blocks
- * with a pattern fixed within a step, and its direct (sparse LDL^T) and
- * iterative (block-Jacobi or block D-ILU preconditioned CG) solvers.
+ * The linear system of DDA: a symmetric sparse matrix of dofs x dofs
+ * blocks (6 in 2D, 12 in 3D) with a pattern fixed within a step, and its
+ * direct (sparse LDL^T) and iterative (block-Jacobi or block D-ILU
+ * preconditioned CG) solvers, written once over the block size.
  */
 #ifndef ROCKDDA_DDA_LINEAR_SOLVER_H
 #define ROCKDDA_DDA_LINEAR_SOLVER_H
@@ -13,19 +14,25 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
 namespace rockdda::dda
 {
   /**
-   * Symmetric matrix of n x n blocks of size 6: every diagonal block and
-   * the upper block K_ij (i < j) of each coupled pair are stored. The
-   * pattern is set once per step; values are filled in place.
+   * Symmetric matrix of n x n blocks of size @p dofs (the unknowns of one
+   * block: 6 in 2D, 12 in 3D): every diagonal block and the upper block
+   * K_ij (i < j) of each coupled pair are stored. The pattern is set once
+   * per step; values are filled in place.
    */
-  class BlockSparseMatrix
+  template <int dofs>
+  class BlockSparseMatrixOf
   {
   public:
+    /// One dofs x dofs block.
+    using Dense = Eigen::Matrix<double, dofs, dofs>;
+
     /// Set the pattern: @p n blocks and the coupled pairs (i < j, unique).
     void
     reinit(const int n, const std::vector<std::pair<int, int>> &pairs);
@@ -46,12 +53,15 @@ namespace rockdda::dda
     vmult(const Eigen::VectorXd &x, Eigen::VectorXd &y) const;
 
     /// Diagonal blocks.
-    std::vector<Matrix6> diag;
+    std::vector<Dense> diag;
     /// Upper off-diagonal blocks K_ij, one per pair.
-    std::vector<Matrix6> off;
+    std::vector<Dense> off;
     /// The pairs (i < j) of the off-diagonal blocks.
     std::vector<std::pair<int, int>> pairs;
   };
+
+  /// The 2D engine's matrix: blocks of 6 unknowns.
+  using BlockSparseMatrix = BlockSparseMatrixOf<6>;
 
   /// Which linear solver to use.
   enum class SolverType
@@ -69,14 +79,15 @@ namespace rockdda::dda
     /// blocks), preconditioned by SolverOptions::distributed_preconditioner;
     /// the solution is gathered on every rank (doc/theory/dda-mpi.md).
     /// Automatic picks it instead of iterative when the run has more than
-    /// one rank. Needs MPI to be initialised.
+    /// one rank. Needs MPI to be initialised. 2D (6 unknowns per block)
+    /// only: with 12 (3D) new_pattern() throws.
     distributed
   };
 
   /// Preconditioner of the iterative solver.
   enum class Preconditioner
   {
-    /// Inverse 6x6 diagonal blocks.
+    /// Inverse diagonal blocks.
     block_jacobi,
     /// Block diagonal-ILU M = (P + L) P^-1 (P + L)^T, with L the strict
     /// lower block triangle of K and P_i = K_ii - sum_{j<i} K_ij P_j^-1
@@ -94,7 +105,7 @@ namespace rockdda::dda
     amg,
     /// Ifpack ILU(0) on each rank's rows (additive Schwarz, no overlap).
     ilu,
-    /// Ifpack block-Jacobi with the 6x6 blocks of the blocks.
+    /// Ifpack block-Jacobi with the 6x6 blocks of the (2D) blocks.
     block_jacobi
   };
 
@@ -134,22 +145,28 @@ namespace rockdda::dda
   } // namespace internal
 
   /**
-   * Solves K x = f for the block matrix. new_pattern() is called when the
-   * pattern changes (each step); solve() may be called many times.
+   * Solves K x = f for the block matrix of blocks of @p dofs unknowns.
+   * new_pattern() is called when the pattern changes (each step); solve()
+   * may be called many times. Explicitly instantiated for 6 (2D) and 12
+   * (3D).
    */
-  class LinearSolver
+  template <int dofs>
+  class LinearSolverOf
   {
   public:
-    explicit LinearSolver(const SolverOptions &options = SolverOptions());
-    ~LinearSolver();
+    /// The matrix it solves.
+    using Matrix = BlockSparseMatrixOf<dofs>;
+
+    explicit LinearSolverOf(const SolverOptions &options = SolverOptions());
+    ~LinearSolverOf();
 
     /// Analyse the pattern of @p matrix (symbolic factorisation, or the
     /// subdomain ordering of the D-ILU, or the distributed pattern). The
     /// distributed solver partitions the blocks by the initial centroids
-    /// of @p blocks (the scene's blocks, one per block row) when their
+    /// of @p blocks (the 2D scene's blocks, one per block row) when their
     /// number changes; the other solvers do not use them.
     void
-    new_pattern(const BlockSparseMatrix  &matrix,
+    new_pattern(const Matrix             &matrix,
                 const std::vector<Block> *blocks = nullptr);
 
     /**
@@ -162,11 +179,11 @@ namespace rockdda::dda
      * solve (CG).
      */
     bool
-    solve(const BlockSparseMatrix &matrix,
-          const Eigen::VectorXd   &f,
-          Eigen::VectorXd         &x,
-          const bool               same_matrix = false,
-          const double             tolerance   = 0.);
+    solve(const Matrix          &matrix,
+          const Eigen::VectorXd &f,
+          Eigen::VectorXd       &x,
+          const bool             same_matrix = false,
+          const double           tolerance   = 0.);
 
     /// The solver used for the current pattern (never automatic).
     SolverType
@@ -196,6 +213,12 @@ namespace rockdda::dda
     int
     separator_size() const;
 
+    /// The log's description of the solver of the current pattern, e.g.
+    /// "CG + block D-ILU, two subdomains and a separator of 12 blocks, 2
+    /// thread(s) for its sweeps".
+    std::string
+    description() const;
+
     /**
      * Run @p f(lo, hi) over the chunks of [0, n) of @p grain items on the
      * run's threads (ChunkRunner). The chunks must write disjoint data;
@@ -211,9 +234,7 @@ namespace rockdda::dda
     struct Dilu;
     /// Block-Jacobi preconditioned CG.
     bool
-    jacobi_cg(const BlockSparseMatrix &K,
-              const Eigen::VectorXd   &f,
-              Eigen::VectorXd         &x);
+    jacobi_cg(const Matrix &K, const Eigen::VectorXd &f, Eigen::VectorXd &x);
     /// The run's threads (made on first use).
     internal::TaskTeam &
     team_of_run() const;
@@ -236,9 +257,17 @@ namespace rockdda::dda
     mutable std::unique_ptr<internal::TaskTeam>  team;
     std::unique_ptr<internal::ThreadPair>        pair;
     /// Inverse diagonal blocks (block-Jacobi).
-    std::vector<Matrix6> inverse_diag;
-    Eigen::VectorXd      r, z, p, q;
+    std::vector<typename Matrix::Dense> inverse_diag;
+    Eigen::VectorXd                     r, z, p, q;
   };
+
+  /// The 2D engine's solver: blocks of 6 unknowns.
+  using LinearSolver = LinearSolverOf<6>;
+
+  extern template class BlockSparseMatrixOf<6>;
+  extern template class BlockSparseMatrixOf<12>;
+  extern template class LinearSolverOf<6>;
+  extern template class LinearSolverOf<12>;
 } // namespace rockdda::dda
 
 #endif

@@ -1,15 +1,20 @@
 /**
  * @file
  * The parts of a DDA engine's checkpoint that the 2D and the 3D scene
- * share: the fixed, load and measurement points (written as raw doubles,
- * counts checked against the scene on reading).
+ * share: the fixed, load and measurement points and the linear solver's
+ * warm start (written as raw doubles, counts checked against the scene on
+ * reading).
  */
 #ifndef ROCKDDA_DDA_SCENE_CHECKPOINT_H
 #define ROCKDDA_DDA_SCENE_CHECKPOINT_H
 
 #include <rockdda/io/binary_stream.h>
+#include <rockdda/io/error.h>
+
+#include <Eigen/Core>
 
 #include <cstdint>
+#include <string>
 
 namespace rockdda::dda
 {
@@ -52,6 +57,33 @@ namespace rockdda::dda
         r.get_fixed(m.point);
         r.get_fixed(m.initial);
       }
+  }
+
+  /// Append the linear solver's starting guess @p x (the last accepted
+  /// step's increments; empty before the first) to @p w.
+  inline void
+  put_warm_start(io::BinaryWriter &w, const Eigen::VectorXd &x)
+  {
+    w.put<std::uint64_t>(x.size());
+    for (Eigen::Index i = 0; i < x.size(); ++i)
+      w.put(x[i]);
+  }
+
+  /// Read what put_warm_start() wrote: empty or @p size values; throws
+  /// InputError naming @p source otherwise.
+  inline Eigen::VectorXd
+  get_warm_start(io::BinaryReader  &r,
+                 const std::size_t  size,
+                 const std::string &source)
+  {
+    const auto n = r.get<std::uint64_t>();
+    if (n != 0 && n != size)
+      throw InputError(source + ": the checkpoint is damaged (warm start of "
+                       + std::to_string(n) + " values)");
+    Eigen::VectorXd x(static_cast<Eigen::Index>(n));
+    for (Eigen::Index i = 0; i < x.size(); ++i)
+      x[i] = r.get<double>();
+    return x;
   }
 } // namespace rockdda::dda
 

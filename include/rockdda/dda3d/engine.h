@@ -12,6 +12,7 @@
 
 #include <rockdda/dda/contact_mechanics.h>
 #include <rockdda/dda/failure.h>
+#include <rockdda/dda/linear_solver.h>
 #include <rockdda/dda3d/block_matrices.h>
 #include <rockdda/dda3d/contact_detection.h>
 #include <rockdda/dda3d/local_scene.h>
@@ -178,6 +179,9 @@ namespace rockdda::dda3d
      * follow u_g. Empty: none.
      */
     std::function<Point(double)> ground_displacement;
+    /// The linear solver (the 2D engine's, on 12x12 blocks; the
+    /// distributed type is not available in 3D).
+    dda::SolverOptions solver;
   };
 
   /// Energies of the ledger (J).
@@ -206,7 +210,9 @@ namespace rockdda::dda3d
   /// Statistics of the last accepted step.
   struct StepStatistics
   {
-    int    iterations = 0, cuts = 0;
+    /// Open-close iterations, cuts and CG iterations (summed over the
+    /// iterations; 0 with the direct solver).
+    int    iterations = 0, cuts = 0, solver_iterations = 0;
     double dt   = 0.;
     int    open = 0, sliding = 0, locked = 0;
   };
@@ -215,11 +221,14 @@ namespace rockdda::dda3d
    * 3D DDA with contacts. Each step: detect contacts on the geometry at the
    * start of the step (broad and narrow phase), transfer the states of
    * the previous step, then the open-close iteration: assemble the block
-   * terms (as FreeBlocks) and the contact springs, solve (sparse LDL^T),
-   * check every contact, until no state changes and the friction of
-   * sliding contacts has converged. A step that does not converge, or
-   * moves a vertex further than the allowed displacement, is redone with
-   * dt / 3. The scene is moved to a local origin on construction.
+   * terms (as FreeBlocks) and the contact springs into a block-sparse
+   * matrix of 12x12 blocks (pattern: the contact pairs of the step), solve
+   * (dda::LinearSolverOf<12>: sparse LDL^T or D-ILU preconditioned CG
+   * warm-started from the previous step), check every contact, until no state
+   * changes and the friction of sliding contacts has converged. A step that
+   * does not converge, or moves a vertex further than the allowed displacement,
+   * is redone with dt / 3. The scene is moved to a local origin on
+   * construction.
    */
   class Engine : public LocalScene
   {
@@ -304,6 +313,13 @@ namespace rockdda::dda3d
       return stats;
     }
 
+    /// The linear solver (its type for the current pattern, threads).
+    const dda::LinearSolverOf<12> &
+    linear_solver() const
+    {
+      return solver;
+    }
+
     /// Whether block @p b is clamped by its fixed points.
     bool
     clamped(const std::size_t b) const
@@ -323,6 +339,11 @@ namespace rockdda::dda3d
     bool                 first_detection = true;
     double         friction_work = 0., load_work = 0., contact_energy = 0.;
     StepStatistics stats;
+    dda::BlockSparseMatrixOf<12> matrix;
+    dda::LinearSolverOf<12>      solver;
+    /// The displacement increments of the last accepted step (12 per
+    /// block; empty before the first): the CG's starting guess.
+    Eigen::VectorXd last_solution;
   };
 } // namespace rockdda::dda3d
 
