@@ -6,8 +6,9 @@
  * (dynamic control 0) and dynamic (1), medians of 3 runs; the same
  * structure as the 2D benchmark (benchmarks/dda-scaling/dda_scaling.cc).
  *
- *   dda3d_scaling scaling [max_blocks] [steps_10k] [solver] > scaling.csv
- *   dda3d_scaling single rows columns dynamic steps [solver]
+ *   dda3d_scaling scaling [max_blocks] [steps_10k] [solver] [threads]
+ *     > scaling.csv
+ *   dda3d_scaling single rows columns dynamic steps [solver] [threads]
  *
  * solver: automatic (default: direct up to 60 blocks, D-ILU CG above),
  * direct or iterative (dda::SolverOptions).
@@ -34,12 +35,15 @@ namespace
   using test_scenes::brick_wall;
 
   /// Controls of the wall cases: dt 1 ms, penalty 1e11 N/m (10 E x 1 m),
-  /// @p dynamic control, linear @p solver.
+  /// @p dynamic control, linear @p solver on @p threads (0: one per core).
   EngineControls
-  wall_controls(const double dynamic, const dda::SolverType solver)
+  wall_controls(const double          dynamic,
+                const dda::SolverType solver,
+                const int             threads)
   {
     EngineControls c;
     c.solver.type        = solver;
+    c.solver.threads     = threads;
     c.dt                 = 1e-3;
     c.dynamic            = dynamic;
     c.law.normal_penalty = 1e11;
@@ -62,9 +66,11 @@ namespace
             const double          dynamic,
             const int             steps,
             const dda::SolverType solver,
-            const int             warmup = 3)
+            const int             warmup  = 3,
+            const int             threads = 0)
   {
-    Engine engine(brick_wall(rows, columns), wall_controls(dynamic, solver));
+    Engine engine(brick_wall(rows, columns),
+                  wall_controls(dynamic, solver, threads));
     for (int k = 0; k < warmup; ++k)
       engine.step();
     Timed      out;
@@ -89,7 +95,8 @@ namespace
   void
   scaling(const int             max_blocks,
           const int             steps_10k,
-          const dda::SolverType solver)
+          const dda::SolverType solver,
+          const int             threads)
   {
     std::printf("blocks,mode,ms_per_step,block_steps_per_s,timed_steps,"
                 "warmup_steps,iterations_per_step,cuts,contacts,"
@@ -112,7 +119,8 @@ namespace
             Timed               last;
             for (int repeat = 0; repeat < 3; ++repeat)
               {
-                last = timed_run(rows, columns, dynamic, steps, solver, warmup);
+                last = timed_run(
+                  rows, columns, dynamic, steps, solver, warmup, threads);
                 times.push_back(last.seconds_per_step);
               }
             const double t = median(times);
@@ -148,14 +156,17 @@ main(int argc, char **argv)
   if (what == "scaling")
     scaling(argc > 2 ? std::atoi(argv[2]) : 20000,
             argc > 3 ? std::atoi(argv[3]) : 10,
-            solver_of(4));
+            solver_of(4),
+            argc > 5 ? std::atoi(argv[5]) : 0);
   else if (what == "single" && argc > 5)
     {
       const Timed r = timed_run(std::atoi(argv[2]),
                                 std::atoi(argv[3]),
                                 std::atof(argv[4]),
                                 std::atoi(argv[5]),
-                                solver_of(6));
+                                solver_of(6),
+                                3,
+                                argc > 7 ? std::atoi(argv[7]) : 0);
       std::printf("%.3f ms/step, %.2f open-close it./step, %.1f CG it./step, "
                   "%d cuts, %zu contacts, largest displacement %.3e m\n",
                   1e3 * r.seconds_per_step,
@@ -167,10 +178,12 @@ main(int argc, char **argv)
     }
   else
     {
-      std::fprintf(stderr,
-                   "usage: dda3d_scaling scaling [max_blocks] [steps_10k] "
-                   "[solver] | single rows columns dynamic steps [solver]\n"
-                   "  solver: automatic (default), direct or iterative\n");
+      std::fprintf(
+        stderr,
+        "usage: dda3d_scaling scaling [max_blocks] [steps_10k] "
+        "[solver] [threads] | single rows columns dynamic steps [solver] "
+        "[threads]\n"
+        "  solver: automatic (default), direct or iterative\n");
       return 2;
     }
   return 0;

@@ -338,11 +338,15 @@ namespace rockdda::dda
                 "block-dilu",
                 Selection("block-dilu|block-jacobi"),
                 "-",
-                std::string("Preconditioner of the iterative solver: "
-                            "'block-dilu' (")
-                  + (dim == 2 ? "6x6" : "12x12")
-                  + "-block diagonal ILU with Eisenstat's trick, about "
-                    "2.4x fewer CG iterations in 2D) or 'block-jacobi'.");
+                dim == 2 ? "Preconditioner of the iterative solver: "
+                           "'block-dilu' (6x6-block diagonal ILU with "
+                           "Eisenstat's trick, about 2.4x fewer CG "
+                           "iterations) or 'block-jacobi'."
+                         : "Preconditioner of the iterative solver: "
+                           "'block-dilu' (12x12-block diagonal ILU with "
+                           "Eisenstat's trick, 2.2x fewer CG iterations on "
+                           "a shaken wall, test Dda3dSolvers) or "
+                           "'block-jacobi'.");
     io::declare(prm,
                 "Solver tolerance",
                 "1e-8",
