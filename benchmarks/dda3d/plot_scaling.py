@@ -3,7 +3,10 @@ and dynamic) with the fitted exponent of time against N (least squares of
 log t on log N), and block-steps per second; writes scaling.png and
 exponents.csv. Rows of scaling-10k-single.csv (if present: single runs,
 no median, too slow to repeat) are drawn as open markers, and the
-exponent of their mode is fitted once more with them.
+exponent of their mode is fitted once more with them. The rows of
+scaling-before-c9fa5a6.csv and scaling-before-c9fa5a6-10k-single.csv (if
+present: the engine before the block-sparse CG, sparse LDL^T at every
+open-close iteration) are drawn dashed, for comparison.
 
     python3 plot_scaling.py DIR   (DIR holds scaling.csv)
 """
@@ -19,10 +22,19 @@ import matplotlib.pyplot as plt
 here = sys.argv[1] if len(sys.argv) > 1 else "."
 rows = list(csv.DictReader(open(f"{here}/scaling.csv")))
 
-try:
-    single = list(csv.DictReader(open(f"{here}/scaling-10k-single.csv")))
-except FileNotFoundError:
-    single = []
+
+
+def read(name):
+    try:
+        return list(csv.DictReader(open(f"{here}/{name}")))
+    except FileNotFoundError:
+        return []
+
+
+single = read("scaling-10k-single.csv")
+before = read("scaling-before-c9fa5a6.csv") + read(
+    "scaling-before-c9fa5a6-10k-single.csv"
+)
 
 
 def exponent(n, t):
@@ -51,6 +63,14 @@ for mode, colour in (("static", "C0"), ("dynamic", "C1")):
     b.semilogx(
         n, [float(r["block_steps_per_s"]) for r in sel], "o-", color=colour, label=mode
     )
+    old = [r for r in before if r["mode"] == mode]
+    if old:
+        a.loglog([float(r["blocks"]) for r in old],
+                 [float(r["ms_per_step"]) for r in old], "s--", mfc="none",
+                 color=colour, alpha=0.6, label=f"{mode}, before (c9fa5a6, LDL^T)")
+        b.semilogx([float(r["blocks"]) for r in old],
+                   [float(r["block_steps_per_s"]) for r in old], "s--",
+                   mfc="none", color=colour, alpha=0.6)
     one = [r for r in single if r["mode"] == mode]
     if one:
         n1 = [float(r["blocks"]) for r in one]
