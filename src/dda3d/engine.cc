@@ -656,53 +656,27 @@ namespace rockdda::dda3d
     // noise's direction for all pushed a 1 mm x 1 mm x 1 m column standing
     // on a level base sideways with 4 times its friction force, rocked it
     // and the open-close iteration never converged.)
-    // The slip of a face group's members is fitted by the relative rigid
-    // motion of the two faces in their plane, a translation (the mean
-    // slip) and a spin about the group's normal through the members'
-    // centroid (Goyal, Ruina & Papadopoulos 1991: the friction of a
-    // sliding face resists both); each member slides along that rigid
-    // slip at its point. Taking the translation alone for every member
-    // left the spin of a block sliding on a face unresisted (a box
-    // sliding and spinning at 1 rad/s kept its spin, and when it stopped
-    // translating the iteration no longer converged).
     std::vector<Point>  resultant(n_groups, Point::Zero());
     std::vector<double> slip_sum(n_groups, 0.);
-    std::vector<int>    group_i(n_groups, -1), members(n_groups, 0);
-    std::vector<Point>  centroid(n_groups, Point::Zero()),
-      group_normal(n_groups, Point::Zero());
-    std::vector<double> spin(n_groups, 0.), spin_inertia(n_groups, 0.);
-    // Orientation of member k in its group (+1 if its block i is the
-    // group's) and its offset from the centroid in the group's plane.
-    auto orientation = [&](const std::size_t k) {
-      return contacts[k].geometry.i == group_i[group[k]] ? 1. : -1.;
-    };
-    auto offset = [&](const std::size_t k) {
-      const Point &nrm = group_normal[group[k]];
-      const Point  r   = contacts[k].geometry.p - centroid[group[k]];
-      return Point(r - r.dot(nrm) * nrm);
-    };
-    auto slip3 = [&](const std::size_t k) {
+    std::vector<int>    group_i(n_groups, -1);
+    auto                slip3 = [&](const std::size_t k) {
       const auto &K = kin[k];
       const int   i = contacts[k].geometry.i, j = contacts[k].geometry.j;
       const Eigen::Vector2d s
         = K.s0 + K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j];
       return Point(s.x() * K.t1 + s.y() * K.t2);
     };
-    auto group_direction
-      = [&](const std::size_t k, const Eigen::Vector2d &fallback) {
-          if (group[k] < 0)
-            return fallback;
-          const int   gk = group[k];
-          const Point rigid
-            = resultant[gk] / members[gk]
-              + (spin_inertia[gk] > 0. ? spin[gk] / spin_inertia[gk] : 0.)
-                  * group_normal[gk].cross(offset(k));
-          const Point r = orientation(k) * rigid;
-          if (!(r.norm() > 1e-2 * slip_sum[gk] / members[gk]))
-            return fallback;
-          const Eigen::Vector2d d(kin[k].t1.dot(r), kin[k].t2.dot(r));
-          return d.norm() > 0. ? Eigen::Vector2d(d.normalized()) : fallback;
-        };
+    auto group_direction = [&](const std::size_t      k,
+                               const Eigen::Vector2d &fallback) {
+      if (group[k] < 0)
+        return fallback;
+      const Point r = (contacts[k].geometry.i == group_i[group[k]] ? 1. : -1.)
+                      * resultant[group[k]];
+      if (!(r.norm() > 1e-2 * slip_sum[group[k]]))
+        return fallback;
+      const Eigen::Vector2d d(kin[k].t1.dot(r), kin[k].t2.dot(r));
+      return d.norm() > 0. ? Eigen::Vector2d(d.normalized()) : fallback;
+    };
     while (!converged)
       {
         ++iterations;
@@ -793,35 +767,16 @@ namespace rockdda::dda3d
         std::fill(resultant.begin(), resultant.end(), Point::Zero());
         std::fill(slip_sum.begin(), slip_sum.end(), 0.);
         std::fill(group_i.begin(), group_i.end(), -1);
-        std::fill(members.begin(), members.end(), 0);
-        std::fill(centroid.begin(), centroid.end(), Point::Zero());
-        std::fill(spin.begin(), spin.end(), 0.);
-        std::fill(spin_inertia.begin(), spin_inertia.end(), 0.);
         for (std::size_t k = 0; k < contacts.size(); ++k)
           if (group[k] >= 0 && contacts[k].state != ContactState::open)
             {
-              const int gk = group[k];
-              if (group_i[gk] < 0)
-                {
-                  group_i[gk]      = contacts[k].geometry.i;
-                  group_normal[gk] = contacts[k].geometry.normal;
-                }
-              ++members[gk];
-              centroid[gk] += contacts[k].geometry.p;
-            }
-        for (int gk = 0; gk < n_groups; ++gk)
-          if (members[gk] > 0)
-            centroid[gk] /= members[gk];
-        for (std::size_t k = 0; k < contacts.size(); ++k)
-          if (group[k] >= 0 && contacts[k].state != ContactState::open)
-            {
-              const int   gk = group[k];
-              const Point sk = orientation(k) * slip3(k);
-              const Point r  = offset(k);
-              resultant[gk] += sk;
-              slip_sum[gk] += sk.norm();
-              spin[gk] += r.cross(sk).dot(group_normal[gk]);
-              spin_inertia[gk] += r.squaredNorm();
+              if (group_i[group[k]] < 0)
+                group_i[group[k]] = contacts[k].geometry.i;
+              const Point sk = slip3(k);
+              resultant[group[k]]
+                += (contacts[k].geometry.i == group_i[group[k]] ? 1. : -1.)
+                   * sk;
+              slip_sum[group[k]] += sk.norm();
             }
         bool any_state = false, any_friction = false;
         for (std::size_t k = 0; k < contacts.size(); ++k)
@@ -871,8 +826,7 @@ namespace rockdda::dda3d
                 // this step: the direction it started with (the trial
                 // spring forces, which in a wedge include the wedging
                 // across the axis) is corrected within the step.
-                if (group[k] >= 0 && K.shear_stiffness * s.norm() > f
-                    && !dda::frictionless(c, system.joints[c.joint]))
+                if (group[k] >= 0 && K.shear_stiffness * s.norm() > f)
                   {
                     const Eigen::Vector2d dn = group_direction(k, dir[k]);
                     if ((dn - dir[k]).norm() > 1e-3)
