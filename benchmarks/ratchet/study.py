@@ -228,9 +228,20 @@ def short_reason(error, log):
     return error
 
 
-def run_one(rockdda, folder, name, text, timeout):
+def run_one(rockdda, folder, name, text, timeout, reuse=False):
+    """Run one prm TEXT as NAME in FOLDER; with REUSE, a run whose output
+    already holds a completed summary.csv (a study interrupted after it)
+    is read instead of run again."""
     prm = os.path.join(folder, name + ".prm")
     out = os.path.join(folder, "output-" + name)
+    if reuse and os.path.exists(os.path.join(out, "summary.csv")):
+        summary = read_summary(os.path.join(out, "summary.csv"))
+        if summary.get("completed") == "1":
+            return {"name": name, "ok": True,
+                    "wall": float(summary.get("wall_time", "nan")),
+                    "summary": summary,
+                    "stats": read_statistics(os.path.join(out,
+                                                          "statistics.csv"))}
     with open(prm, "w") as f:
         f.write(derive_prm(text, {(None, "Output directory"): out}))
     t0 = time.monotonic()
@@ -367,6 +378,9 @@ def main():
                     help="seconds a run may take before it is killed and "
                          "reported as failed (default 120; the slowest "
                          "completed run, 16 slices, takes ~50 s)")
+    ap.add_argument("--reuse", action="store_true",
+                    help="with --keep: read the runs that completed in the "
+                    "kept folder instead of running them again")
     ap.add_argument("--allow-failures", action="store_true",
                     help="exit 0 even if runs failed (they are reported)")
     ap.add_argument("--strict", action="store_true")
@@ -423,7 +437,7 @@ def main():
     results = {}
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         futures = {pool.submit(run_one, rockdda, folder, n, t,
-                               args.timeout): n
+                               args.timeout, args.reuse): n
                    for n, t in texts.items()}
         for f in concurrent.futures.as_completed(futures):
             r = f.result()
@@ -546,7 +560,7 @@ def sensitivity_report(rows):
 
 def convergence_report(rows):
     out = {}
-    for study, label, unit, values in convergence_sweeps(args.samples):
+    for study, label, unit, values in convergence_sweeps():
         rs = by_study(rows, study)
         done = [r for r in rs if r["status"] == "ok"]
         finest = done[-1] if done else rs[-1]
