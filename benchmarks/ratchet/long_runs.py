@@ -84,9 +84,8 @@ def main():
                     "by 1 + 1e-6 r (r = 0, 1, ...): independent draws of the "
                     "same process (the slip sequence changes at 1e-9), "
                     "pooled")
-    ap.add_argument("--samples", type=int, default=0,
-                    help="Steps per cycle = Samples per cycle of every run "
-                    "(default: the base file's)")
+    study.add_sampling_argument(ap, note="; the steps settings then "
+                                "bracket it")
     ap.add_argument("--only", default="",
                     help="comma-separated setting labels to run (default: "
                     "all)")

@@ -33,7 +33,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("rockdda")
     ap.add_argument("--cycles", type=int, default=20)
-    ap.add_argument("--samples", type=int, default=1536)
+    study.add_sampling_argument(ap, default=1536)
     ap.add_argument("--out", default=here)
     args = ap.parse_args()
     base = open(study.BASE_PRM).read()

@@ -85,6 +85,18 @@ def scratch(rockdda, prefix, keep=None):
     shutil.copy2(os.path.abspath(rockdda), copy)
     return folder, copy
 
+def add_sampling_argument(parser, default=0, note=""):
+    """The --samples option of the ratchet scripts: 'Steps per cycle' =
+    'Thermal forcing/Samples per cycle' of every run (0: the base
+    file's), turned into overrides by sampling()."""
+    parser.add_argument(
+        "--samples", type=int, default=default,
+        help="Steps per cycle = Samples per cycle of every run (0: the base "
+        "file's; default %(default)s). The rate depends on it and on "
+        "'Equilibrium tolerance' (README, \"Steps per season\" and \"The "
+        "equilibrium tolerance\")" + note)
+
+
 def sampling(samples):
     """Overrides for SAMPLES quasi-static equilibria per cycle: 'Steps per
     cycle' and 'Thermal forcing/Samples per cycle' alike (the rate
@@ -384,11 +396,7 @@ def main():
     ap.add_argument("--allow-failures", action="store_true",
                     help="exit 0 even if runs failed (they are reported)")
     ap.add_argument("--strict", action="store_true")
-    ap.add_argument("--samples", type=int, default=0,
-                    help="Steps per cycle = Samples per cycle of every run "
-                    "(default: the base file's; the rate converges at about "
-                    "1536, README \"Steps per season\"); the steps sweep "
-                    "then brackets it")
+    add_sampling_argument(ap, note="; the steps sweep then brackets it")
     ap.add_argument("--penalty", type=float, default=None,
                     help="Contact penalty (N/m) of every run but the "
                     "penalty sweep (default: the base file's)")

@@ -76,7 +76,7 @@ def main():
     ap.add_argument("--cycles", type=int, default=30)
     ap.add_argument("--iterations", type=int, default=6)
     ap.add_argument("--out", default=here)
-    ap.add_argument("--samples", type=int, default=0)
+    study.add_sampling_argument(ap)
     ap.add_argument("--suffix", default="")
     args = ap.parse_args()
     extra = study.sampling(args.samples)
