@@ -124,8 +124,9 @@ namespace rockdda::dda
       /// 'coming round the corner' candidate on the other edge would put a
       /// second spring on the same vertex.
       bool reflex = false;
-      /// Unit vectors along a1 and a2.
-      Point u1, u2;
+      /// Unit vectors along a1 and a2, and the lengths of a1 and a2.
+      Point  u1, u2;
+      double l1 = 0., l2 = 0.;
       /// The edge that starts here: unit tangent, outward unit normal,
       /// length.
       Point  t, n;
@@ -154,6 +155,8 @@ namespace rockdda::dda
       c.reflex = cross(-c.a1, c.a2) < -flat_angle * l1 * l2;
       c.u1     = c.a1 / l1;
       c.u2     = c.a2 / l2;
+      c.l1     = l1;
+      c.l2     = l2;
       c.l      = l2;
       c.t      = c.u2;
       c.n      = Point(c.t.y(), -c.t.x());
@@ -275,27 +278,27 @@ namespace rockdda::dda
       void
       find_vertex_vertex()
       {
+        // Both tests below need dist <= max(coincidence_fraction, 1) * dv:
+        // farther pairs are skipped on the squared distance (with a margin
+        // far above round-off, so that no pair the tests accept is lost).
+        const double reach = std::max(opt.coincidence_fraction, 1.) * dv;
+        const double skip2 = (1. + 1e-9) * reach * reach;
         for (int k = 0; k < count[0]; ++k)
           for (int m = 0; m < count[1]; ++m)
             {
               const Corner &P = corners[0][k], &Q = corners[1][m];
-              if (!P.convex || !Q.convex)
+              if (!P.convex || !Q.convex || (P.P - Q.P).squaredNorm() > skip2)
                 continue;
-              const double dist       = (P.P - Q.P).norm();
-              const double ctol       = std::min({opt.coincidence_fraction * dv,
-                                                  0.05 * P.a1.norm(),
-                                                  0.05 * P.a2.norm(),
-                                                  0.05 * Q.a1.norm(),
-                                                  0.05 * Q.a2.norm()});
-              const bool   coincident = dist <= ctol;
+              const double dist     = (P.P - Q.P).norm();
+              const double shortest = std::min({P.l1, P.l2, Q.l1, Q.l2});
+              const double ctol
+                = std::min(opt.coincidence_fraction * dv, 0.05 * shortest);
+              const bool coincident = dist <= ctol;
               // Approaching vertices: within the vertex reach, and closer
               // than half the shortest edge at either corner (a vertex
               // farther than that is nearer to another feature: the far
               // corner of a slender block is not a contact).
-              const double local
-                = 0.5
-                  * std::min(
-                    {P.a1.norm(), P.a2.norm(), Q.a1.norm(), Q.a2.norm()});
+              const double local = 0.5 * shortest;
               if (coincident
                   || (dist <= std::min(dv, local)
                       && (beyond_corner(P.P, Q) || beyond_corner(Q.P, P))))
