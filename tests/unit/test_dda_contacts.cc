@@ -331,20 +331,19 @@ TEST(DdaContactsIssue10, VertexVertexValleyOfTwoBlocks)
 
 namespace
 {
-  /// Returns {max penetration, bound, max |rotation|}.
-  std::array<double, 3>
-  rocking_case(const double w,
-               const double h,
-               const double wb,
-               const double theta = 0.5 * deg,
-               const double dt    = 1e-3)
+  /// A w x h block (index 1) on a fixed base of width wb (index 0),
+  /// rocking about its right pivot at half-width a = min(w, wb)/2 to a peak
+  /// rotation theta: m g a theta = 1/2 I_p omega^2.
+  BlockSystem
+  rocking_scene(const double w,
+                const double h,
+                const double wb,
+                const double theta)
   {
     BlockSystem s    = one_material_scene(2700., 1e10, 0.25, 40.);
     const int   base = add_block(s, rectangle(-0.5 * wb, -1., wb, 1.));
     const int   b    = add_block(s, rectangle(-0.5 * w, 0., w, h));
     fix_block(s, base);
-    // Rocking about the right pivot at half-width a = min(w, wb)/2 to a
-    // peak rotation theta: m g a theta = 1/2 I_p omega^2.
     const double a = 0.5 * std::min(w, wb), g = g_earth;
     const double m     = block_mass(s, b);
     const double Ip    = m * ((w * w + h * h) / 12. + a * a + 0.25 * h * h);
@@ -353,10 +352,27 @@ namespace
     s.blocks[b].velocity[0] = omega * 0.5 * h;
     s.blocks[b].velocity[1] = omega * a;
     s.blocks[b].velocity[2] = -omega;
-    const double p          = 1e11;
-    DdaSystem    dda(s, controls(dt, 1., p));
-    EnergyWatch  watch(dda);
-    double       max_pen = 0., max_rot = 0.;
+    return s;
+  }
+
+  /// Returns {max penetration, bound, max |rotation|}.
+  std::array<double, 3>
+  rocking_case(const double w,
+               const double h,
+               const double wb,
+               const double theta = 0.5 * deg,
+               const double dt    = 1e-3)
+  {
+    const BlockSystem s    = rocking_scene(w, h, wb, theta);
+    const int         base = 0, b = 1;
+    const double      a = 0.5 * std::min(w, wb), g = g_earth;
+    const double      m  = block_mass(s, b);
+    const double      Ip = m * ((w * w + h * h) / 12. + a * a + 0.25 * h * h);
+    const double      omega = std::sqrt(2. * m * g * a * theta / Ip);
+    const double      p     = 1e11;
+    DdaSystem         dda(s, controls(dt, 1., p));
+    EnergyWatch       watch(dda);
+    double            max_pen = 0., max_rot = 0.;
     run_watched(dda, 1., watch, [&]() {
       max_pen = std::max(max_pen, penetration(dda, b, base));
       max_rot = std::max(max_rot, std::abs(dda.system().blocks[b].rotation));
@@ -1300,6 +1316,15 @@ namespace
     const char                  *name;
     std::function<BlockSystem()> build;
     double                       duration;
+    /// Contacts open and close by impact (a run-out through a kink, a
+    /// rocking block): the step at which a contact changes state then
+    /// depends on round-off, and the answer moves with a perturbation of
+    /// the scene as small as 1e-13 of its size (measured: 2e-7 to 1e-3 of
+    /// the largest displacement, whatever the force tolerance from 1e-4 to
+    /// 1e-8). No floating-point code reproduces such a scene to 1e-9 after
+    /// a transform; the test then asks that a transform moves the answer
+    /// no more than such a perturbation does.
+    bool sensitive = false;
   };
 
   /// Per block: centroid displacement (back in the original frame and
@@ -1375,6 +1400,19 @@ namespace
                    return s;
                  },
                  0.3});
+    // The scenes of defects 1-3: the run-out through a concave corner of
+    // one polygon and through a valley of two blocks (the corner is passed
+    // at about 1.6 s), and a block rocking on a narrower pedestal.
+    v.push_back(
+      {"concave corner run-out", [] { return kink_scene(false); }, 2.5, true});
+    v.push_back({"valley of two blocks run-out",
+                 [] { return kink_scene(true); },
+                 2.5,
+                 true});
+    v.push_back({"rocking on a pedestal",
+                 [] { return rocking_scene(1., 0.5, 0.6, 2. * deg); },
+                 1.,
+                 true});
     return v;
   }
 
@@ -1394,6 +1432,38 @@ TEST_P(Invariance, TranslationScalingRotation)
   double scale = 1e-4;
   for (const double x : ref)
     scale = std::max(scale, std::abs(x));
+  const auto difference = [&](const std::vector<double> &r) {
+    double diff = 0.;
+    for (std::size_t k = 0; k < r.size(); ++k)
+      diff = std::max(diff, std::abs(r[k] - ref[k]));
+    return diff;
+  };
+  // Round-off spread of a sensitive scene: the largest change of the
+  // answer under perturbations of 1e-13 (scale and rotation, both signs).
+  double spread = 0.;
+  if (sc.sensitive)
+    for (const Transform &T :
+         {Transform{"scale 1 + 1e-13", Point::Zero(), 0., 1. + 1e-13},
+          Transform{"scale 1 - 1e-13", Point::Zero(), 0., 1. - 1e-13},
+          Transform{"rotate 1e-13 rad", Point::Zero(), 1e-13},
+          Transform{"rotate -1e-13 rad", Point::Zero(), -1e-13}})
+      {
+        std::vector<double> r(ref.size(), 1e300);
+        guarded(std::string(sc.name) + ", " + T.name,
+                [&]() { r = run_transformed(sc, T); });
+        spread = std::max(spread, difference(r));
+      }
+  // A sensitive scene's answer is reproducible to its round-off spread
+  // (up to 10x it: the spread is sampled by four perturbations), and in
+  // any case to 1e-3 of its largest displacement, far inside the bounds of
+  // its own test (the run-out lies between energy bounds 30 % apart).
+  const double bound = sc.sensitive
+                         ? std::min(std::max(1e-9, 10. * spread / scale), 1e-3)
+                         : 1e-9;
+  if (sc.sensitive)
+    std::printf("%s: round-off spread %.3e of the largest displacement\n",
+                sc.name,
+                spread / scale);
   for (const Transform &T : {Transform{"translate (5e5, 4e6)", Point(5e5, 4e6)},
                              Transform{"scale 1e-3", Point::Zero(), 0., 1e-3},
                              Transform{"scale 1e3", Point::Zero(), 0., 1e3},
@@ -1402,26 +1472,26 @@ TEST_P(Invariance, TranslationScalingRotation)
       std::vector<double> r(ref.size(), 1e300);
       guarded(std::string(sc.name) + ", " + T.name,
               [&]() { r = run_transformed(sc, T); });
-      double diff = 0.;
-      for (std::size_t k = 0; k < r.size(); ++k)
-        diff = std::max(diff, std::abs(r[k] - ref[k]));
+      const double diff = difference(r);
       std::printf("%s, %s: largest displacement %.3e m, relative "
-                  "difference %.3e\n",
+                  "difference %.3e (bound %.1e)\n",
                   sc.name,
                   T.name,
                   scale,
-                  diff / scale);
-      EXPECT_LT(diff / scale, 1e-9) << sc.name << ", " << T.name;
+                  diff / scale,
+                  bound);
+      EXPECT_LT(diff / scale, bound) << sc.name << ", " << T.name;
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(DdaContactsIssue10,
-                         Invariance,
-                         ::testing::Range(0, 6),
-                         [](const ::testing::TestParamInfo<int> &info) {
-                           std::string n = invariance_scenes()[info.param].name;
-                           for (auto &ch : n)
-                             if (!std::isalnum(static_cast<unsigned char>(ch)))
-                               ch = '_';
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+  DdaContactsIssue10,
+  Invariance,
+  ::testing::Range(0, static_cast<int>(invariance_scenes().size())),
+  [](const ::testing::TestParamInfo<int> &info) {
+    std::string n = invariance_scenes()[info.param].name;
+    for (auto &ch : n)
+      if (!std::isalnum(static_cast<unsigned char>(ch)))
+        ch = '_';
+    return n;
+  });
