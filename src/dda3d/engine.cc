@@ -656,27 +656,64 @@ namespace rockdda::dda3d
     // noise's direction for all pushed a 1 mm x 1 mm x 1 m column standing
     // on a level base sideways with 4 times its friction force, rocked it
     // and the open-close iteration never converged.)
+    // The spin of a face group (Goyal, Ruina & Papadopoulos 1991: the
+    // friction of a face sliding in its plane opposes the local slip of
+    // the faces' relative rigid motion, translation and spin about the
+    // normal): each member slides along the resultant plus the spin term
+    // members x omega n x (p - c), omega the relative rigid rotation of the
+    // group's two blocks about the group's normal in the step (rotation
+    // unknowns of D_i - D_j: neither the strains nor the locked springs'
+    // stored stretch), c the members' centroid, less the members' mean
+    // elastic range S / k_s at the rms radius R (a twist that the shear
+    // springs carry below their strength is not a sliding spin: the
+    // rocking of a cube on a shaken plane or the torsional vibration of a
+    // column's foot). Only in planar contact:
+    // when each of the two blocks touches (closed contacts) only through
+    // faces parallel to the group's (within the group's 0.1 rad), so that
+    // it can spin about that normal; otherwise omega = 0 and the group
+    // slides along its resultant as before. (A spin fitted to the
+    // members' slips, s0 included, took the torsion of the locked springs
+    // of a partly locked group for a spin: 0.24-0.34 of the translation in
+    // the shaking-table wedge, whose faces cannot spin; it moved the
+    // wedge's onset of sliding by a cycle.)
     std::vector<Point>  resultant(n_groups, Point::Zero());
-    std::vector<double> slip_sum(n_groups, 0.);
-    std::vector<int>    group_i(n_groups, -1);
-    auto                slip3 = [&](const std::size_t k) {
+    std::vector<double> slip_sum(n_groups, 0.), spin(n_groups, 0.),
+      radius2(n_groups, 0.), elastic(n_groups, 0.);
+    std::vector<int> group_i(n_groups, -1), group_j(n_groups, -1),
+      members(n_groups, 0);
+    std::vector<Point> centroid(n_groups, Point::Zero()),
+      group_normal(n_groups, Point::Zero()), block_normal(n, Point::Zero());
+    std::vector<char> planar(n, 1);
+    // +1 if contact k's block i is its group's block i, else -1.
+    auto orientation = [&](const std::size_t k) {
+      return contacts[k].geometry.i == group_i[group[k]] ? 1. : -1.;
+    };
+    auto slip3 = [&](const std::size_t k) {
       const auto &K = kin[k];
       const int   i = contacts[k].geometry.i, j = contacts[k].geometry.j;
       const Eigen::Vector2d s
         = K.s0 + K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j];
       return Point(s.x() * K.t1 + s.y() * K.t2);
     };
-    auto group_direction = [&](const std::size_t      k,
-                               const Eigen::Vector2d &fallback) {
-      if (group[k] < 0)
-        return fallback;
-      const Point r = (contacts[k].geometry.i == group_i[group[k]] ? 1. : -1.)
-                      * resultant[group[k]];
-      if (!(r.norm() > 1e-2 * slip_sum[group[k]]))
-        return fallback;
-      const Eigen::Vector2d d(kin[k].t1.dot(r), kin[k].t2.dot(r));
-      return d.norm() > 0. ? Eigen::Vector2d(d.normalized()) : fallback;
-    };
+    auto group_direction
+      = [&](const std::size_t k, const Eigen::Vector2d &fallback) {
+          if (group[k] < 0)
+            return fallback;
+          const int gk = group[k];
+          Point     r  = resultant[gk];
+          if (spin[gk] != 0.)
+            {
+              const Point &nrm    = group_normal[gk];
+              const Point  offset = contacts[k].geometry.p - centroid[gk];
+              r += (members[gk] * spin[gk])
+                   * nrm.cross(offset - offset.dot(nrm) * nrm);
+            }
+          r *= orientation(k);
+          if (!(r.norm() > 1e-2 * slip_sum[gk]))
+            return fallback;
+          const Eigen::Vector2d d(kin[k].t1.dot(r), kin[k].t2.dot(r));
+          return d.norm() > 0. ? Eigen::Vector2d(d.normalized()) : fallback;
+        };
     while (!converged)
       {
         ++iterations;
@@ -766,17 +803,68 @@ namespace rockdda::dda3d
         n_mean = n_closed ? n_mean / n_closed : 0.;
         std::fill(resultant.begin(), resultant.end(), Point::Zero());
         std::fill(slip_sum.begin(), slip_sum.end(), 0.);
+        std::fill(spin.begin(), spin.end(), 0.);
         std::fill(group_i.begin(), group_i.end(), -1);
+        std::fill(members.begin(), members.end(), 0);
+        std::fill(centroid.begin(), centroid.end(), Point::Zero());
+        std::fill(block_normal.begin(), block_normal.end(), Point::Zero());
+        std::fill(planar.begin(), planar.end(), 1);
         for (std::size_t k = 0; k < contacts.size(); ++k)
-          if (group[k] >= 0 && contacts[k].state != ContactState::open)
+          if (contacts[k].state != ContactState::open)
             {
-              if (group_i[group[k]] < 0)
-                group_i[group[k]] = contacts[k].geometry.i;
+              const auto &geo = contacts[k].geometry;
+              for (const int b : {geo.i, geo.j})
+                if (block_normal[b].squaredNorm() == 0.)
+                  block_normal[b] = geo.normal;
+                else if (std::abs(block_normal[b].dot(geo.normal))
+                         < std::cos(0.1))
+                  planar[b] = 0;
+              if (group[k] < 0)
+                continue;
+              const int gk = group[k];
+              if (group_i[gk] < 0)
+                {
+                  group_i[gk]      = geo.i;
+                  group_j[gk]      = geo.j;
+                  group_normal[gk] = geo.normal;
+                }
               const Point sk = slip3(k);
-              resultant[group[k]]
-                += (contacts[k].geometry.i == group_i[group[k]] ? 1. : -1.)
-                   * sk;
-              slip_sum[group[k]] += sk.norm();
+              resultant[gk] += orientation(k) * sk;
+              slip_sum[gk] += sk.norm();
+              centroid[gk] += geo.p;
+              ++members[gk];
+            }
+        for (int gk = 0; gk < n_groups; ++gk)
+          if (members[gk] > 0)
+            centroid[gk] /= members[gk];
+        std::fill(radius2.begin(), radius2.end(), 0.);
+        std::fill(elastic.begin(), elastic.end(), 0.);
+        for (std::size_t k = 0; k < contacts.size(); ++k)
+          if (group[k] >= 0 && contacts[k].state != ContactState::open
+              && planar[group_i[group[k]]] && planar[group_j[group[k]]])
+            {
+              const auto  &c   = contacts[k];
+              const int    gk  = group[k];
+              const Point &nrm = group_normal[gk];
+              const Point  r   = c.geometry.p - centroid[gk];
+              radius2[gk] += (r - r.dot(nrm) * nrm).squaredNorm();
+              elastic[gk] += dda::shear_strength(c,
+                                                 c.normal_force,
+                                                 c.area,
+                                                 system.joints[c.joint])
+                             / kin[k].shear_stiffness;
+            }
+        for (int gk = 0; gk < n_groups; ++gk)
+          if (radius2[gk] > 0.)
+            {
+              const double omega
+                = group_normal[gk].dot(rotation_vector(Db[group_i[gk]])
+                                       - rotation_vector(Db[group_j[gk]]));
+              const double R = std::sqrt(radius2[gk] / members[gk]);
+              spin[gk]       = std::copysign(
+                std::max(0., std::abs(omega) * R - elastic[gk] / members[gk])
+                  / R,
+                omega);
             }
         bool any_state = false, any_friction = false;
         for (std::size_t k = 0; k < contacts.size(); ++k)
