@@ -33,8 +33,6 @@ namespace rockdda::dda3d
     return b;
   }
 
-
-
   std::vector<std::pair<int, int>>
   broad_phase(const std::vector<BoundingBox> &boxes)
   {
@@ -108,8 +106,6 @@ namespace rockdda::dda3d
     return pairs;
   }
 
-
-
   namespace
   {
     /// Angle (rad, in [0, 2 pi)) by which @p x lies from the unit vector
@@ -122,8 +118,6 @@ namespace rockdda::dda3d
       return a < 0. ? a + 2. * std::acos(-1.) : a;
     }
   } // namespace
-
-
 
   PolyhedronEdges
   polyhedron_edges(const Polyhedron &p)
@@ -190,8 +184,6 @@ namespace rockdda::dda3d
     return e;
   }
 
-
-
   FaceLocation
   locate_on_face(const Polyhedron &p,
                  const std::size_t f,
@@ -232,8 +224,6 @@ namespace rockdda::dda3d
       }
     return out;
   }
-
-
 
   namespace
   {
@@ -626,8 +616,6 @@ namespace rockdda::dda3d
     }
   } // namespace
 
-
-
   void
   narrow_phase(const Polyhedron              &a,
                const PolyhedronEdges         &a_edges,
@@ -770,32 +758,53 @@ namespace rockdda::dda3d
       }
   }
 
-
-
   std::vector<ContactCandidate>
   detect_contacts(const std::vector<const Polyhedron *> &blocks,
-                  const DetectionTolerances             &tol)
+                  const DetectionTolerances             &tol,
+                  const dda::ChunkRunner                &run_chunks)
   {
     const std::size_t        n = blocks.size();
     std::vector<BoundingBox> boxes(n);
     for (std::size_t b = 0; b < n; ++b)
       boxes[b]
         = bounding_box(*blocks[b], tol.distance_factor * blocks[b]->size());
-    const auto                    pairs = broad_phase(boxes);
-    std::vector<PolyhedronEdges>  edges(n);
-    std::vector<char>             have(n, 0);
-    std::vector<ContactCandidate> out;
+    const auto        pairs = broad_phase(boxes);
+    std::vector<char> have(n, 0);
     for (const auto &[i, j] : pairs)
-      {
-        for (const int b : {i, j})
-          if (!have[b])
-            {
-              edges[b] = polyhedron_edges(*blocks[b]);
-              have[b]  = 1;
-            }
-        narrow_phase(
-          *blocks[i], edges[i], i, *blocks[j], edges[j], j, tol, out);
-      }
+      have[i] = have[j] = 1;
+    std::vector<PolyhedronEdges> edges(n);
+    dda::for_each_chunk(run_chunks,
+                        n,
+                        32,
+                        [&](const std::size_t lo, const std::size_t hi) {
+                          for (std::size_t b = lo; b < hi; ++b)
+                            if (have[b])
+                              edges[b] = polyhedron_edges(*blocks[b]);
+                        });
+    // The pairs in chunks, each with its own output, joined in order.
+    const std::size_t                          grain = 32;
+    std::vector<std::vector<ContactCandidate>> part((pairs.size() + grain - 1)
+                                                    / grain);
+    dda::for_each_chunk(
+      run_chunks,
+      pairs.size(),
+      grain,
+      [&](const std::size_t lo, const std::size_t hi) {
+        auto &chunk = part[lo / grain];
+        for (std::size_t k = lo; k < hi; ++k)
+          {
+            const auto [i, j] = pairs[k];
+            narrow_phase(
+              *blocks[i], edges[i], i, *blocks[j], edges[j], j, tol, chunk);
+          }
+      });
+    std::size_t total = 0;
+    for (const auto &c : part)
+      total += c.size();
+    std::vector<ContactCandidate> out;
+    out.reserve(total);
+    for (const auto &c : part)
+      out.insert(out.end(), c.begin(), c.end());
     std::sort(out.begin(), out.end(), [](const auto &x, const auto &y) {
       return std::make_tuple(x.i, x.j, int(x.type), x.a, x.b)
              < std::make_tuple(y.i, y.j, int(y.type), y.a, y.b);

@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -100,8 +101,6 @@ namespace rockdda::dda3d
     return r;
   }
 
-
-
   namespace
   {
     /// A unit vector perpendicular to @p n.
@@ -182,8 +181,6 @@ namespace rockdda::dda3d
     }
   } // namespace
 
-
-
   Engine::Engine(BlockSystem system_in, const EngineControls &c)
       : LocalScene(std::move(system_in))
       , ctrl(c)
@@ -227,8 +224,6 @@ namespace rockdda::dda3d
     dt_now = ctrl.dt;
   }
 
-
-
   void
   Engine::step()
   {
@@ -268,8 +263,6 @@ namespace rockdda::dda3d
       dt_now = h;
   }
 
-
-
   void
   Engine::advance_to(const double t_end)
   {
@@ -296,8 +289,6 @@ namespace rockdda::dda3d
         step();
       }
   }
-
-
 
   void
   Engine::settle(const unsigned int                             n,
@@ -337,8 +328,6 @@ namespace rockdda::dda3d
     n_steps       = 0;
     n_iterations  = 0;
   }
-
-
 
   bool
   Engine::try_step(const double h)
@@ -406,7 +395,13 @@ namespace rockdda::dda3d
     std::vector<const Polyhedron *> polys(n);
     for (std::size_t b = 0; b < n; ++b)
       polys[b] = &system.blocks[b].polyhedron;
-    const auto candidates = detect_contacts(polys, tol);
+    // Per-pair and per-contact loops in fixed chunks on the linear
+    // solver's threads (as the 2D engine): the same results on any number.
+    const dda::ChunkRunner chunks
+      = [this](const std::size_t n_items,
+               const std::size_t grain,
+               const auto       &f) { solver.for_chunks(n_items, grain, f); };
+    const auto candidates = detect_contacts(polys, tol, chunks);
 
     // Transfer of the stored states: by (type, i, a, j, b); a vertex that
     // passed to another face of the same block keeps a closed state: the
@@ -552,40 +547,46 @@ namespace rockdda::dda3d
       K.Hs = -displacement_matrix(moments[g.j].centroid, g.p).transpose() * tb;
       K.s0 = tb.transpose() * (g.p - r);
     };
-    for (std::size_t k = 0; k < contacts.size(); ++k)
-      {
-        auto       &c = contacts[k];
-        auto       &K = kin[k];
-        const auto &g = c.geometry;
-        K.g0          = g.gap;
-        K.en = displacement_matrix(moments[g.i].centroid, g.p).transpose()
-               * g.normal;
-        K.hn = -displacement_matrix(moments[g.j].centroid, g.p).transpose()
-               * g.normal;
-        K.t1 = perpendicular(g.normal);
-        K.t2 = g.normal.cross(K.t1);
-        set_shear(k);
-        const auto springs
-          = dda::contact_springs(ctrl.law, system.joints[c.joint], c.area);
-        K.normal_stiffness = springs.normal;
-        K.shear_stiffness  = springs.shear;
-        // The shared rule of both engines (dda/contact_mechanics.h) with
-        // the representation error of the local coordinates the gap and
-        // the shear displacement are measured from as the round-off. No
-        // floor relative to the block size: times the spring it would let
-        // a locked contact carry k_n 1e-12 L beyond its strength, a force
-        // that grows with the penalty (0.2 N, 2.6 % of the shaking-table
-        // wedge's weight per contact at 1e12 N/m: the wedge stuck).
-        K.tolerance = dda::coordinate_round_off(g.p, g.q);
-        K.weight_tolerance
-          = dda::contact_weight_tolerance(std::min(mass[g.i], mass[g.j]),
-                                          body_accel,
-                                          ctrl.law.force_tolerance);
-        K.force_tolerance = dda::contact_force_tolerance(K.weight_tolerance,
-                                                         K.normal_stiffness,
-                                                         K.tolerance);
-        c.state_at_start  = c.state;
-      }
+    dda::for_each_chunk(
+      chunks,
+      contacts.size(),
+      128,
+      [&](const std::size_t lo, const std::size_t hi) {
+        for (std::size_t k = lo; k < hi; ++k)
+          {
+            auto       &c = contacts[k];
+            auto       &K = kin[k];
+            const auto &g = c.geometry;
+            K.g0          = g.gap;
+            K.en = displacement_matrix(moments[g.i].centroid, g.p).transpose()
+                   * g.normal;
+            K.hn = -displacement_matrix(moments[g.j].centroid, g.p).transpose()
+                   * g.normal;
+            K.t1 = perpendicular(g.normal);
+            K.t2 = g.normal.cross(K.t1);
+            set_shear(k);
+            const auto springs
+              = dda::contact_springs(ctrl.law, system.joints[c.joint], c.area);
+            K.normal_stiffness = springs.normal;
+            K.shear_stiffness  = springs.shear;
+            // The shared rule of both engines (dda/contact_mechanics.h) with
+            // the representation error of the local coordinates the gap and
+            // the shear displacement are measured from as the round-off. No
+            // floor relative to the block size: times the spring it would let
+            // a locked contact carry k_n 1e-12 L beyond its strength, a force
+            // that grows with the penalty (0.2 N, 2.6 % of the shaking-table
+            // wedge's weight per contact at 1e12 N/m: the wedge stuck).
+            K.tolerance = dda::coordinate_round_off(g.p, g.q);
+            K.weight_tolerance
+              = dda::contact_weight_tolerance(std::min(mass[g.i], mass[g.j]),
+                                              body_accel,
+                                              ctrl.law.force_tolerance);
+            K.force_tolerance = dda::contact_force_tolerance(K.weight_tolerance,
+                                                             K.normal_stiffness,
+                                                             K.tolerance);
+            c.state_at_start  = c.state;
+          }
+      });
     // Sliding directions in each contact's tangent basis.
     std::vector<Eigen::Vector2d> dir(contacts.size(), Eigen::Vector2d::Zero());
     for (std::size_t k = 0; k < contacts.size(); ++k)
@@ -866,72 +867,93 @@ namespace rockdda::dda3d
                   / R,
                 omega);
             }
-        bool any_state = false, any_friction = false;
-        for (std::size_t k = 0; k < contacts.size(); ++k)
-          {
-            auto                 &c = contacts[k];
-            const auto           &K = kin[k];
-            const int             i = c.geometry.i, j = c.geometry.j;
-            const double          g = K.g0 + K.en.dot(Db[i]) + K.hn.dot(Db[j]);
-            const Eigen::Vector2d s
-              = K.s0 + K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j];
-            // Chatter: 10 x and 100 x the weight part after two and three
-            // changes; the round-off part stays a floor.
-            const double f = dda::escalated_tolerance(K.weight_tolerance,
-                                                      K.force_tolerance,
-                                                      changes[k] >= 3   ? 100.
-                                                      : changes[k] >= 2 ? 10.
-                                                                        : 1.);
-            auto r = check_state(c, K, dir[k], g, s, f, system.joints[c.joint]);
-            if (r.changed && r.state == ContactState::sliding)
-              r.direction = group_direction(k, r.direction);
-            if (r.changed)
+        // Each contact's check writes only its own contact, direction,
+        // kinematics and change count; the chunks' flags are joined after.
+        const std::size_t                grain = 128;
+        std::vector<std::array<char, 2>> flags((contacts.size() + grain - 1)
+                                               / grain);
+        dda::for_each_chunk(
+          chunks,
+          contacts.size(),
+          grain,
+          [&](const std::size_t lo, const std::size_t hi) {
+            const std::size_t c_k = lo / grain;
+            for (std::size_t k = lo; k < hi; ++k)
               {
-                any_state = true;
-                ++changes[k];
-                if (c.state == ContactState::sliding
-                    && r.state == ContactState::locked)
+                auto        &c = contacts[k];
+                const auto  &K = kin[k];
+                const int    i = c.geometry.i, j = c.geometry.j;
+                const double g = K.g0 + K.en.dot(Db[i]) + K.hn.dot(Db[j]);
+                const Eigen::Vector2d s
+                  = K.s0 + K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j];
+                // Chatter: 10 x and 100 x the weight part after two and three
+                // changes; the round-off part stays a floor.
+                const double f
+                  = dda::escalated_tolerance(K.weight_tolerance,
+                                             K.force_tolerance,
+                                             changes[k] >= 3   ? 100.
+                                             : changes[k] >= 2 ? 10.
+                                                               : 1.);
+                auto r
+                  = check_state(c, K, dir[k], g, s, f, system.joints[c.joint]);
+                if (r.changed && r.state == ContactState::sliding)
+                  r.direction = group_direction(k, r.direction);
+                if (r.changed)
                   {
-                    // Force continuity: the locked spring starts at the
-                    // friction force the contact carried.
-                    const double S = dda::shear_strength(
-                      c, c.normal_force, c.area, system.joints[c.joint]);
-                    const Point d3 = dir[k].x() * K.t1 + dir[k].y() * K.t2;
-                    c.reference = c.geometry.q - (S / K.shear_stiffness) * d3;
-                    c.has_reference = true;
-                  }
-                else if (r.state == ContactState::locked)
-                  c.has_reference = false;
-                c.state = r.state;
-                set_shear(k);
-              }
-            else if (c.state == ContactState::sliding)
-              {
-                if (std::abs(r.normal_force - c.normal_force)
-                    > 1e-3 * (std::abs(r.normal_force) + n_mean) + f)
-                  any_friction = true;
-                // A face group slides along the resultant of its slip in
-                // this step: the direction it started with (the trial
-                // spring forces, which in a wedge include the wedging
-                // across the axis) is corrected within the step.
-                if (group[k] >= 0 && K.shear_stiffness * s.norm() > f)
-                  {
-                    const Eigen::Vector2d dn = group_direction(k, dir[k]);
-                    if ((dn - dir[k]).norm() > 1e-3)
+                    flags[c_k][0] = 1;
+                    ++changes[k];
+                    if (c.state == ContactState::sliding
+                        && r.state == ContactState::locked)
                       {
-                        r.direction  = dn;
-                        any_friction = true;
+                        // Force continuity: the locked spring starts at the
+                        // friction force the contact carried.
+                        const double S = dda::shear_strength(
+                          c, c.normal_force, c.area, system.joints[c.joint]);
+                        const Point d3 = dir[k].x() * K.t1 + dir[k].y() * K.t2;
+                        c.reference
+                          = c.geometry.q - (S / K.shear_stiffness) * d3;
+                        c.has_reference = true;
+                      }
+                    else if (r.state == ContactState::locked)
+                      c.has_reference = false;
+                    c.state = r.state;
+                    set_shear(k);
+                  }
+                else if (c.state == ContactState::sliding)
+                  {
+                    if (std::abs(r.normal_force - c.normal_force)
+                        > 1e-3 * (std::abs(r.normal_force) + n_mean) + f)
+                      flags[c_k][1] = 1;
+                    // A face group slides along the resultant of its slip in
+                    // this step: the direction it started with (the trial
+                    // spring forces, which in a wedge include the wedging
+                    // across the axis) is corrected within the step.
+                    if (group[k] >= 0 && K.shear_stiffness * s.norm() > f)
+                      {
+                        const Eigen::Vector2d dn = group_direction(k, dir[k]);
+                        if ((dn - dir[k]).norm() > 1e-3)
+                          {
+                            r.direction   = dn;
+                            flags[c_k][1] = 1;
+                          }
                       }
                   }
+                c.normal_force = r.normal_force;
+                dir[k]         = r.direction;
+                const Point fs3
+                  = r.shear_force.x() * K.t1 + r.shear_force.y() * K.t2;
+                c.shear_force = fs3;
               }
-            c.normal_force = r.normal_force;
-            dir[k]         = r.direction;
-            const Point fs3
-              = r.shear_force.x() * K.t1 + r.shear_force.y() * K.t2;
-            c.shear_force = fs3;
-            if (changes[k] >= 12)
-              return false;
+          });
+        bool any_state = false, any_friction = false;
+        for (const auto &f : flags)
+          {
+            any_state    = any_state || f[0];
+            any_friction = any_friction || f[1];
           }
+        for (const int ch : changes)
+          if (ch >= 12)
+            return false;
         if (any_state)
           ++state_iterations;
         states_changed = any_state;
@@ -1067,8 +1089,6 @@ namespace rockdda::dda3d
         }
     return true;
   }
-
-
 
   Energy
   Engine::energy() const

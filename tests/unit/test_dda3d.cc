@@ -1567,17 +1567,22 @@ TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
   // before the spin of a face in planar contact was resisted: a brick
   // whose side contacts are open is in planar contact). On 1 and 2 threads
   // (the D-ILU's two subdomains swept in parallel, ordering forced from 3
-  // blocks on) the positions must agree bit for bit.
-  const BlockSystem wall = test_scenes::brick_wall(4, 4);
-  const double      L    = 1.; // the bricks' smallest dimension (m)
+  // blocks on) the positions must agree bit for bit. So must they on a
+  // 10 x 10 wall (106 blocks, ~1,100 contacts), whose contact detection,
+  // kinematics and state checks run in chunks (128 contacts, 32 block
+  // pairs) on the solver's threads: from 8 chunks on they run concurrently
+  // (TaskTeam), and the chunks write disjoint data joined in order.
+  const BlockSystem small_wall = test_scenes::brick_wall(4, 4);
+  const double      L          = 1.; // the bricks' smallest dimension (m)
   struct Result
   {
     std::vector<Point> vertices;
     double             moved     = 0.;
     unsigned long      cg        = 0;
-    int                separator = 0, sliding = 0;
+    int                separator = 0, sliding = 0, contacts = 0;
   };
-  auto run = [&](const dda::SolverType     type,
+  auto run = [&](const BlockSystem        &wall,
+                 const dda::SolverType     type,
                  const dda::Preconditioner preconditioner,
                  const int                 threads,
                  const int                 subdomain_limit) {
@@ -1608,6 +1613,8 @@ TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
       r.moved = std::max(r.moved, engine.displacement(b).norm());
     r.separator = engine.linear_solver().separator_size();
     r.sliding   = engine.statistics().sliding;
+    r.contacts  = engine.statistics().open + engine.statistics().sliding
+                 + engine.statistics().locked;
     return r;
   };
   auto difference = [](const Result &a, const Result &b) {
@@ -1616,8 +1623,11 @@ TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
       d = std::max(d, (a.vertices[k] - b.vertices[k]).norm());
     return d;
   };
-  const Result direct
-    = run(dda::SolverType::direct, dda::Preconditioner::block_dilu, 1, 300);
+  const Result direct = run(small_wall,
+                            dda::SolverType::direct,
+                            dda::Preconditioner::block_dilu,
+                            1,
+                            300);
   std::printf("direct: largest centroid displacement %.3e m, %d sliding "
               "contacts at the end\n",
               direct.moved,
@@ -1628,8 +1638,9 @@ TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
   for (const auto preconditioner :
        {dda::Preconditioner::block_dilu, dda::Preconditioner::block_jacobi})
     {
-      const Result cg = run(dda::SolverType::iterative, preconditioner, 1, 300);
-      const double d  = difference(direct, cg);
+      const Result cg
+        = run(small_wall, dda::SolverType::iterative, preconditioner, 1, 300);
+      const double d = difference(direct, cg);
       std::printf("iterative (%s): %lu CG iterations, max vertex difference "
                   "from direct %.3e m\n",
                   preconditioner == dda::Preconditioner::block_dilu
@@ -1640,10 +1651,16 @@ TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
       EXPECT_GT(cg.cg, 0u);
       EXPECT_LT(d, 1e-8 * L);
     }
-  const Result one
-    = run(dda::SolverType::iterative, dda::Preconditioner::block_dilu, 1, 3);
-  const Result two
-    = run(dda::SolverType::iterative, dda::Preconditioner::block_dilu, 2, 3);
+  const Result one = run(small_wall,
+                         dda::SolverType::iterative,
+                         dda::Preconditioner::block_dilu,
+                         1,
+                         3);
+  const Result two = run(small_wall,
+                         dda::SolverType::iterative,
+                         dda::Preconditioner::block_dilu,
+                         2,
+                         3);
   std::printf("two subdomains, separator of %d blocks: 1 vs 2 threads "
               "differ by %.3e m, from direct by %.3e m\n",
               one.separator,
@@ -1652,4 +1669,26 @@ TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
   EXPECT_GT(one.separator, 0);
   EXPECT_EQ(difference(one, two), 0.);
   EXPECT_LT(difference(direct, one), 1e-8 * L);
+
+  const BlockSystem large_wall = test_scenes::brick_wall(10, 10);
+  const Result      one_large  = run(large_wall,
+                               dda::SolverType::iterative,
+                               dda::Preconditioner::block_dilu,
+                               1,
+                               300);
+  const Result      two_large  = run(large_wall,
+                               dda::SolverType::iterative,
+                               dda::Preconditioner::block_dilu,
+                               2,
+                               300);
+  std::printf("106 blocks, %d contacts, %d sliding, largest displacement "
+              "%.3e m: 1 vs 2 threads differ by %.3e m\n",
+              one_large.contacts,
+              one_large.sliding,
+              one_large.moved,
+              difference(one_large, two_large));
+  EXPECT_GE(one_large.contacts, 8 * 128); // the loops do run on threads
+  EXPECT_GT(one_large.moved, 1e-5 * L);
+  EXPECT_GT(one_large.sliding, 0);
+  EXPECT_EQ(difference(one_large, two_large), 0.);
 }

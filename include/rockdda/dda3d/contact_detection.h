@@ -10,6 +10,7 @@
 #ifndef ROCKDDA_DDA3D_CONTACT_DETECTION_H
 #define ROCKDDA_DDA3D_CONTACT_DETECTION_H
 
+#include <rockdda/dda/contact_detection.h>
 #include <rockdda/dda3d/polyhedron.h>
 
 #include <array>
@@ -199,11 +200,15 @@ namespace rockdda::dda3d
   /**
    * All contacts of the blocks @p blocks (convex polyhedra): broad phase on
    * the bounding boxes grown by distance_factor x size each, then the
-   * narrow phase per pair. Sorted by (i, j, type, a, b).
+   * narrow phase per pair. Sorted by (i, j, type, a, b). The blocks' edges
+   * and the pairs run in fixed chunks through @p run_chunks (possibly on
+   * threads, dda::ChunkRunner; serially if empty), each chunk with its own
+   * output, joined in order: the same list on any number of threads.
    */
   std::vector<ContactCandidate>
   detect_contacts(const std::vector<const Polyhedron *> &blocks,
-                  const DetectionTolerances             &tolerances);
+                  const DetectionTolerances             &tolerances,
+                  const dda::ChunkRunner                &run_chunks = {});
 } // namespace rockdda::dda3d
 
 #endif
