@@ -536,36 +536,27 @@ namespace rockdda::dda
       }
     // The pairs in chunks (in order), each with its own output and
     // scratch, joined in order: the same list on any number of threads.
-    const auto        pairs = candidate_pairs(polygons, grow);
-    const std::size_t grain = 128;
-    std::vector<std::vector<ContactCandidate>> part((pairs.size() + grain - 1)
-                                                    / grain);
-    for_each_chunk(options.run_chunks,
-                   pairs.size(),
-                   grain,
-                   [&](const std::size_t lo, const std::size_t hi) {
-                     std::vector<bool> consumed[2];
-                     auto             &out = part[lo / grain];
-                     out.reserve(3 * (hi - lo));
-                     for (std::size_t k = lo; k < hi; ++k)
-                       PairDetector(polygons,
-                                    corners,
-                                    offset,
-                                    boxes,
-                                    options,
-                                    pairs[k].first,
-                                    pairs[k].second,
-                                    consumed,
-                                    out)
-                         .run();
-                   });
-    std::size_t total = 0;
-    for (const auto &p : part)
-      total += p.size();
-    std::vector<ContactCandidate> all;
-    all.reserve(total);
-    for (const auto &p : part)
-      all.insert(all.end(), p.begin(), p.end());
-    return all;
+    const auto pairs = candidate_pairs(polygons, grow);
+    return joined_chunks<ContactCandidate>(
+      options.run_chunks,
+      pairs.size(),
+      128,
+      [&](const std::size_t              lo,
+          const std::size_t              hi,
+          std::vector<ContactCandidate> &out) {
+        std::vector<bool> consumed[2];
+        out.reserve(3 * (hi - lo));
+        for (std::size_t k = lo; k < hi; ++k)
+          PairDetector(polygons,
+                       corners,
+                       offset,
+                       boxes,
+                       options,
+                       pairs[k].first,
+                       pairs[k].second,
+                       consumed,
+                       out)
+            .run();
+      });
   }
 } // namespace rockdda::dda

@@ -782,15 +782,13 @@ namespace rockdda::dda3d
                               edges[b] = polyhedron_edges(*blocks[b]);
                         });
     // The pairs in chunks, each with its own output, joined in order.
-    const std::size_t                          grain = 32;
-    std::vector<std::vector<ContactCandidate>> part((pairs.size() + grain - 1)
-                                                    / grain);
-    dda::for_each_chunk(
+    auto out = dda::joined_chunks<ContactCandidate>(
       run_chunks,
       pairs.size(),
-      grain,
-      [&](const std::size_t lo, const std::size_t hi) {
-        auto &chunk = part[lo / grain];
+      32,
+      [&](const std::size_t              lo,
+          const std::size_t              hi,
+          std::vector<ContactCandidate> &chunk) {
         for (std::size_t k = lo; k < hi; ++k)
           {
             const auto [i, j] = pairs[k];
@@ -798,13 +796,6 @@ namespace rockdda::dda3d
               *blocks[i], edges[i], i, *blocks[j], edges[j], j, tol, chunk);
           }
       });
-    std::size_t total = 0;
-    for (const auto &c : part)
-      total += c.size();
-    std::vector<ContactCandidate> out;
-    out.reserve(total);
-    for (const auto &c : part)
-      out.insert(out.end(), c.begin(), c.end());
     std::sort(out.begin(), out.end(), [](const auto &x, const auto &y) {
       return std::make_tuple(x.i, x.j, int(x.type), x.a, x.b)
              < std::make_tuple(y.i, y.j, int(y.type), y.a, y.b);

@@ -1651,16 +1651,16 @@ TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
       EXPECT_GT(cg.cg, 0u);
       EXPECT_LT(d, 1e-8 * L);
     }
-  const Result one = run(small_wall,
-                         dda::SolverType::iterative,
-                         dda::Preconditioner::block_dilu,
-                         1,
-                         3);
-  const Result two = run(small_wall,
-                         dda::SolverType::iterative,
-                         dda::Preconditioner::block_dilu,
-                         2,
-                         3);
+  // The D-ILU CG on @p threads, two subdomains from @p limit blocks on.
+  auto dilu = [&](const BlockSystem &w, const int threads, const int limit) {
+    return run(w,
+               dda::SolverType::iterative,
+               dda::Preconditioner::block_dilu,
+               threads,
+               limit);
+  };
+  const Result one = dilu(small_wall, 1, 3);
+  const Result two = dilu(small_wall, 2, 3);
   std::printf("two subdomains, separator of %d blocks: 1 vs 2 threads "
               "differ by %.3e m, from direct by %.3e m\n",
               one.separator,
@@ -1671,16 +1671,8 @@ TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
   EXPECT_LT(difference(direct, one), 1e-8 * L);
 
   const BlockSystem large_wall = test_scenes::brick_wall(10, 10);
-  const Result      one_large  = run(large_wall,
-                               dda::SolverType::iterative,
-                               dda::Preconditioner::block_dilu,
-                               1,
-                               300);
-  const Result      two_large  = run(large_wall,
-                               dda::SolverType::iterative,
-                               dda::Preconditioner::block_dilu,
-                               2,
-                               300);
+  const Result      one_large  = dilu(large_wall, 1, 300);
+  const Result      two_large  = dilu(large_wall, 2, 300);
   std::printf("106 blocks, %d contacts, %d sliding, largest displacement "
               "%.3e m: 1 vs 2 threads differ by %.3e m\n",
               one_large.contacts,

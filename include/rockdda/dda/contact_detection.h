@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <iterator>
 #include <utility>
 #include <vector>
 
@@ -68,6 +69,38 @@ namespace rockdda::dda
       }
     for (std::size_t lo = 0; lo < n; lo += grain)
       f(lo, std::min(n, lo + grain));
+  }
+
+  /**
+   * Run @p f(lo, hi, out) over the chunks of [0, n) of @p grain items
+   * through @p runner (for_each_chunk), each chunk appending its results to
+   * its own vector @p out, and return the chunks' results joined in order:
+   * the same list on any number of threads.
+   */
+  template <typename T, typename Function>
+  std::vector<T>
+  joined_chunks(const ChunkRunner &runner,
+                const std::size_t  n,
+                const std::size_t  grain,
+                const Function    &f)
+  {
+    std::vector<std::vector<T>> part((n + grain - 1) / grain);
+    for_each_chunk(runner,
+                   n,
+                   grain,
+                   [&](const std::size_t lo, const std::size_t hi) {
+                     f(lo, hi, part[lo / grain]);
+                   });
+    std::size_t total = 0;
+    for (const auto &p : part)
+      total += p.size();
+    std::vector<T> all;
+    all.reserve(total);
+    for (auto &p : part)
+      all.insert(all.end(),
+                 std::make_move_iterator(p.begin()),
+                 std::make_move_iterator(p.end()));
+    return all;
   }
 
   /**
