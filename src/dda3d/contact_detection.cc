@@ -33,6 +33,8 @@ namespace rockdda::dda3d
     return b;
   }
 
+
+
   std::vector<std::pair<int, int>>
   broad_phase(const std::vector<BoundingBox> &boxes)
   {
@@ -106,6 +108,8 @@ namespace rockdda::dda3d
     return pairs;
   }
 
+
+
   namespace
   {
     /// Angle (rad, in [0, 2 pi)) by which @p x lies from the unit vector
@@ -118,6 +122,8 @@ namespace rockdda::dda3d
       return a < 0. ? a + 2. * std::acos(-1.) : a;
     }
   } // namespace
+
+
 
   PolyhedronEdges
   polyhedron_edges(const Polyhedron &p)
@@ -184,6 +190,8 @@ namespace rockdda::dda3d
     return e;
   }
 
+
+
   FaceLocation
   locate_on_face(const Polyhedron &p,
                  const std::size_t f,
@@ -224,6 +232,8 @@ namespace rockdda::dda3d
       }
     return out;
   }
+
+
 
   namespace
   {
@@ -616,6 +626,8 @@ namespace rockdda::dda3d
     }
   } // namespace
 
+
+
   void
   narrow_phase(const Polyhedron              &a,
                const PolyhedronEdges         &a_edges,
@@ -757,6 +769,8 @@ namespace rockdda::dda3d
           }
       }
   }
+
+
 
   std::vector<ContactCandidate>
   detect_contacts(const std::vector<const Polyhedron *> &blocks,

@@ -101,6 +101,8 @@ namespace rockdda::dda3d
     return r;
   }
 
+
+
   namespace
   {
     /// A unit vector perpendicular to @p n.
@@ -181,6 +183,8 @@ namespace rockdda::dda3d
     }
   } // namespace
 
+
+
   Engine::Engine(BlockSystem system_in, const EngineControls &c)
       : LocalScene(std::move(system_in))
       , ctrl(c)
@@ -224,6 +228,8 @@ namespace rockdda::dda3d
     dt_now = ctrl.dt;
   }
 
+
+
   void
   Engine::step()
   {
@@ -263,6 +269,8 @@ namespace rockdda::dda3d
       dt_now = h;
   }
 
+
+
   void
   Engine::advance_to(const double t_end)
   {
@@ -289,6 +297,8 @@ namespace rockdda::dda3d
         step();
       }
   }
+
+
 
   void
   Engine::settle(const unsigned int                             n,
@@ -328,6 +338,8 @@ namespace rockdda::dda3d
     n_steps       = 0;
     n_iterations  = 0;
   }
+
+
 
   bool
   Engine::try_step(const double h)
@@ -1089,6 +1101,8 @@ namespace rockdda::dda3d
         }
     return true;
   }
+
+
 
   Energy
   Engine::energy() const
