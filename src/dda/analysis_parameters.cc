@@ -362,20 +362,13 @@ namespace rockdda::dda
                 "0",
                 Integer(0, 1024),
                 "-",
-                dim == 2
-                  ? "Threads of the run (a TBB task arena): contact "
-                    "detection, contact kinematics and state checks run in "
-                    "chunks on all of them; the block-dilu CG from 300 "
-                    "blocks on orders the blocks as two subdomains and "
-                    "their separator and sweeps the two in parallel (at "
-                    "most 2 threads there). 0 = one per core. Results do "
-                    "not depend on it."
-                  : "Threads of the linear solver: the block-dilu CG from "
-                    "300 blocks on orders the blocks as two subdomains and "
-                    "their separator and sweeps the two in parallel (2 "
-                    "threads if this is >= 2 or 0 on a machine with >= 2 "
-                    "cores; contact detection and kinematics are serial in "
-                    "3D). 0 = one per core. Results do not depend on it.");
+                "Threads of the run (a TBB task arena): contact "
+                "detection, contact kinematics and state checks run in "
+                "chunks on all of them (2D and 3D); the block-dilu CG from "
+                "300 blocks on orders the blocks as two subdomains and "
+                "their separator and sweeps the two in parallel (at most 2 "
+                "threads there). 0 = one per core. Results do not depend "
+                "on it.");
   }
 
 
