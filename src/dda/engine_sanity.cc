@@ -324,7 +324,10 @@ namespace rockdda::dda
         const double n = -kin.normal_stiffness * assembler.gap(c, x);
         if (ct.state == ContactState::open)
           {
-            judge(c, "compression while open", n, 0., f_hold);
+            // A held open contact: up to its penetration bound, not capped
+            // (update_factors in try_step).
+            judge(
+              c, "compression while open", n, 0., std::max(f_hold, hold[c]));
             continue;
           }
         const bool   locked = ct.state == ContactState::locked;

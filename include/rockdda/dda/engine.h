@@ -56,7 +56,10 @@ namespace rockdda::dda
     /// shear beyond the strength) is at most p_s x hold_fraction x the
     /// smaller block's size (N/m), i.e. a penetration or elastic slip of
     /// at most hold_fraction x that size, and at most 100 force tolerances
-    /// (1 % of the lighter block's weight). In static steps (dynamic 0) a
+    /// (1 % of the lighter block's weight); an open one stays open up to a
+    /// penetration of hold_fraction x that size, and at most the lighter
+    /// block's weight in force (it carries no force, so it hangs no
+    /// block). In static steps (dynamic 0) a
     /// held contact stays held in the next step (Contact::held). Holding
     /// cannot create energy.
     unsigned int hold_after    = 4;
