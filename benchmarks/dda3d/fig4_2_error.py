@@ -6,18 +6,21 @@ final displacement vector against the analytical solution (analysis type
 sliding3d at dt = 1e-5 s, converged to ~1e-5), and the wall time.
 
 usage: fig4_2_error.py ROCKDDA [--dt 0.01,0.005,...] [--penalty 1e7,...]
-       [--cases a,b] [--out fig4_2_error.csv]
+       [--strain-damping 0,1e-3,...] [--repeat 3] [--cases a,b]
+       [--out fig4_2_error.csv]
 
 Runs parameter-files/dda3d-fig4-2{a,b}.prm and sliding3d-fig4-2{a,b}.prm
-with the time step and penalty replaced, in a scratch folder; writes one CSV
-row per run: case, dt_s, penalty_N_per_m, ux, uy, uz, error, wall_s, steps,
-cuts.
+with the time step, penalty and strain damping (Kelvin-Voigt viscous time
+eta, s) replaced, in a scratch folder; writes one CSV row per run: case, dt_s,
+penalty_N_per_m, strain_damping_s, ux, uy, uz, error, wall_s (the median of
+--repeat runs: the machine is shared), steps, cuts.
 """
 import argparse
 import csv
 import math
 import os
 import re
+import statistics
 import subprocess
 import tempfile
 import time
@@ -38,6 +41,7 @@ def summary(folder):
 
 
 BLOCKS = os.path.join(PRM, "dda3d-fig4-2.blocks")
+REPEAT = 1
 
 
 def run(rockdda, template, replace, work, name):
@@ -45,6 +49,9 @@ def run(rockdda, template, replace, work, name):
     for key, value in replace.items():
         text, n = re.subn(rf"(set {re.escape(key)}\s*=).*", rf"\g<1> {value}",
                           text)
+        if n == 0 and key == "Strain damping":
+            text, n = re.subn(r"(\n(\s*)set Time step\s*=.*)",
+                              rf"\g<1>\n\g<2>set {key} = {value}", text)
         assert n == 1, key
     text = re.sub(r"set Output directory\s*=.*",
                   f"set Output directory = {name}", text)
@@ -54,10 +61,13 @@ def run(rockdda, template, replace, work, name):
                   text) if "DDA 3d" in text else text
     prm = os.path.join(work, name + ".prm")
     open(prm, "w").write(text)
-    start = time.perf_counter()
-    subprocess.run([rockdda, "--quiet", prm], cwd=work, check=True,
-                   stdout=subprocess.DEVNULL)
-    return summary(os.path.join(work, name)), time.perf_counter() - start
+    walls = []
+    for _ in range(REPEAT):
+        start = time.perf_counter()
+        subprocess.run([rockdda, "--quiet", prm], cwd=work, check=True,
+                       stdout=subprocess.DEVNULL)
+        walls.append(time.perf_counter() - start)
+    return summary(os.path.join(work, name)), statistics.median(walls)
 
 
 def main():
@@ -65,37 +75,46 @@ def main():
     p.add_argument("rockdda")
     p.add_argument("--dt", default="0.01,0.005,0.002,0.001")
     p.add_argument("--penalty", default="1e7,1e8,1e9")
+    p.add_argument("--strain-damping", default="0",
+                   help="Strain damping values (s), comma-separated")
+    p.add_argument("--repeat", type=int, default=1,
+                   help="runs per setting; the wall time is their median")
     p.add_argument("--cases", default="a,b")
     p.add_argument("--out", default="fig4_2_error.csv")
     p.add_argument("--blocks", default=os.path.join(PRM, "dda3d-fig4-2.blocks"),
                    help="block file (default: Table 4-1's block)")
     p.add_argument("--settling", default="20", help="Settling steps")
     a = p.parse_args()
-    global BLOCKS
+    global BLOCKS, REPEAT
     BLOCKS = a.blocks
+    REPEAT = a.repeat
     work = tempfile.mkdtemp(prefix="dda3d-fig4-2-")
     rows = []
     for case in a.cases.split(","):
         ref, _ = run(a.rockdda, os.path.join(PRM, f"sliding3d-fig4-2{case}.prm"),
                      {"Time step": "1e-5"}, work, f"ref-{case}")
         r = [ref["final_displacement_" + c] for c in "xyz"]
-        for dt in a.dt.split(","):
-            for pen in a.penalty.split(","):
-                name = f"dda3d-{case}-{dt}-{pen}"
-                s, wall = run(a.rockdda,
-                              os.path.join(PRM, f"dda3d-fig4-2{case}.prm"),
-                              {"Time step": dt, "Contact penalty": pen,
-                               "Settling steps": a.settling},
-                              work, name)
-                u = [s["mp1_u" + c] for c in "xyz"]
-                err = math.dist(u, r) / math.hypot(*r)
-                rows.append([case, dt, pen] + [f"{x:.6f}" for x in u]
-                            + [f"{err:.3e}", f"{wall:.2f}",
-                               int(s["steps"]), int(s["time_step_cuts"])])
-                print(*rows[-1], flush=True)
+        for eta in a.strain_damping.split(","):
+            for dt in a.dt.split(","):
+                for pen in a.penalty.split(","):
+                    name = f"dda3d-{case}-{dt}-{pen}-{eta}"
+                    s, wall = run(a.rockdda,
+                                  os.path.join(PRM, f"dda3d-fig4-2{case}.prm"),
+                                  {"Time step": dt, "Contact penalty": pen,
+                                   "Settling steps": a.settling,
+                                   "Strain damping": eta},
+                                  work, name)
+                    u = [s["mp1_u" + c] for c in "xyz"]
+                    err = math.dist(u, r) / math.hypot(*r)
+                    rows.append([case, dt, pen, eta]
+                                + [f"{x:.6f}" for x in u]
+                                + [f"{err:.3e}", f"{wall:.2f}",
+                                   int(s["steps"]), int(s["time_step_cuts"])])
+                    print(*rows[-1], flush=True)
     with open(a.out, "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["case", "dt_s", "penalty_N_per_m", "ux_m", "uy_m", "uz_m",
+        w.writerow(["case", "dt_s", "penalty_N_per_m", "strain_damping_s",
+                    "ux_m", "uy_m", "uz_m",
                     "error", "wall_s", "steps", "cuts"])
         w.writerows(rows)
     print("reference (sliding3d, dt = 1e-5 s) in", work)

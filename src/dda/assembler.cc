@@ -3,6 +3,7 @@
  * Assembly of the 2D DDA equations (Shi 1988, ch. 2-4; Shi 1993).
  */
 #include <rockdda/dda/assembler.h>
+#include <rockdda/dda/strain_damping.h>
 
 #include <Eigen/Cholesky>
 
@@ -190,6 +191,7 @@ namespace rockdda::dda
     mass.resize(n);
     base_matrix.resize(n);
     base_rhs.resize(n);
+    const StrainDamping damping(params.strain_damping, dt, params.dynamic);
     for (int b = 0; b < n; ++b)
       {
         const Block         &block = system.blocks[b];
@@ -201,7 +203,8 @@ namespace rockdda::dda
         Matrix6 &K                 = base_matrix[b];
         Vector6 &F                 = base_rhs[b];
         K                          = (2. / (dt * dt)) * mass[b];
-        K.block<3, 3>(3, 3) += m.area * elasticity_matrix(mat);
+        K.block<3, 3>(3, 3)
+          += (1. + damping.factor()) * m.area * elasticity_matrix(mat);
         F = (2. / dt) * (mass[b] * (params.dynamic * block.velocity));
         F.segment<3>(3) -= m.area * block.stress;
         if (block.eigenstrain != block.applied_eigenstrain)

@@ -213,6 +213,7 @@ namespace rockdda::dda
         c.time_step              = shared.time_step;
         c.min_time_step          = prm.get_double("Minimum time step");
         c.dynamic                = shared.dynamic;
+        c.strain_damping         = shared.strain_damping;
         c.max_iterations         = shared.max_open_close;
         c.line_search            = prm.get_bool("Line search");
         c.hold_fraction          = prm.get_double("Hold fraction");
@@ -329,6 +330,7 @@ namespace rockdda::dda
                {"gravity_potential_energy", "J/m"},
                {"fixed_spring_energy", "J/m"},
                {"friction_dissipation", "J/m"},
+               {"damping_dissipation", "J/m"},
                {"load_work", "J/m"},
                {"energy_balance", "J/m"},
                {"max_vertex_step_displacement", "m"}})
@@ -362,6 +364,7 @@ namespace rockdda::dda
                                      e.potential,
                                      e.fixed,
                                      e.friction,
+                                     e.damping,
                                      e.load_work,
                                      e.balance(),
                                      r.max_displacement};

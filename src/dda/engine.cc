@@ -8,6 +8,7 @@
 #include <rockdda/dda/contact_law.h>
 #include <rockdda/dda/engine.h>
 #include <rockdda/dda/logarithmic_strain.h>
+#include <rockdda/dda/strain_damping.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
 
@@ -95,6 +96,9 @@ namespace rockdda::dda
     if (!(ctrl.dynamic >= 0. && ctrl.dynamic <= 1.))
       throw InputError("dynamic control " + num(ctrl.dynamic)
                        + "; valid: 0 <= k <= 1");
+    if (!(ctrl.strain_damping >= 0.) || !std::isfinite(ctrl.strain_damping))
+      throw InputError("strain damping " + num(ctrl.strain_damping)
+                       + " s; valid: >= 0 s");
     if (!(ctrl.law.normal_penalty > 0.)
         || !std::isfinite(ctrl.law.normal_penalty))
       throw InputError("contact penalty " + num(ctrl.law.normal_penalty)
@@ -170,6 +174,7 @@ namespace rockdda::dda
     accepted_balance    = std::numeric_limits<double>::quiet_NaN();
     friction_work       = 0.;
     load_work           = 0.;
+    damping_work        = 0.;
     dt                  = ctrl.time_step;
     last_solution.setZero();
     for (auto &b : scene.blocks)
@@ -338,6 +343,7 @@ namespace rockdda::dda
     StepParameters       par;
     par.dt                = h;
     par.dynamic           = ctrl.dynamic;
+    par.strain_damping    = ctrl.strain_damping;
     par.law               = ctrl.law;
     par.fixed_penalty     = ctrl.fixed_penalty;
     par.body_acceleration = scene.gravity;
@@ -757,7 +763,8 @@ namespace rockdda::dda
     if (!std::isfinite(accepted_balance))
       accepted_balance = energy().balance();
     const double energy_before   = accepted_balance;
-    const double friction_before = friction_work, load_before = load_work;
+    const double friction_before = friction_work, load_before = load_work,
+                 damping_before = damping_work;
     // Accepted: energy flows of the step, and joints broken by the
     // accepted states; each contact's slip rate, |s - s0| / h (its shear
     // displacement increment over the step), for the next step's friction
@@ -824,6 +831,14 @@ namespace rockdda::dda
           = block.stress + 0.5 * C * (x.segment<3>(6 * b + 3) - de);
         load_work += -assembler.moments()[b].area * sigma_mid.dot(de);
       }
+    const StrainDamping damping(ctrl.strain_damping, h, ctrl.dynamic);
+    if (damping.active())
+      for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+        if (!clamped_block[b])
+          damping_work += damping.dissipation(
+            assembler.moments()[b].area
+              * elasticity_matrix(scene.materials[scene.blocks[b].material]),
+            Eigen::Vector3d(x.segment<3>(6 * b + 3)));
     if (a_ground != 0.)
       for (std::size_t b = 0; b < scene.blocks.size(); ++b)
         load_work += -a_ground * assembler.masses()[b](0, 0)
@@ -854,6 +869,7 @@ namespace rockdda::dda
         t -= h;
         friction_work = friction_before;
         load_work     = load_before;
+        damping_work  = damping_before;
         why           = implausible;
         return false;
       }
@@ -1207,6 +1223,7 @@ namespace rockdda::dda
     e.contact   = contact_energy();
     e.potential = potential_energy();
     e.friction  = friction_work;
+    e.damping   = damping_work;
     // Fixed-point springs of the blocks that are not clamped.
     const double ug = scene.seismic.mode == SeismicInput::Mode::displacement
                         ? ground.displacement(t)

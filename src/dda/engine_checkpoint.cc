@@ -89,6 +89,7 @@ namespace rockdda::dda
     put_warm_start(w, last_solution);
     w.put(friction_work);
     w.put(load_work);
+    w.put(damping_work);
     w.put<std::uint8_t>(first_detection ? 1 : 0);
     w.put(worst_strength_ratio);
     return w.bytes;
@@ -205,6 +206,7 @@ namespace rockdda::dda
     Eigen::VectorXd     x = get_warm_start(r, 6 * s.blocks.size(), source);
     const double        friction = r.get<double>();
     const double        loads    = r.get<double>();
+    const double        damped   = r.get<double>();
     const bool          first    = r.get<std::uint8_t>() != 0;
     const double        strength = r.get<double>();
     if (!r.at_end())
@@ -232,6 +234,7 @@ namespace rockdda::dda
     last_solution        = std::move(x);
     friction_work        = friction;
     load_work            = loads;
+    damping_work         = damped;
     first_detection      = first;
     worst_strength_ratio = strength;
     accepted_balance     = std::numeric_limits<double>::quiet_NaN();

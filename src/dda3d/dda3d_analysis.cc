@@ -141,6 +141,7 @@ namespace rockdda::dda3d
         prm.leave_subsection();
         c.dt                      = shared.time_step;
         c.dynamic                 = shared.dynamic;
+        c.strain_damping          = shared.strain_damping;
         c.max_open_close          = shared.max_open_close;
         c.max_displacement_ratio  = shared.max_displacement_ratio;
         c.law.shear_ratio         = shared.shear_ratio;
@@ -219,6 +220,7 @@ namespace rockdda::dda3d
                {"contact_energy", "J"},
                {"gravity_potential_energy", "J"},
                {"friction_dissipation", "J"},
+               {"damping_dissipation", "J"},
                {"load_work", "J"},
                {"energy_balance", "J"}})
           table.add_column(n, u);
@@ -254,6 +256,7 @@ namespace rockdda::dda3d
                                   e.contact,
                                   e.potential,
                                   e.friction,
+                                  e.damping,
                                   e.load_work,
                                   e.balance()};
           if (ground)
@@ -312,6 +315,8 @@ namespace rockdda::dda3d
                "-");
         const Energy e = engine->energy();
         sm.add("kinetic_energy", e.kinetic, "J");
+        sm.add("friction_dissipation", e.friction, "J");
+        sm.add("damping_dissipation", e.damping, "J");
         sm.add("energy_balance_change", e.balance() - balance0, "J");
         sm.add("energy_created_max", created_max, "J");
         sm.add("energy_created_relative",

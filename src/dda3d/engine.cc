@@ -5,6 +5,7 @@
  * ledger (Shi 1988, 2001; doc/theory/dda3d.md).
  */
 #include <rockdda/dda/logarithmic_strain.h>
+#include <rockdda/dda/strain_damping.h>
 #include <rockdda/dda3d/engine.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
@@ -199,6 +200,9 @@ namespace rockdda::dda3d
     if (!(ctrl.dynamic >= 0. && ctrl.dynamic <= 1.))
       throw InputError("dynamic control " + std::to_string(ctrl.dynamic)
                        + "; valid: 0-1");
+    if (!(ctrl.strain_damping >= 0. && std::isfinite(ctrl.strain_damping)))
+      throw InputError("strain damping " + std::to_string(ctrl.strain_damping)
+                       + " s; valid: >= 0 s");
     if (!(ctrl.law.normal_penalty > 0.) || !(ctrl.law.shear_ratio > 0.))
       throw InputError("contact penalty and shear ratio must be > 0");
     if (!(ctrl.max_displacement_ratio > 0.))
@@ -235,15 +239,17 @@ namespace rockdda::dda3d
   {
     const BlockSystem          saved_system   = system;
     const std::vector<Contact> saved_contacts = stored;
-    const double saved_friction = friction_work, saved_load = load_work;
-    double       h    = dt_now;
-    int          cuts = 0;
+    const double saved_friction = friction_work, saved_load = load_work,
+                 saved_damping = damping_work;
+    double h                   = dt_now;
+    int    cuts                = 0;
     while (!try_step(h))
       {
         system        = saved_system;
         stored        = saved_contacts;
         friction_work = saved_friction;
         load_work     = saved_load;
+        damping_work  = saved_damping;
         h /= 3.;
         ++cuts;
         if (h < ctrl.min_dt_ratio * ctrl.dt)
@@ -335,6 +341,7 @@ namespace rockdda::dda3d
       m.initial = m.point;
     friction_work = 0.;
     load_work     = 0.;
+    damping_work  = 0.;
     n_steps       = 0;
     n_iterations  = 0;
   }
@@ -352,7 +359,8 @@ namespace rockdda::dda3d
         ag = ctrl.ground_acceleration(t + 0.5 * h);
         a -= ag;
       }
-    // Block terms (as FreeBlocks::step()).
+    // Block terms (as FreeBlocks::step()), with the strain damping.
+    const dda::StrainDamping damping(ctrl.strain_damping, h, ctrl.dynamic);
     std::vector<PolyhedronMoments> moments(n);
     std::vector<Matrix12>          K0(n);
     std::vector<Vector12>          F0(n), Fext(n);
@@ -367,7 +375,8 @@ namespace rockdda::dda3d
         size[b]               = block.polyhedron.size();
         const Matrix12 M      = mass_matrix(m, mat.density);
         K0[b]                 = (2. / (h * h)) * M;
-        K0[b].block<6, 6>(6, 6) += m.volume * elasticity_matrix(mat);
+        K0[b].block<6, 6>(6, 6)
+          += (1. + damping.factor()) * m.volume * elasticity_matrix(mat);
         Fext[b] = Vector12::Zero();
         if (ctrl.ground_acceleration)
           Fext[b] = body_force(m, mat.density, -ag);
@@ -986,7 +995,14 @@ namespace rockdda::dda3d
 
     // Accept: energy terms of the step, contact states, geometry.
     for (std::size_t b = 0; b < n; ++b)
-      load_work += Fext[b].dot(Db[b]);
+      {
+        load_work += Fext[b].dot(Db[b]);
+        if (damping.active() && !clamped_[b])
+          damping_work += damping.dissipation(
+            moments[b].volume
+              * elasticity_matrix(system.materials[system.blocks[b].material]),
+            Vector6(Db[b].tail<6>()));
+      }
     for (std::size_t k = 0; k < contacts.size(); ++k)
       {
         auto       &c = contacts[k];
@@ -1121,6 +1137,7 @@ namespace rockdda::dda3d
       }
     e.contact   = contact_energy;
     e.friction  = friction_work;
+    e.damping   = damping_work;
     e.load_work = load_work;
     return e;
   }

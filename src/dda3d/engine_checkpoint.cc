@@ -75,6 +75,7 @@ namespace rockdda::dda3d
     w.put(friction_work);
     w.put(load_work);
     w.put(contact_energy);
+    w.put(damping_work);
     w.put<std::uint8_t>(first_detection ? 1 : 0);
     for (const int i : {stats.iterations,
                         stats.cuts,
@@ -155,6 +156,7 @@ namespace rockdda::dda3d
     const double   friction   = r.get<double>();
     const double   loads      = r.get<double>();
     const double   contact    = r.get<double>();
+    const double   damped     = r.get<double>();
     const bool     first      = r.get<std::uint8_t>() != 0;
     StepStatistics st;
     for (int *i : {&st.iterations, &st.cuts, &st.open, &st.sliding, &st.locked})
@@ -178,6 +180,7 @@ namespace rockdda::dda3d
     friction_work   = friction;
     load_work       = loads;
     contact_energy  = contact;
+    damping_work    = damped;
     first_detection = first;
     stats           = st;
     last_solution   = std::move(x);

@@ -42,6 +42,9 @@ namespace rockdda::dda
     double time_step = 1e-3;
     /// Dynamic control parameter (-), in [0, 1].
     double dynamic = 1.;
+    /// Kelvin-Voigt viscous time of the blocks' strain (s), >= 0
+    /// (dda::StrainDamping).
+    double strain_damping = 0.;
     /// State-changing open-close iterations before a cut, in [1, 100].
     unsigned int max_open_close = 12;
     /// Largest vertex displacement per step / size (-), in (0, 1].

@@ -26,6 +26,8 @@ namespace rockdda::dda
     double dt = 1e-3;
     /// Dynamic control in [0, 1]: the carried-over velocity is scaled by it.
     double dynamic = 1.;
+    /// Kelvin-Voigt viscous time of the blocks' strain (s; StrainDamping).
+    double strain_damping = 0.;
     /// Body acceleration during the step (m/s^2): gravity and seismic
     /// inertial load.
     geometry::Point body_acceleration = geometry::Point::Zero();

@@ -33,6 +33,9 @@ namespace rockdda::dda
     double min_time_step = 0.;
     /// Dynamic control parameter in [0, 1] (0 static, 1 fully dynamic).
     double dynamic = 1.;
+    /// Kelvin-Voigt viscous time of the blocks' strain (s, >= 0;
+    /// StrainDamping); 0: none.
+    double strain_damping = 0.;
     /// Open-close iterations that change contact states before the step
     /// is cut; iterations that only update friction forces may add as many
     /// again (the states and the friction forces must both converge).
@@ -139,12 +142,14 @@ namespace rockdda::dda
     /// Springs of the fixed points of blocks that are not clamped.
     double fixed    = 0.;
     double friction = 0., load_work = 0.;
-    /// kinetic + strain + contact + potential + fixed + friction -
-    /// load_work.
+    /// Dissipated by the strain damping (StrainDamping).
+    double damping = 0.;
+    /// kinetic + strain + contact + potential + fixed + friction + damping
+    /// - load_work.
     double
     balance() const
     {
-      return kinetic + strain + contact + potential + fixed + friction
+      return kinetic + strain + contact + potential + fixed + friction + damping
              - load_work;
     }
     /// Sum of the magnitudes of the terms (J/m): the energy in play.
@@ -153,7 +158,7 @@ namespace rockdda::dda
     {
       return std::abs(kinetic) + std::abs(strain) + std::abs(contact)
              + std::abs(potential) + std::abs(fixed) + std::abs(friction)
-             + std::abs(load_work);
+             + std::abs(damping) + std::abs(load_work);
     }
   };
 
@@ -531,6 +536,8 @@ namespace rockdda::dda
     /// Energy flows since t = 0 (J/m): dissipated by friction, work of
     /// the loads.
     double friction_work = 0., load_work = 0.;
+    /// Energy dissipated by the strain damping (J/m).
+    double damping_work = 0.;
     /// Fastest motion the scene can produce apart from gravity (m/s): the
     /// initial block speeds and the largest ground velocity of the record.
     double speed_bound = 0.;

@@ -149,6 +149,10 @@ namespace rockdda::dda3d
     double dt = 1e-3;
     /// Dynamic control parameter (-): 1 dynamic, 0 static.
     double dynamic = 1.;
+    /// Kelvin-Voigt viscous time of the blocks' strain (s, >= 0;
+    /// dda::StrainDamping): a strain mode of angular frequency omega gets
+    /// the damping ratio eta omega / 2; rigid motions are not damped. 0: none.
+    double strain_damping = 0.;
     /// Normal penalty and shear ratio (dda::ContactLaw).
     ContactLaw law;
     /// Penalty of fixed points (N/m); 0: 10 x the normal penalty. Blocks
@@ -189,13 +193,16 @@ namespace rockdda::dda3d
   {
     double kinetic = 0., strain = 0., contact = 0., potential = 0.,
            friction = 0., load_work = 0.;
+    /// Energy dissipated by the strain damping (J; dda::StrainDamping).
+    double damping = 0.;
 
-    /// kinetic + strain + contact + potential + friction - load work:
-    /// constant in exact dynamics; Shi's scheme may only lose energy.
+    /// kinetic + strain + contact + potential + friction + damping - load
+    /// work: constant in exact dynamics; Shi's scheme may only lose energy.
     double
     balance() const
     {
-      return kinetic + strain + contact + potential + friction - load_work;
+      return kinetic + strain + contact + potential + friction + damping
+             - load_work;
     }
 
     /// Sum of the magnitudes of the terms (J): the energy in play.
@@ -203,7 +210,8 @@ namespace rockdda::dda3d
     scale() const
     {
       return std::abs(kinetic) + std::abs(strain) + std::abs(contact)
-             + std::abs(potential) + std::abs(friction) + std::abs(load_work);
+             + std::abs(potential) + std::abs(friction) + std::abs(damping)
+             + std::abs(load_work);
     }
   };
 
@@ -337,8 +345,10 @@ namespace rockdda::dda3d
     std::vector<char>    clamped_;
     std::vector<Contact> stored;
     bool                 first_detection = true;
-    double         friction_work = 0., load_work = 0., contact_energy = 0.;
-    StepStatistics stats;
+    double friction_work = 0., load_work = 0., contact_energy = 0.;
+    /// Energy dissipated by the strain damping (J).
+    double                       damping_work = 0.;
+    StepStatistics               stats;
     dda::BlockSparseMatrixOf<12> matrix;
     dda::LinearSolverOf<12>      solver;
     /// The displacement increments of the last accepted step (12 per
