@@ -17,8 +17,9 @@ namespace rockdda::dda
 {
   namespace
   {
-    constexpr char          magic[]        = "rockdda DDA checkpoint";
-    constexpr std::uint32_t format_version = 7;
+    constexpr char magic[] = "rockdda DDA checkpoint";
+    // 8: the strain damping's dissipated energy.
+    constexpr std::uint32_t format_version = 8;
     using io::BinaryReader;
     using io::BinaryWriter;
 

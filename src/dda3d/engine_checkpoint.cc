@@ -17,8 +17,9 @@ namespace rockdda::dda3d
 {
   namespace
   {
-    constexpr char          magic[]        = "rockdda DDA 3d checkpoint";
-    constexpr std::uint32_t format_version = 2;
+    constexpr char magic[] = "rockdda DDA 3d checkpoint";
+    // 3: the strain damping's dissipated energy.
+    constexpr std::uint32_t format_version = 3;
     /// Bytes of one contact in the file (a larger count is a damaged file).
     constexpr std::size_t contact_bytes = 217;
     using io::BinaryReader;
