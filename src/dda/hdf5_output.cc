@@ -5,11 +5,15 @@
  */
 #include <rockdda/dda/hdf5_output.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <functional>
 #include <hdf5.h>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+#include <unistd.h>
 
 namespace rockdda::dda
 {
@@ -51,21 +55,72 @@ namespace rockdda::dda
         throw std::runtime_error("HDF5: cannot " + what);
     }
 
+    /// The ranks of a collective write (one, without MPI initialised).
+    struct Ranks
+    {
+      Ranks(const MPI_Comm comm, const std::string &path)
+          : comm(comm)
+      {
+        int initialised = 0;
+        MPI_Initialized(&initialised);
+        if (initialised)
+          {
+            MPI_Comm_rank(comm, &rank);
+            MPI_Comm_size(comm, &size);
+          }
+        else if (comm != MPI_COMM_SELF)
+          throw std::runtime_error("HDF5: cannot write " + path
+                                   + " over MPI ranks: MPI is not initialised");
+      }
+
+      /// Elementwise maximum of @p v over the ranks.
+      void
+      max(std::vector<std::uint64_t> &v) const
+      {
+        if (size > 1)
+          MPI_Allreduce(MPI_IN_PLACE,
+                        v.data(),
+                        static_cast<int>(v.size()),
+                        MPI_UINT64_T,
+                        MPI_MAX,
+                        comm);
+      }
+
+      MPI_Comm comm;
+      int      rank = 0, size = 1;
+    };
+
+    /// Where one rank's rows go in a dataset of all ranks' rows.
+    struct Rows
+    {
+      hsize_t local = 0, offset = 0, total = 0;
+    };
+
+    /**
+     * Create dataset @p name of @p rows.total rows of @p columns values (0:
+     * a 1-D dataset) and write this rank's @p rows.local rows @p values at
+     * row @p rows.offset with the transfer list @p transfer (collective:
+     * every rank calls it, with or without rows).
+     */
     template <typename T>
     void
-    write_dataset(const hid_t                 group,
-                  const std::string          &name,
-                  const hid_t                 type,
-                  const std::vector<T>       &values,
-                  const std::vector<hsize_t> &dims,
-                  const std::string          &where)
+    write_rows(const hid_t        group,
+               const std::string &name,
+               const hid_t        type,
+               const T           *values,
+               const Rows        &rows,
+               const hsize_t      columns,
+               const hid_t        transfer,
+               const std::string &where)
     {
-      const Handle space(H5Screate_simple(static_cast<int>(dims.size()),
-                                          dims.data(),
-                                          nullptr),
+      const int     rank     = columns > 0 ? 2 : 1;
+      const hsize_t dims[2]  = {rows.total, columns};
+      const hsize_t start[2] = {rows.offset, 0};
+      const hsize_t count[2] = {rows.local, columns};
+      const Handle  space(H5Screate_simple(rank, dims, nullptr),
                          H5Sclose,
                          "create a dataspace for " + where + name);
-      const Handle set(H5Dcreate2(group,
+      const Handle  set(H5Dcreate2(group,
                                   name.c_str(),
                                   type,
                                   space,
@@ -74,9 +129,28 @@ namespace rockdda::dda
                                   H5P_DEFAULT),
                        H5Dclose,
                        "create dataset " + where + name);
-      if (!values.empty())
-        check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-              "write dataset " + where + name);
+      if (rows.total == 0)
+        return;
+      // A rank without rows selects nothing in the file and in a one-row
+      // memory space, and still takes part in the collective write.
+      const hsize_t one[2] = {std::max<hsize_t>(rows.local, 1), columns};
+      const Handle  memory(H5Screate_simple(rank, one, nullptr),
+                          H5Sclose,
+                          "create a memory dataspace for " + where + name);
+      if (rows.local > 0)
+        check(H5Sselect_hyperslab(
+                space, H5S_SELECT_SET, start, nullptr, count, nullptr),
+              "select rows of " + where + name);
+      else
+        {
+          check(H5Sselect_none(space), "select rows of " + where + name);
+          check(H5Sselect_none(memory), "select rows of " + where + name);
+        }
+      const T none[6] = {};
+      check(
+        H5Dwrite(
+          set, type, memory, space, transfer, rows.local > 0 ? values : none),
+        "write dataset " + where + name);
     }
 
     /// Dimensions of a dataset.
@@ -116,13 +190,94 @@ namespace rockdda::dda
       return values;
     }
 
-    void
+    /**
+     * Check that every rank passes the same fields for group @p name and
+     * that its arrays have consistent sizes (every rank throws otherwise,
+     * before any collective HDF5 call), and return the group's layout over
+     * all ranks and this rank's first cell and point.
+     */
+    std::pair<SnapshotLayout, std::pair<std::uint64_t, std::uint64_t>>
+    agree(const Ranks &ranks, const Snapshot &s, const std::string &where)
+    {
+      std::string signature = s.lines ? "lines;" : "polygons;";
+      bool        consistent
+        = s.xyz.size() % 3 == 0
+          && (s.offsets.empty()
+              || s.offsets.back() == static_cast<std::int64_t>(s.n_points()));
+      for (const auto &f : s.fields)
+        {
+          signature += f.name + ":" + std::to_string(f.components) + ";";
+          consistent
+            = consistent && f.components > 0
+              && (f.integer.empty() || f.real.empty())
+              && f.size() == s.n_cells()
+              && (f.integer.empty() ? f.real.size() : f.integer.size())
+                   == s.n_cells() * static_cast<std::size_t>(f.components);
+        }
+      const std::uint64_t hash = std::hash<std::string>()(signature);
+      // Maxima of: hash and its complement (equal hashes on every rank),
+      // inconsistency, and per field whether it holds integers and reals.
+      std::vector<std::uint64_t> flags = {hash, ~hash, consistent ? 0u : 1u};
+      for (const auto &f : s.fields)
+        {
+          flags.push_back(f.integer.empty() ? 0 : 1);
+          flags.push_back(f.real.empty() ? 0 : 1);
+        }
+      if (ranks.size > 1)
+        {
+          std::vector<std::uint64_t> length = {flags.size(), ~flags.size()};
+          ranks.max(length);
+          if (length[0] != ~length[1])
+            throw std::runtime_error("HDF5: the MPI ranks write different "
+                                     "fields into "
+                                     + where);
+        }
+      ranks.max(flags);
+      if (flags[0] != ~flags[1])
+        throw std::runtime_error("HDF5: the MPI ranks write different fields "
+                                 "(names or components) into "
+                                 + where);
+      if (flags[2] != 0)
+        throw std::runtime_error(
+          "HDF5: inconsistent snapshot for " + where
+          + " on some rank (3 coordinates per point, the last offset equal to "
+            "the number of points, one value per cell and component)");
+      SnapshotLayout layout;
+      for (std::size_t k = 0; k < s.fields.size(); ++k)
+        {
+          if (flags[3 + 2 * k] != 0 && flags[4 + 2 * k] != 0)
+            throw std::runtime_error("HDF5: field " + s.fields[k].name + " of "
+                                     + where
+                                     + " is integer on some MPI ranks and "
+                                       "real on others");
+          layout.integer.push_back(flags[3 + 2 * k] != 0);
+        }
+      // First cell and point of this rank, and the totals.
+      std::uint64_t local[2] = {s.n_cells(), s.n_points()};
+      std::uint64_t first[2] = {0, 0}, total[2] = {local[0], local[1]};
+      if (ranks.size > 1)
+        {
+          MPI_Exscan(local, first, 2, MPI_UINT64_T, MPI_SUM, ranks.comm);
+          if (ranks.rank == 0)
+            first[0] = first[1] = 0;
+          MPI_Allreduce(local, total, 2, MPI_UINT64_T, MPI_SUM, ranks.comm);
+        }
+      layout.cells  = total[0];
+      layout.points = total[1];
+      return {layout, {first[0], first[1]}};
+    }
+
+    SnapshotLayout
     write_group(const hid_t        file,
                 const std::string &name,
                 const Snapshot    &s,
-                const std::string &path)
+                const std::string &path,
+                const Ranks       &ranks,
+                const hid_t        transfer)
     {
-      const std::string where = path + ":/" + name + "/";
+      const std::string where    = path + ":/" + name + "/";
+      const auto [layout, first] = agree(ranks, s, where);
+      const auto [cell0, point0] = first;
       // The fields are listed in the order written (read_snapshot_hdf5).
       const Handle order(H5Pcreate(H5P_GROUP_CREATE),
                          H5Pclose,
@@ -136,20 +291,48 @@ namespace rockdda::dda
         H5Gclose,
         "create group " + where);
       const hsize_t n = s.n_cells();
-      write_dataset(
-        group, "points", H5T_NATIVE_DOUBLE, s.xyz, {s.n_points(), 3}, where);
-      write_dataset(group, "offsets", H5T_NATIVE_INT64, s.offsets, {n}, where);
+      const Rows    cells{n, cell0, layout.cells};
+      write_rows(group,
+                 "points",
+                 H5T_NATIVE_DOUBLE,
+                 s.xyz.data(),
+                 Rows{s.n_points(), point0, layout.points},
+                 3,
+                 transfer,
+                 where);
+      // Point indices are global: shifted by the points of lower ranks.
+      const auto                shift = static_cast<std::int64_t>(point0);
+      std::vector<std::int64_t> offsets(s.offsets);
+      for (auto &o : offsets)
+        o += shift;
+      write_rows(group,
+                 "offsets",
+                 H5T_NATIVE_INT64,
+                 offsets.data(),
+                 cells,
+                 0,
+                 transfer,
+                 where);
+      offsets = {};
       std::vector<std::int64_t> topology;
       if (s.lines)
         {
           topology.resize(s.n_points());
           for (std::size_t k = 0; k < topology.size(); ++k)
-            topology[k] = static_cast<std::int64_t>(k);
-          write_dataset(
-            group, "topology", H5T_NATIVE_INT64, topology, {n, 2}, where);
+            topology[k] = shift + static_cast<std::int64_t>(k);
+          write_rows(group,
+                     "topology",
+                     H5T_NATIVE_INT64,
+                     topology.data(),
+                     cells,
+                     2,
+                     transfer,
+                     where);
         }
       else
         {
+          // Per cell (3, number of points, the point indices): 2 cells +
+          // points values before this rank's.
           topology.reserve(2 * n + s.n_points());
           std::int64_t begin = 0;
           for (const auto end : s.offsets)
@@ -157,41 +340,72 @@ namespace rockdda::dda
               topology.push_back(3); // XDMF polygon
               topology.push_back(end - begin);
               for (std::int64_t k = begin; k < end; ++k)
-                topology.push_back(k);
+                topology.push_back(shift + k);
               begin = end;
             }
-          write_dataset(group,
-                        "topology",
-                        H5T_NATIVE_INT64,
-                        topology,
-                        {topology.size()},
-                        where);
+          write_rows(group,
+                     "topology",
+                     H5T_NATIVE_INT64,
+                     topology.data(),
+                     Rows{topology.size(),
+                          2 * cell0 + point0,
+                          2 * layout.cells + layout.points},
+                     0,
+                     transfer,
+                     where);
         }
-      for (const auto &f : s.fields)
+      topology = {};
+      for (std::size_t k = 0; k < s.fields.size(); ++k)
         {
-          std::vector<hsize_t> dims = {n};
-          if (f.components > 1)
-            dims.push_back(static_cast<hsize_t>(f.components));
-          if (f.integer.empty())
-            write_dataset(
-              group, f.name, H5T_NATIVE_DOUBLE, f.real, dims, where);
+          const auto   &f = s.fields[k];
+          const hsize_t columns
+            = f.components > 1 ? static_cast<hsize_t>(f.components) : 0;
+          if (layout.integer[k])
+            write_rows(group,
+                       f.name,
+                       H5T_NATIVE_INT32,
+                       f.integer.data(),
+                       cells,
+                       columns,
+                       transfer,
+                       where);
           else
-            write_dataset(
-              group, f.name, H5T_NATIVE_INT32, f.integer, dims, where);
+            write_rows(group,
+                       f.name,
+                       H5T_NATIVE_DOUBLE,
+                       f.real.data(),
+                       cells,
+                       columns,
+                       transfer,
+                       where);
         }
+      return layout;
+    }
+
+    /// The layout of a snapshot held by one process (as read back).
+    SnapshotLayout
+    layout_of(const Snapshot &s)
+    {
+      SnapshotLayout layout;
+      layout.cells  = s.n_cells();
+      layout.points = s.n_points();
+      for (const auto &f : s.fields)
+        layout.integer.push_back(!f.integer.empty());
+      return layout;
     }
 
     /// The XDMF <Grid> of one group of one snapshot.
     std::string
-    grid(const double       time,
-         const std::string &file,
-         const std::string &group,
-         const Snapshot    &s)
+    grid(const double          time,
+         const std::string    &file,
+         const std::string    &group,
+         const Snapshot       &s,
+         const SnapshotLayout &layout)
     {
       const std::string  h5 = file + ":/" + group + "/";
       std::ostringstream x;
       x << std::setprecision(12);
-      const std::size_t n = s.n_cells();
+      const std::uint64_t n = layout.cells, n_points = layout.points;
       x << "   <Grid Name=\"" << group << "\" GridType=\"Uniform\">\n"
         << "    <Time Value=\"" << time << "\"/>\n";
       if (s.lines)
@@ -202,26 +416,27 @@ namespace rockdda::dda
           << "topology</DataItem>\n    </Topology>\n";
       else
         x << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << n
-          << "\">\n     <DataItem Dimensions=\"" << 2 * n + s.n_points()
+          << "\">\n     <DataItem Dimensions=\"" << 2 * n + n_points
           << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << h5
           << "topology</DataItem>\n    </Topology>\n";
       x << "    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\""
-        << s.n_points()
+        << n_points
         << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5
         << "points</DataItem>\n    </Geometry>\n";
-      for (const auto &f : s.fields)
+      for (std::size_t k = 0; k < s.fields.size(); ++k)
         {
-          const char *kind = f.components == 1   ? "Scalar"
-                             : f.components == 3 ? "Vector"
-                                                 : "Matrix";
+          const auto &f       = s.fields[k];
+          const bool  integer = layout.integer[k];
+          const char *kind    = f.components == 1   ? "Scalar"
+                                : f.components == 3 ? "Vector"
+                                                    : "Matrix";
           x << "    <Attribute Name=\"" << f.name << "\" AttributeType=\""
             << kind << "\" Center=\"Cell\">\n     <DataItem Dimensions=\"" << n;
           if (f.components > 1)
             x << " " << f.components;
-          x << "\" NumberType=\"" << (f.integer.empty() ? "Float" : "Int")
-            << "\" Precision=\"" << (f.integer.empty() ? 8 : 4)
-            << "\" Format=\"HDF\">" << h5 << f.name
-            << "</DataItem>\n    </Attribute>\n";
+          x << "\" NumberType=\"" << (integer ? "Int" : "Float")
+            << "\" Precision=\"" << (integer ? 4 : 8) << "\" Format=\"HDF\">"
+            << h5 << f.name << "</DataItem>\n    </Attribute>\n";
         }
       x << "   </Grid>\n";
       return x.str();
@@ -244,31 +459,88 @@ namespace rockdda::dda
 
 
 
-  void
+  std::pair<SnapshotLayout, SnapshotLayout>
   write_snapshot_hdf5(const std::string &path,
                       const double       time,
                       const Snapshot    &blocks,
-                      const Snapshot    &contacts)
+                      const Snapshot    &contacts,
+                      const MPI_Comm     comm)
   {
-    const Handle file(
-      H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
-      H5Fclose,
-      "create " + path);
-    {
-      const Handle space(H5Screate(H5S_SCALAR),
-                         H5Sclose,
-                         "create a dataspace in " + path);
-      const Handle attribute(
-        H5Acreate2(
-          file, "time", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT),
-        H5Aclose,
-        "create attribute time in " + path);
-      check(H5Awrite(attribute, H5T_NATIVE_DOUBLE, &time),
-            "write attribute time in " + path);
-    }
-    write_group(file, "blocks", blocks, path);
-    write_group(file, "contacts", contacts, path);
-    check(H5Fflush(file, H5F_SCOPE_LOCAL), "flush " + path);
+    const Ranks ranks(comm, path);
+    // One temporary name on every rank: rank 0's process id.
+    long pid = static_cast<long>(::getpid());
+    if (ranks.size > 1)
+      MPI_Bcast(&pid, 1, MPI_LONG, 0, comm);
+    const std::string tmp = path + ".tmp." + std::to_string(pid);
+    std::pair<SnapshotLayout, SnapshotLayout> layouts;
+    try
+      {
+        const Handle access(H5Pcreate(H5P_FILE_ACCESS),
+                            H5Pclose,
+                            "create a file access list for " + path);
+        const Handle transfer(H5Pcreate(H5P_DATASET_XFER),
+                              H5Pclose,
+                              "create a transfer list for " + path);
+        if (ranks.size > 1)
+          {
+#ifdef H5_HAVE_PARALLEL
+            check(H5Pset_fapl_mpio(access, comm, MPI_INFO_NULL),
+                  "select MPI-IO for " + path);
+            check(H5Pset_dxpl_mpio(transfer, H5FD_MPIO_COLLECTIVE),
+                  "select collective transfers for " + path);
+#else
+            throw std::runtime_error(
+              "HDF5: cannot write " + path
+              + " from several MPI ranks: the HDF5 library is serial");
+#endif
+          }
+        const Handle file(
+          H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access),
+          H5Fclose,
+          "create " + tmp);
+        {
+          const Handle space(H5Screate(H5S_SCALAR),
+                             H5Sclose,
+                             "create a dataspace in " + path);
+          const Handle attribute(
+            H5Acreate2(
+              file, "time", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT),
+            H5Aclose,
+            "create attribute time in " + path);
+          check(H5Awrite(attribute, H5T_NATIVE_DOUBLE, &time),
+                "write attribute time in " + path);
+        }
+        layouts.first
+          = write_group(file, "blocks", blocks, path, ranks, transfer);
+        layouts.second
+          = write_group(file, "contacts", contacts, path, ranks, transfer);
+        check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + tmp);
+      }
+    catch (...)
+      {
+        if (ranks.rank == 0)
+          std::remove(tmp.c_str());
+        throw;
+      }
+    // Every rank has closed the file: rank 0 renames it into place and
+    // tells the others whether it could.
+    int renamed = 1;
+    if (ranks.size > 1)
+      MPI_Barrier(comm);
+    std::error_code ec;
+    if (ranks.rank == 0)
+      {
+        std::filesystem::rename(tmp, path, ec);
+        renamed = ec ? 0 : 1;
+        if (ec)
+          std::remove(tmp.c_str());
+      }
+    if (ranks.size > 1)
+      MPI_Bcast(&renamed, 1, MPI_INT, 0, comm);
+    if (renamed == 0)
+      throw std::runtime_error("cannot rename " + tmp + " to " + path
+                               + (ec ? ": " + ec.message() : std::string()));
+    return layouts;
   }
 
 
@@ -345,8 +617,9 @@ namespace rockdda::dda
 
 
 
-  Hdf5Series::Hdf5Series(const io::OutputDirectory &output)
+  Hdf5Series::Hdf5Series(const io::OutputDirectory &output, const MPI_Comm comm)
       : output(output)
+      , comm(comm)
   {}
 
 
@@ -358,11 +631,18 @@ namespace rockdda::dda
   {
     char name[64];
     std::snprintf(name, sizeof(name), "snapshot-%05zu.h5", entries.size());
-    output.write_with(name, [&](const std::string &path) {
-      write_snapshot_hdf5(path, time, blocks, contacts);
-    });
+    // Collective over several ranks; on one, only if the folder is ours.
+    int ranks = 1;
+    if (comm != MPI_COMM_SELF)
+      MPI_Comm_size(comm, &ranks);
+    std::pair<SnapshotLayout, SnapshotLayout> layouts{layout_of(blocks),
+                                                      layout_of(contacts)};
+    output.own(name);
+    if (ranks > 1 || output.writes())
+      layouts
+        = write_snapshot_hdf5(output.file(name), time, blocks, contacts, comm);
     entries.emplace_back(time, name);
-    add_grids(time, name, blocks, contacts);
+    add_grids(time, name, blocks, contacts, layouts);
     write_indices();
     return name;
   }
@@ -381,11 +661,14 @@ namespace rockdda::dda
           throw std::runtime_error(
             "the checkpoint's snapshot series is not HDF5 (" + name
             + "): resume with the Snapshot format it was written with");
-        const std::string path = output.file(name);
+        const std::string path     = output.file(name);
+        const Snapshot    blocks   = read_snapshot_hdf5(path, "blocks");
+        const Snapshot    contacts = read_snapshot_hdf5(path, "contacts");
         add_grids(time,
                   name,
-                  read_snapshot_hdf5(path, "blocks"),
-                  read_snapshot_hdf5(path, "contacts"));
+                  blocks,
+                  contacts,
+                  {layout_of(blocks), layout_of(contacts)});
         entries.emplace_back(time, name);
       }
     write_indices();
@@ -394,13 +677,16 @@ namespace rockdda::dda
 
 
   void
-  Hdf5Series::add_grids(const double       time,
-                        const std::string &file,
-                        const Snapshot    &blocks,
-                        const Snapshot    &contacts)
+  Hdf5Series::add_grids(
+    const double                                     time,
+    const std::string                               &file,
+    const Snapshot                                  &blocks,
+    const Snapshot                                  &contacts,
+    const std::pair<SnapshotLayout, SnapshotLayout> &layouts)
   {
-    block_grids.push_back(grid(time, file, "blocks", blocks));
-    contact_grids.push_back(grid(time, file, "contacts", contacts));
+    block_grids.push_back(grid(time, file, "blocks", blocks, layouts.first));
+    contact_grids.push_back(
+      grid(time, file, "contacts", contacts, layouts.second));
   }
 
 

@@ -15,6 +15,13 @@
  * `contacts.xdmf` list the snapshots as temporal collections; a 6-component
  * field (stress) is an XDMF "Matrix" attribute in the order XX YY ZZ XY YZ
  * XZ.
+ *
+ * Under MPI the snapshot is written collectively (MPI-IO, collective
+ * transfers): each rank passes the cells it owns and writes them as
+ * hyperslabs of the same datasets, after the cells of the lower ranks
+ * (offsets from an exclusive scan of the counts), so the file has the same
+ * layout as one written by one process; point indices in `topology` and
+ * `offsets` are global. A serial write is the one-rank case.
  */
 #ifndef ROCKDDA_DDA_HDF5_OUTPUT_H
 #define ROCKDDA_DDA_HDF5_OUTPUT_H
@@ -22,18 +29,38 @@
 #include <rockdda/dda/snapshot.h>
 #include <rockdda/io/output.h>
 
+#include <cstdint>
+#include <mpi.h>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace rockdda::dda
 {
-  /// Write @p blocks and @p contacts at @p time into the HDF5 file @p path.
-  void
+  /// What one group of a snapshot file holds over all ranks: its numbers
+  /// of cells and points, and which fields are integer (in field order).
+  struct SnapshotLayout
+  {
+    std::uint64_t     cells = 0, points = 0;
+    std::vector<bool> integer;
+  };
+
+  /**
+   * Write @p blocks and @p contacts at @p time into the HDF5 file @p path,
+   * atomically (a temporary file in the same folder, renamed by rank 0 once
+   * every rank has closed it). Collective over @p comm: each rank passes
+   * the cells it owns (possibly none; the same fields on every rank, else
+   * every rank throws); the file holds the cells of rank 0, then rank 1,
+   * ... Returns the layouts of /blocks and /contacts. Without MPI
+   * initialised, @p comm must be MPI_COMM_SELF. Throws std::runtime_error
+   * naming the file.
+   */
+  std::pair<SnapshotLayout, SnapshotLayout>
   write_snapshot_hdf5(const std::string &path,
                       const double       time,
                       const Snapshot    &blocks,
-                      const Snapshot    &contacts);
+                      const Snapshot    &contacts,
+                      const MPI_Comm     comm = MPI_COMM_SELF);
 
   /// Read group @p group ("blocks" or "contacts") of a snapshot file
   /// written by write_snapshot_hdf5() (description and default fields are
@@ -47,14 +74,19 @@ namespace rockdda::dda
 
   /**
    * A series of HDF5 snapshots and its two XDMF indices in an output
-   * folder. Each write() adds one file and rewrites both indices.
+   * folder. Each write() adds one file and rewrites both indices. With a
+   * communicator of several ranks the snapshots are written collectively
+   * (write_snapshot_hdf5()) and the indices by the ranks whose @p output is
+   * enabled (rank 0); on one rank a disabled @p output writes nothing.
    */
   class Hdf5Series
   {
   public:
-    explicit Hdf5Series(const io::OutputDirectory &output);
+    explicit Hdf5Series(const io::OutputDirectory &output,
+                        const MPI_Comm             comm = MPI_COMM_SELF);
 
-    /// Write the next snapshot; returns its file name.
+    /// Write the next snapshot (collective over the series' communicator:
+    /// each rank passes the cells it owns); returns its file name.
     std::string
     write(const double time, const Snapshot &blocks, const Snapshot &contacts);
 
@@ -73,14 +105,16 @@ namespace rockdda::dda
   private:
     /// The XDMF <Grid> of each snapshot, for blocks and contacts.
     void
-    add_grids(const double       time,
-              const std::string &file,
-              const Snapshot    &blocks,
-              const Snapshot    &contacts);
+    add_grids(const double                                     time,
+              const std::string                               &file,
+              const Snapshot                                  &blocks,
+              const Snapshot                                  &contacts,
+              const std::pair<SnapshotLayout, SnapshotLayout> &layouts);
     void
     write_indices() const;
 
     const io::OutputDirectory                  &output;
+    const MPI_Comm                              comm;
     std::vector<std::pair<double, std::string>> entries;
     std::vector<std::string>                    block_grids, contact_grids;
   };

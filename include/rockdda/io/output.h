@@ -42,6 +42,13 @@ namespace rockdda::io
       return folder;
     }
 
+    /// Whether this process writes into the folder (see the constructor).
+    bool
+    writes() const
+    {
+      return enabled;
+    }
+
     /// Full path of @p name inside the folder.
     std::string
     file(const std::string &name) const;
