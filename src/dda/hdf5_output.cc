@@ -514,7 +514,6 @@ namespace rockdda::dda
           = write_group(file, "blocks", blocks, path, ranks, transfer);
         layouts.second
           = write_group(file, "contacts", contacts, path, ranks, transfer);
-        check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + tmp);
       }
     catch (...)
       {
