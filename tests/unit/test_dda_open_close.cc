@@ -8,6 +8,7 @@
  * iteration's accuracy knobs (line search, inexact solves) must not change
  * what is accepted beyond their stated tolerances.
  */
+#include <rockdda/dda/block_matrices.h>
 #include <rockdda/dda/engine.h>
 
 #include <gtest/gtest.h>
@@ -126,6 +127,73 @@ TEST_P(DdaOpenCloseTolerance, NoTensionAndNoEnergyCreatedOnAWallFromRest)
 INSTANTIATE_TEST_SUITE_P(DefaultAndLoose,
                          DdaOpenCloseTolerance,
                          ::testing::Values(1e-4, 1e-2));
+
+
+
+TEST(DdaOpenClose, HeldOpenContactsPenetrateNoDeeperThanTheirBound)
+{
+  // A contact that cycles in the open-close iteration is held: an open one
+  // stays open while its penetration is at most hold_fraction x the smaller
+  // block's size and its penetration force at most the lighter block's
+  // weight (Controls::hold_after; it carries no force, so it hangs no
+  // block). Check that bound on the geometry itself: after every accepted
+  // step of a 12 x 16 wall released from rest, no vertex of a contact
+  // accepted as open lies inside the other block's edge by more than it
+  // (plus round-off of 1e-12 of the block's size).
+  const BlockSystem wall = running_bond_wall(12, 16);
+  const Controls    c    = wall_controls();
+  DdaSystem         dda(wall, c);
+  const double      k_n   = c.law.normal_penalty;
+  double            worst = 0., deepest = 0.;
+  unsigned          penetrating = 0;
+  for (int k = 0; k < 150; ++k)
+    {
+      dda.step();
+      const auto &blocks = dda.system().blocks;
+      for (const auto &ct : dda.contacts())
+        {
+          if (ct.state != ContactState::open)
+            continue;
+          const auto &g  = ct.geometry;
+          const auto &pi = blocks[g.block_i].polygon;
+          const auto &pj = blocks[g.block_j].polygon;
+          const Point p  = pi.vertices[g.vertex];
+          const Point a  = pj.vertices[g.edge];
+          const Point b
+            = pj.vertices[(g.edge + 1) % static_cast<int>(pj.vertices.size())];
+          const Point  e = b - a;
+          const double t = (p - a).dot(e) / e.squaredNorm();
+          if (t < 0. || t > 1.)
+            continue;
+          // Counter-clockwise polygons: inside is to the left of a -> b.
+          const double depth
+            = (e.x() * (p - a).y() - e.y() * (p - a).x()) / e.norm();
+          if (depth <= 0.)
+            continue;
+          const double size = std::min(block_size(pi), block_size(pj));
+          const double weight
+            = std::min(pi.area()
+                         * wall.materials[blocks[g.block_i].material].density,
+                       pj.area()
+                         * wall.materials[blocks[g.block_j].material].density)
+              * g_earth;
+          const double bound
+            = std::min(c.hold_fraction * size, weight / k_n) + 1e-12 * size;
+          ++penetrating;
+          deepest = std::max(deepest, depth);
+          worst   = std::max(worst, depth / bound);
+        }
+    }
+  std::printf("open contacts inside the other block after accepted steps: "
+              "%u contact-steps, deepest %.3e m, largest depth / bound "
+              "%.3f; %lu steps, %lu cuts\n",
+              penetrating,
+              deepest,
+              worst,
+              dda.n_steps,
+              dda.n_cuts);
+  EXPECT_LE(worst, 1.);
+}
 
 
 
