@@ -26,6 +26,11 @@ this folder):
                     each L, FMML for reference
   deformed-*.png    the deformed roof zone of FMML, DL02, DL07 (Fig. 3-8)
 
+Each model's DDA also writes WORK/NAME/dda/measurement_points.h5, the
+time series of points 1-5 in HDF5 (time; ux, uy, sigma_x, sigma_y, tau_xy
+per point: every row of its statistics.csv, i.e. every 0.01 s; layout in
+README.md), rewritten atomically at each checkpoint.
+
 Each model runs in WORK/NAME (default WORK = ./runs beside ROCKDDA's build
 folder) from a copy of ROCKDDA made once (WORK/rockdda), with checkpoints
 every 0.1 s: running the study again skips the finished models and resumes

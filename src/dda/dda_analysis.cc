@@ -197,7 +197,22 @@ namespace rockdda::dda
                     "opens as time series (large scenes: uncompressed, "
                     "4-6x faster to write than the zlib-compressed VTU "
                     "and 4-5x larger: 1.1 kB per block with its contacts). "
-                    "Same fields in both; see doc/user-guide.md.");
+                    "Same fields in both; see doc/user-guide.md. With "
+                    "'hdf5' the rows of statistics.csv are also written as "
+                    "statistics.h5 (one dataset per column, with its unit).");
+        io::declare(prm,
+                    "Measurement point file",
+                    "none",
+                    Selection("none|hdf5"),
+                    "-",
+                    "'hdf5': also write measurement_points.h5, the time "
+                    "series of the block file's measurement points (the "
+                    "rows of statistics.csv, rewritten atomically with "
+                    "it): time (rows, s), ux and uy (rows x points, m; "
+                    "displacement since t = 0), sigma_x, sigma_y, tau_xy "
+                    "(rows x points, Pa; stress of the point's block, "
+                    "tension positive) and initial_position (points x 2, "
+                    "m); see doc/user-guide.md. 'none': no such file.");
         prm.leave_subsection();
       }
 
@@ -239,12 +254,20 @@ namespace rockdda::dda
         c.solver = SolverParameters<2>::parse_parameters(prm, prm_file);
         const std::string mode = prm.get("Seismic input");
         hdf5_snapshots         = prm.get("Snapshot format") == "hdf5";
+        point_file             = prm.get("Measurement point file") == "hdf5";
         const double gravity   = shared.gravity;
         prm.leave_subsection();
 
         const std::string &path  = shared.block_file;
         BlockSystem        scene = read_block_file(path);
-        scene.gravity            = geometry::Point(0., -gravity);
+        if (point_file && scene.measurement_points.empty())
+          throw InputError(prm_file
+                           + ": key 'DDA/Measurement point file' = hdf5, but "
+                             "the block file "
+                           + path
+                           + " has no measurement points ('measure' lines); "
+                             "valid: none, or hdf5 with at least one point");
+        scene.gravity = geometry::Point(0., -gravity);
         shared.apply_friction_law(scene.joints);
         if (c.law.normal_penalty == 0.)
           c.law.normal_penalty = automatic_penalty(scene, gravity);
@@ -336,6 +359,8 @@ namespace rockdda::dda
                {"max_vertex_step_displacement", "m"}})
           table.add_column(n, u);
         const auto &mps = dda->system().measurement_points;
+        // The measurement point columns follow the columns above.
+        const std::size_t first_point_column = table.n_columns();
         for (std::size_t m = 0; m < mps.size(); ++m)
           {
             const std::string p = "mp" + std::to_string(m + 1) + "_";
@@ -404,6 +429,18 @@ namespace rockdda::dda
         };
         if (hdf5_snapshots)
           loop.on_resume = [&]() { series.restore(block_files); };
+        loop.on_statistics = [&]() {
+          if (hdf5_snapshots)
+            write_table_hdf5(context.output, "statistics.h5", table);
+          if (point_file)
+            context.output.write_with(
+              "measurement_points.h5", [&](const std::string &tmp) {
+                write_series_hdf5(tmp,
+                                  measurement_point_series(table,
+                                                           first_point_column,
+                                                           dda->system()));
+              });
+        };
         const auto step = [&](const double target) {
           last
             = dda->run_until(std::min(target, dda->time() + dda->time_step()));
@@ -479,8 +516,10 @@ namespace rockdda::dda
       /// End time, intervals, Checkpoint interval, Resume, settling steps
       /// and the fingerprint of the run's controls.
       RunSettings settings;
-      /// Snapshots as HDF5 + XDMF instead of VTU + PVD.
+      /// Snapshots as HDF5 + XDMF instead of VTU + PVD (and statistics.h5).
       bool hdf5_snapshots = false;
+      /// Write measurement_points.h5.
+      bool point_file = false;
     };
   } // namespace
 

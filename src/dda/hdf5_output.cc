@@ -382,6 +382,74 @@ namespace rockdda::dda
       return layout;
     }
 
+    /// The names of the links in @p group, in the order created (the
+    /// group tracks it).
+    std::vector<std::string>
+    names_in_order(const hid_t group, const std::string &where)
+    {
+      H5G_info_t info;
+      check(H5Gget_info(group, &info), "list " + where);
+      std::vector<std::string> names;
+      for (hsize_t k = 0; k < info.nlinks; ++k)
+        {
+          char name[256];
+          if (H5Lget_name_by_idx(group,
+                                 ".",
+                                 H5_INDEX_CRT_ORDER,
+                                 H5_ITER_INC,
+                                 k,
+                                 name,
+                                 sizeof(name),
+                                 H5P_DEFAULT)
+              < 0)
+            throw std::runtime_error("HDF5: cannot list " + where);
+          names.emplace_back(name);
+        }
+      return names;
+    }
+
+    /// Attach the string attribute @p name = @p value to @p object.
+    void
+    write_string_attribute(const hid_t        object,
+                           const std::string &name,
+                           const std::string &value,
+                           const std::string &where)
+    {
+      const Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy a string type");
+      check(H5Tset_size(type, std::max<std::size_t>(value.size(), 1)),
+            "size a string type for " + where);
+      const Handle space(H5Screate(H5S_SCALAR),
+                         H5Sclose,
+                         "create a dataspace for " + where);
+      const Handle attribute(
+        H5Acreate2(object, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
+        H5Aclose,
+        "create attribute " + name + " of " + where);
+      check(H5Awrite(attribute, type, value.c_str()),
+            "write attribute " + name + " of " + where);
+    }
+
+    /// The string attribute @p name of @p object.
+    std::string
+    read_string_attribute(const hid_t        object,
+                          const std::string &name,
+                          const std::string &where)
+    {
+      const Handle attribute(H5Aopen(object, name.c_str(), H5P_DEFAULT),
+                             H5Aclose,
+                             "open attribute " + name + " of " + where);
+      const Handle type(H5Aget_type(attribute),
+                        H5Tclose,
+                        "read the type of attribute " + name + " of " + where);
+      if (H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) > 0)
+        throw std::runtime_error("HDF5: attribute " + name + " of " + where
+                                 + " is not a fixed-length string");
+      std::string value(H5Tget_size(type), '\0');
+      check(H5Aread(attribute, type, value.data()),
+            "read attribute " + name + " of " + where);
+      return value.substr(0, value.find('\0'));
+    }
+
     /// The layout of a snapshot held by one process (as read back).
     SnapshotLayout
     layout_of(const Snapshot &s)
@@ -577,22 +645,9 @@ namespace rockdda::dda
     s.offsets
       = read_dataset<std::int64_t>(group, "offsets", H5T_NATIVE_INT64, where);
     // The fields: every other dataset, in the order written.
-    H5G_info_t info;
-    check(H5Gget_info(group, &info), "list " + where);
-    for (hsize_t k = 0; k < info.nlinks; ++k)
+    for (const std::string &n : names_in_order(group, where))
       {
-        char name[256];
-        if (H5Lget_name_by_idx(group,
-                               ".",
-                               H5_INDEX_CRT_ORDER,
-                               H5_ITER_INC,
-                               k,
-                               name,
-                               sizeof(name),
-                               H5P_DEFAULT)
-            < 0)
-          throw std::runtime_error("HDF5: cannot list " + where);
-        const std::string n = name;
+        const char *name = n.c_str();
         if (n == "points" || n == "offsets" || n == "topology")
           continue;
         SnapshotField f;
@@ -612,6 +667,160 @@ namespace rockdda::dda
         s.fields.push_back(std::move(f));
       }
     return s;
+  }
+
+
+
+  void
+  write_series_hdf5(const std::string                &path,
+                    const std::vector<SeriesDataset> &datasets)
+  {
+    // The datasets are listed in the order written (read_series_hdf5).
+    const Handle order(H5Pcreate(H5P_FILE_CREATE),
+                       H5Pclose,
+                       "create a property list for " + path);
+    check(H5Pset_link_creation_order(order,
+                                     H5P_CRT_ORDER_TRACKED
+                                       | H5P_CRT_ORDER_INDEXED),
+          "track the creation order in " + path);
+    const Handle file(
+      H5Fcreate(path.c_str(), H5F_ACC_TRUNC, order, H5P_DEFAULT),
+      H5Fclose,
+      "create " + path);
+    const std::string where = path + ":/";
+    for (const auto &d : datasets)
+      {
+        const hsize_t columns = d.components > 1 ? d.components : 0;
+        const hsize_t rows
+          = d.values.size() / std::max<std::size_t>(d.components, 1);
+        if (d.components == 0 || rows * d.components != d.values.size())
+          throw std::runtime_error("HDF5: dataset " + where + d.name + " has "
+                                   + std::to_string(d.values.size())
+                                   + " values, not a multiple of its "
+                                   + std::to_string(d.components)
+                                   + " components");
+        write_rows(file,
+                   d.name,
+                   H5T_NATIVE_DOUBLE,
+                   d.values.data(),
+                   Rows{rows, 0, rows},
+                   columns,
+                   H5P_DEFAULT,
+                   where);
+        const Handle set(H5Dopen2(file, d.name.c_str(), H5P_DEFAULT),
+                         H5Dclose,
+                         "open dataset " + where + d.name);
+        write_string_attribute(set, "unit", d.unit, where + d.name);
+      }
+  }
+
+
+
+  std::vector<SeriesDataset>
+  read_series_hdf5(const std::string &path)
+  {
+    const Handle      file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+                      H5Fclose,
+                      "open " + path);
+    const std::string where = path + ":/";
+    std::vector<SeriesDataset> datasets;
+    for (const std::string &name : names_in_order(file, where))
+      {
+        SeriesDataset d;
+        d.name   = name;
+        d.values = read_dataset<double>(
+          file, d.name, H5T_NATIVE_DOUBLE, where, &d.components);
+        const Handle set(H5Dopen2(file, name.c_str(), H5P_DEFAULT),
+                         H5Dclose,
+                         "open dataset " + where + d.name);
+        d.unit = read_string_attribute(set, "unit", where + d.name);
+        datasets.push_back(std::move(d));
+      }
+    return datasets;
+  }
+
+
+
+  void
+  write_table_hdf5(const io::OutputDirectory &output,
+                   const std::string         &name,
+                   const io::Table           &table)
+  {
+    std::vector<SeriesDataset> columns(table.n_columns());
+    for (std::size_t k = 0; k < columns.size(); ++k)
+      {
+        columns[k].name = table.column_name(k);
+        columns[k].unit = table.column_unit(k);
+        columns[k].values.reserve(table.n_rows());
+        for (std::size_t i = 0; i < table.n_rows(); ++i)
+          columns[k].values.push_back(table.row(i)[k]);
+      }
+    output.write_with(name, [&](const std::string &tmp) {
+      write_series_hdf5(tmp, columns);
+    });
+  }
+
+
+
+  io::Table
+  read_table_hdf5(const std::string &path)
+  {
+    const auto  columns = read_series_hdf5(path);
+    io::Table   table;
+    std::size_t n = columns.empty() ? 0 : columns.front().values.size();
+    for (const auto &c : columns)
+      {
+        if (c.components != 1 || c.values.size() != n)
+          throw std::runtime_error(path + ": dataset " + c.name
+                                   + " is not a column of " + std::to_string(n)
+                                   + " values");
+        table.add_column(c.name, c.unit);
+      }
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        std::vector<double> row;
+        for (const auto &c : columns)
+          row.push_back(c.values[i]);
+        table.add_row(row);
+      }
+    return table;
+  }
+
+
+
+  std::vector<SeriesDataset>
+  measurement_point_series(const io::Table   &table,
+                           const std::size_t  first_column,
+                           const BlockSystem &system)
+  {
+    const auto       &points = system.measurement_points;
+    const std::size_t n = table.n_rows(), p = points.size();
+    if (first_column + 5 * p > table.n_columns())
+      throw std::logic_error("measurement_point_series: the table has "
+                             + std::to_string(table.n_columns())
+                             + " columns, not 5 per point from "
+                             + std::to_string(first_column));
+    std::vector<SeriesDataset> sets{{"time", "s", 1, {}},
+                                    {"ux", "m", p, {}},
+                                    {"uy", "m", p, {}},
+                                    {"sigma_x", "Pa", p, {}},
+                                    {"sigma_y", "Pa", p, {}},
+                                    {"tau_xy", "Pa", p, {}}};
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        const auto &row = table.row(i);
+        sets[0].values.push_back(row[0]);
+        for (std::size_t q = 0; q < 5; ++q)
+          for (std::size_t m = 0; m < p; ++m)
+            sets[1 + q].values.push_back(row[first_column + 5 * m + q]);
+      }
+    SeriesDataset initial{"initial_position", "m", 2, {}};
+    for (const auto &m : points)
+      initial.values.insert(initial.values.end(),
+                            {m.initial.x() + system.origin.x(),
+                             m.initial.y() + system.origin.y()});
+    sets.push_back(std::move(initial));
+    return sets;
   }
 
 

@@ -261,6 +261,8 @@ namespace rockdda::io
       else if (c == '^')
         c = 'p';
     header.push_back(unit == "-" ? name : name + "_" + u);
+    names.push_back(name);
+    units.push_back(unit);
   }
 
 

@@ -160,27 +160,17 @@ namespace
 
   /// Run "dda3d" on @p prm_text in the folder @p dir (kept: its output
   /// folder "out" may hold a checkpoint); returns summary.csv's values,
-  /// @p wall the run's wall time (s).
+  /// @p wall the wall time of parsing and running (s).
   Summary
   run_dda3d_in(const std::filesystem::path &dir,
                const std::string           &prm_text,
                double                      *wall = nullptr)
   {
-    const std::string prm_file = (dir / "run.prm").string();
-    test_files::write_file(prm_file, prm_text);
     auto  analyses = make_analyses();
     auto &a        = *analyses.front();
     EXPECT_EQ(a.name(), "dda3d");
-    dealii::ParameterHandler prm;
-    a.declare_parameters(prm);
-    prm.parse_input_from_string(prm_text);
-    a.parse_parameters(prm, prm_file);
-    io::OutputDirectory out((dir / "out").string());
-    io::Log             log(false);
-    io::Summary         summary;
-    io::RunContext      context{out, log, summary, false, ""};
-    const auto          start = std::chrono::steady_clock::now();
-    a.run(context);
+    const auto        start   = std::chrono::steady_clock::now();
+    const io::Summary summary = test_files::run_analysis_in(a, dir, prm_text);
     if (wall)
       *wall = std::chrono::duration<double>(std::chrono::steady_clock::now()
                                             - start)

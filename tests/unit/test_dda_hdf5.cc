@@ -4,13 +4,25 @@
  * and fields read back with the HDF5 C library, independently of the
  * writer, equal the engine's state; the XDMF indices reference datasets
  * that exist with the dimensions they state; a resumed series continues.
+ * statistics.h5 of a run equals its statistics.csv column by column, also
+ * after an interrupt and a resume; measurement_points.h5 holds the
+ * measurement point columns of statistics.csv.
  */
+#include <rockdda/dda/analyses.h>
+#include <rockdda/dda/block_file.h>
 #include <rockdda/dda/hdf5_output.h>
 #include <rockdda/dda/vtu_output.h>
+#include <rockdda/io/analysis.h>
+#include <rockdda/io/interrupt.h>
+
+#include <deal.II/base/parameter_handler.h>
 
 #include <gtest/gtest.h>
 
 #include "dda_test_scenes.h"
+#include "test_files.h"
+#include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -61,6 +73,95 @@ namespace
       }
     H5Fclose(f);
     return d;
+  }
+
+  /// The text of file @p path.
+  std::string
+  file_text(const std::string &path)
+  {
+    std::ifstream     in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+
+  /// The five-block stack of tests/regression (two measurement points)
+  /// in the "dda" analysis, 0.2 s in steps of 0.01 s, with HDF5 snapshots
+  /// and measurement_points.h5, into @p dir / "out".
+  void
+  run_stack(const std::filesystem::path &dir,
+            const double                 end_time,
+            const bool                   resume)
+  {
+    const std::string prm_text
+      = std::string("subsection DDA\n  set Block file = ") + ROCKDDA_SOURCE_DIR
+        + "/tests/regression/dda_stack.blocks\n"
+          "  set End time = "
+        + io::format_number(end_time)
+        + "\n  set Time step = 0.01\n"
+          "  set Dynamic control = 0.5\n"
+          "  set Contact penalty = 1e11\n"
+          "  set Output interval = 0.1\n"
+          "  set Snapshot format = hdf5\n"
+          "  set Measurement point file = hdf5\n"
+          "  set Checkpoint interval = 0.05\n"
+          "  set Resume = "
+        + (resume ? "true" : "false") + "\nend\n";
+    auto analyses = make_analyses();
+    ASSERT_EQ(analyses.front()->name(), "dda");
+    test_files::run_analysis_in(*analyses.front(), dir, prm_text);
+  }
+
+  /**
+   * statistics.h5 in @p folder equals statistics.csv: read with the HDF5
+   * C library, every column (a dataset named by the column's name, with
+   * its unit) equals the CSV's values to its 12 printed digits, and the
+   * table read back prints the same CSV, byte for byte. Returns the
+   * number of rows.
+   */
+  std::size_t
+  expect_statistics_match(const std::string &folder)
+  {
+    const std::string csv  = file_text(folder + "/statistics.csv");
+    const std::string h5   = folder + "/statistics.h5";
+    const io::Table   back = read_table_hdf5(h5);
+    EXPECT_EQ(back.csv(), csv);
+    std::istringstream       in(csv);
+    std::string              line;
+    std::vector<std::string> header;
+    std::getline(in, line);
+    header = io::split_csv_record(line);
+    std::vector<std::vector<double>> columns(header.size());
+    while (std::getline(in, line))
+      {
+        const auto fields = io::split_csv_record(line);
+        EXPECT_EQ(fields.size(), header.size());
+        for (std::size_t k = 0; k < fields.size() && k < header.size(); ++k)
+          columns[k].push_back(std::stod(fields[k]));
+      }
+    EXPECT_EQ(back.n_columns(), header.size());
+    for (std::size_t k = 0; k < back.n_columns() && k < header.size(); ++k)
+      {
+        const std::string &name = back.column_name(k);
+        const std::string &unit = back.column_unit(k);
+        EXPECT_EQ(unit == "-"
+                    ? name
+                    : name + "_"
+                        + std::regex_replace(
+                          std::regex_replace(unit, std::regex("/"), "_"),
+                          std::regex("\\^"),
+                          "p"),
+                  header[k]);
+        const auto d = read<double>(h5, name, H5T_NATIVE_DOUBLE);
+        EXPECT_EQ(d.dims.size(), 1u) << name;
+        EXPECT_EQ(d.values.size(), columns[k].size()) << name;
+        for (std::size_t i = 0; i < d.values.size() && i < columns[k].size();
+             ++i)
+          EXPECT_LE(std::abs(d.values[i] - columns[k][i]),
+                    5e-12 * std::abs(columns[k][i]))
+            << name << " row " << i;
+      }
+    return columns.empty() ? 0 : columns.front().size();
   }
 
   /// A 4 x 5 running-bond wall on a fixed base, pushed sideways.
@@ -220,4 +321,134 @@ TEST(DdaHdf5, XdmfIndicesMatchTheFilesAndResumeContinues)
       EXPECT_NE(s.find("CollectionType=\"Temporal\""), std::string::npos);
     }
   std::filesystem::remove_all(folder);
+}
+
+
+
+TEST(DdaHdf5, StatisticsH5EqualsTheCsvAlsoAfterAnInterruptAndResume)
+{
+  const auto full = test_files::scratch("statistics-h5-full");
+  run_stack(full, 0.2, false);
+  const std::string out = (full / "out").string();
+  // 0.2 s in steps of 0.01 s: the row at t = 0 and one per step.
+  EXPECT_EQ(expect_statistics_match(out), 21u);
+
+  // measurement_points.h5: the measurement point columns of the CSV.
+  const io::Table stats  = read_table_hdf5(out + "/statistics.h5");
+  const auto      points = read_series_hdf5(out + "/measurement_points.h5");
+  const auto      mps    = read_block_file(std::string(ROCKDDA_SOURCE_DIR)
+                                   + "/tests/regression/dda_stack.blocks")
+                     .measurement_points;
+  ASSERT_EQ(mps.size(), 2u);
+  const std::vector<std::pair<std::string, std::string>> expected{
+    {"time", "s"},
+    {"ux", "m"},
+    {"uy", "m"},
+    {"sigma_x", "Pa"},
+    {"sigma_y", "Pa"},
+    {"tau_xy", "Pa"},
+    {"initial_position", "m"}};
+  ASSERT_EQ(points.size(), expected.size());
+  for (std::size_t q = 0; q < expected.size(); ++q)
+    {
+      EXPECT_EQ(points[q].name, expected[q].first);
+      EXPECT_EQ(points[q].unit, expected[q].second);
+    }
+  for (std::size_t c = 0; c < stats.n_columns(); ++c)
+    for (std::size_t m = 0; m < mps.size(); ++m)
+      for (std::size_t q = 1; q <= 5; ++q)
+        if (stats.column_name(c)
+            == "mp" + std::to_string(m + 1) + "_" + expected[q].first)
+          {
+            EXPECT_EQ(points[q].components, mps.size());
+            for (std::size_t i = 0; i < stats.n_rows(); ++i)
+              EXPECT_EQ(points[q].values[i * mps.size() + m], stats.row(i)[c]);
+          }
+  for (std::size_t i = 0; i < stats.n_rows(); ++i)
+    EXPECT_EQ(points[0].values[i], stats.row(i)[0]);
+  for (std::size_t m = 0; m < mps.size(); ++m)
+    {
+      // The block file's coordinates.
+      EXPECT_DOUBLE_EQ(points[6].values[2 * m], mps[m].point.x());
+      EXPECT_DOUBLE_EQ(points[6].values[2 * m + 1], mps[m].point.y());
+    }
+  // The top block settles: its point moves down.
+  EXPECT_LT(points[2].values.back(), 0.);
+
+  // A run stopped by SIGTERM before its first step keeps statistics.h5
+  // with the rows so far (t = 0), equal to its CSV; resumed to the end,
+  // it equals the uninterrupted run.
+  const auto part = test_files::scratch("statistics-h5-part");
+  {
+    io::InterruptGuard guard;
+    std::raise(SIGTERM);
+    run_stack(part, 0.2, false);
+    io::clear_interrupt();
+  }
+  const std::string part_out = (part / "out").string();
+  EXPECT_EQ(expect_statistics_match(part_out), 1u);
+  run_stack(part, 0.2, true);
+  EXPECT_EQ(expect_statistics_match(part_out), 21u);
+  EXPECT_EQ(read_table_hdf5(part_out + "/statistics.h5").csv(), stats.csv());
+  EXPECT_EQ(read_series_hdf5(part_out + "/measurement_points.h5")[2].values,
+            points[2].values);
+
+  // A write that fails half way (a killed run) leaves the file of the
+  // last flush intact and no temporary file.
+  const io::OutputDirectory dir(part_out);
+  EXPECT_THROW(
+    dir.write_with("statistics.h5",
+                   [&](const std::string &tmp) {
+                     write_series_hdf5(tmp, {{"time", "s", 1, {0.}}});
+                     throw std::runtime_error("killed");
+                   }),
+    std::runtime_error);
+  EXPECT_EQ(read_table_hdf5(part_out + "/statistics.h5").csv(), stats.csv());
+  for (const auto &f : std::filesystem::directory_iterator(part_out))
+    EXPECT_EQ(f.path().string().find(".tmp."), std::string::npos) << f.path();
+}
+
+
+
+TEST(DdaHdf5, SeriesFileRoundTripAndBadShapes)
+{
+  const auto                       dir  = test_files::scratch("series-h5");
+  const std::string                path = (dir / "s.h5").string();
+  const std::vector<SeriesDataset> sets{{"time", "s", 1, {0., 0.5, 1.}},
+                                        {"uy", "m", 2, {1, 2, 3, 4, 5, 6}},
+                                        {"empty", "Pa", 3, {}}};
+  write_series_hdf5(path, sets);
+  const auto back = read_series_hdf5(path);
+  ASSERT_EQ(back.size(), sets.size());
+  for (std::size_t k = 0; k < sets.size(); ++k)
+    {
+      EXPECT_EQ(back[k].name, sets[k].name);
+      EXPECT_EQ(back[k].unit, sets[k].unit);
+      EXPECT_EQ(back[k].values, sets[k].values);
+      if (!sets[k].values.empty())
+        {
+          EXPECT_EQ(back[k].components, sets[k].components);
+        }
+    }
+  const auto uy = read<double>(path, "uy", H5T_NATIVE_DOUBLE);
+  EXPECT_EQ(uy.dims, (std::vector<hsize_t>{3, 2}));
+  EXPECT_THROW(write_series_hdf5(path, {{"uy", "m", 2, {1., 2., 3.}}}),
+               std::runtime_error);
+  EXPECT_THROW(read_series_hdf5((dir / "missing.h5").string()),
+               std::runtime_error);
+}
+
+
+
+TEST(DdaHdf5, LayeringStudyWritesTheMeasurementPointFile)
+{
+  // The DDA controls of every model of the layering study
+  // (benchmarks/layering-chapter-3) ask for measurement_points.h5.
+  dealii::ParameterHandler prm;
+  io::declare_all_parameters(prm, io::all_analyses());
+  prm.parse_input(std::string(ROCKDDA_SOURCE_DIR)
+                  + "/parameter-files/layering/table-3-2.prm");
+  prm.enter_subsection("DDA");
+  EXPECT_EQ(prm.get("Measurement point file"), "hdf5");
+  prm.leave_subsection();
 }

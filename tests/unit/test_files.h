@@ -7,7 +7,10 @@
 #ifndef ROCKDDA_TESTS_TEST_FILES_H
 #define ROCKDDA_TESTS_TEST_FILES_H
 
+#include <rockdda/io/analysis.h>
 #include <rockdda/io/error.h>
+
+#include <deal.II/base/parameter_handler.h>
 
 #include <filesystem>
 #include <fstream>
@@ -69,6 +72,30 @@ namespace rockdda::test_files
         return e.what();
       }
     return "";
+  }
+
+  /**
+   * Run analysis @p a on the parameters @p prm_text (written to
+   * @p dir / "run.prm", its keys relative to the analysis's sections)
+   * into the output folder @p dir / "out" (quiet); returns the summary.
+   */
+  inline io::Summary
+  run_analysis_in(io::Analysis                &a,
+                  const std::filesystem::path &dir,
+                  const std::string           &prm_text)
+  {
+    const std::string prm_file = (dir / "run.prm").string();
+    write_file(prm_file, prm_text);
+    dealii::ParameterHandler prm;
+    a.declare_parameters(prm);
+    prm.parse_input_from_string(prm_text);
+    a.parse_parameters(prm, prm_file);
+    io::OutputDirectory out((dir / "out").string());
+    io::Log             log(false);
+    io::Summary         summary;
+    io::RunContext      context{out, log, summary, false, ""};
+    a.run(context);
+    return summary;
   }
 } // namespace rockdda::test_files
 

@@ -26,6 +26,7 @@
 #ifndef ROCKDDA_DDA_HDF5_OUTPUT_H
 #define ROCKDDA_DDA_HDF5_OUTPUT_H
 
+#include <rockdda/dda/block_system.h>
 #include <rockdda/dda/snapshot.h>
 #include <rockdda/io/output.h>
 
@@ -71,6 +72,65 @@ namespace rockdda::dda
   /// The time (s) stored in a snapshot file.
   double
   read_snapshot_time(const std::string &path);
+
+  /**
+   * One dataset of a serial HDF5 series file (write_series_hdf5()):
+   * float64 values, row-major, of rows x @p components (1: a 1-D dataset
+   * of rows), with its SI unit ("-" if none).
+   */
+  struct SeriesDataset
+  {
+    std::string         name, unit;
+    std::size_t         components = 1;
+    std::vector<double> values;
+  };
+
+  /**
+   * Write @p datasets into a new HDF5 file @p path (serial), at its root in
+   * the order given, each with the string attribute `unit`. Not atomic by
+   * itself: call it through io::OutputDirectory::write_with(). Throws
+   * std::runtime_error naming the file.
+   */
+  void
+  write_series_hdf5(const std::string                &path,
+                    const std::vector<SeriesDataset> &datasets);
+
+  /// The datasets of a file written by write_series_hdf5(), in order;
+  /// throws std::runtime_error naming the file.
+  std::vector<SeriesDataset>
+  read_series_hdf5(const std::string &path);
+
+  /**
+   * Write @p table atomically as the HDF5 file @p name of @p output
+   * (statistics.h5 beside statistics.csv): one 1-D float64 dataset per
+   * column, in the CSV's order, named by the column's name without its
+   * unit (`time`, `kinetic_energy`, `mp1_uy`) and carrying the unit
+   * attribute (`s`, `J/m`, `m`; the CSV header is name_unit).
+   */
+  void
+  write_table_hdf5(const io::OutputDirectory &output,
+                   const std::string         &name,
+                   const io::Table           &table);
+
+  /// The table of a file written by write_table_hdf5() (its csv() is
+  /// the CSV of the table written); throws std::runtime_error naming the
+  /// file.
+  io::Table
+  read_table_hdf5(const std::string &path);
+
+  /**
+   * The datasets of measurement_points.h5 (the time series of the
+   * measurement points of a 2D run) from the rows of @p table (statistics
+   * of a DDA run: column 0 the time, s; from column @p first_column five
+   * columns per point: ux, uy in m, sigma_x, sigma_y, tau_xy in Pa) and
+   * the measurement points of @p system: `time` (rows), `ux`, `uy`,
+   * `sigma_x`, `sigma_y`, `tau_xy` (rows x points), `initial_position`
+   * (points x 2, m, in the block file's coordinates: local + origin).
+   */
+  std::vector<SeriesDataset>
+  measurement_point_series(const io::Table   &table,
+                           const std::size_t  first_column,
+                           const BlockSystem &system);
 
   /**
    * A series of HDF5 snapshots and its two XDMF indices in an output

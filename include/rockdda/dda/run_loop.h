@@ -166,6 +166,11 @@ namespace rockdda::dda
     /// Called after a checkpoint has been loaded (e.g. to reopen a series).
     std::function<void()> on_resume;
 
+    /// Called wherever statistics.csv is written (each checkpoint, before
+    /// checkpoint.bin, and the end of the run), to write other files of
+    /// the table (e.g. statistics.h5) at the same cadence.
+    std::function<void()> on_statistics;
+
     /// The run's progress (after run(): at its end).
     RunProgress progress;
     /// Nonzero if stopped by this signal.
@@ -219,6 +224,8 @@ namespace rockdda::dda
     w.put_string(engine.checkpoint());
     io::RunCheckpoint::put_rows(w, table);
     progress.put(w);
+    if (on_statistics)
+      on_statistics();
     checkpoint_file.write(w, table);
     saved_at = engine.time();
   }
@@ -374,7 +381,11 @@ namespace rockdda::dda
       save_checkpoint();
     else if ((s.checkpoint_interval <= 0. && interrupted == 0)
              || !failure.empty())
-      context.output.write("statistics.csv", table.csv());
+      {
+        if (on_statistics)
+          on_statistics();
+        context.output.write("statistics.csv", table.csv());
+      }
     if (interrupted != 0 && failure.empty())
       {
         // statistics.csv has the rows reported so far; the state reached is

@@ -164,6 +164,27 @@ namespace rockdda::io
       return rows.size();
     }
 
+    /// Number of columns.
+    std::size_t
+    n_columns() const
+    {
+      return names.size();
+    }
+
+    /// Name of column @p k (without its unit, e.g. "time").
+    const std::string &
+    column_name(const std::size_t k) const
+    {
+      return names.at(k);
+    }
+
+    /// SI unit of column @p k as given to add_column() (e.g. "s", "-").
+    const std::string &
+    column_unit(const std::size_t k) const
+    {
+      return units.at(k);
+    }
+
     /// Row @p i.
     const std::vector<double> &
     row(const std::size_t i) const
@@ -177,7 +198,8 @@ namespace rockdda::io
     csv() const;
 
   private:
-    std::vector<std::string>         header;
+    /// CSV header fields ("name_unit"), names and units of the columns.
+    std::vector<std::string>         header, names, units;
     std::vector<std::vector<double>> rows;
   };
 
