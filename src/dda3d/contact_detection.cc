@@ -14,6 +14,7 @@
 #include <limits>
 #include <map>
 #include <tuple>
+#include <utility>
 
 namespace rockdda::dda3d
 {
@@ -775,7 +776,8 @@ namespace rockdda::dda3d
   std::vector<ContactCandidate>
   detect_contacts(const std::vector<const Polyhedron *> &blocks,
                   const DetectionTolerances             &tol,
-                  const dda::ChunkRunner                &run_chunks)
+                  const dda::ChunkRunner                &run_chunks,
+                  std::vector<PolyhedronEdges>          *edges_out)
   {
     const std::size_t        n = blocks.size();
     std::vector<BoundingBox> boxes(n);
@@ -814,6 +816,8 @@ namespace rockdda::dda3d
       return std::make_tuple(x.i, x.j, int(x.type), x.a, x.b)
              < std::make_tuple(y.i, y.j, int(y.type), y.a, y.b);
     });
+    if (edges_out != nullptr)
+      *edges_out = std::move(edges);
     return out;
   }
 } // namespace rockdda::dda3d

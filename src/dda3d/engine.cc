@@ -422,7 +422,10 @@ namespace rockdda::dda3d
       = [this](const std::size_t n_items,
                const std::size_t grain,
                const auto       &f) { solver.for_chunks(n_items, grain, f); };
-    const auto candidates = detect_contacts(polys, tol, chunks);
+    // The edges of the blocks in a detected pair, reused by the face
+    // groups below (the same geometry).
+    std::vector<PolyhedronEdges> edges;
+    const auto candidates = detect_contacts(polys, tol, chunks, &edges);
 
     // Transfer of the stored states: by (type, i, a, j, b); a vertex that
     // passed to another face of the same block keeps a closed state: the
@@ -505,16 +508,10 @@ namespace rockdda::dda3d
     std::vector<int> group(contacts.size(), -1);
     int              n_groups = 0;
     {
-      std::vector<PolyhedronEdges> edges(n);
-      std::vector<char>            have(n, 0);
-      auto edges_of = [&](const int b) -> const PolyhedronEdges & {
-        if (!have[b])
-          {
-            edges[b] = polyhedron_edges(*polys[b]);
-            have[b]  = 1;
-          }
-        return edges[b];
-      };
+      // Every candidate's blocks are in a pair of the broad phase:
+      // detection computed their edges.
+      auto edges_of
+        = [&](const int b) -> const PolyhedronEdges & { return edges[b]; };
       std::map<std::tuple<int, int, int, int>, std::vector<std::size_t>> groups;
       for (std::size_t k = 0; k < contacts.size(); ++k)
         {
@@ -646,6 +643,31 @@ namespace rockdda::dda3d
       matrix.reinit(static_cast<int>(n), pairs);
     }
     solver.new_pattern(matrix);
+    // The contacts of each block and of each pair of blocks (the matrix's
+    // off-diagonal slots), in contact order, for the assembly's chunks.
+    const auto by_block
+      = dda::items_of_rows(int(n), contacts.size(), [&](const std::size_t k) {
+          return std::make_pair(contacts[k].geometry.i, contacts[k].geometry.j);
+        });
+    const auto by_slot
+      = dda::items_of_rows(int(matrix.off.size()),
+                           contacts.size(),
+                           [&](const std::size_t k) {
+                             return std::make_pair(slot[k], -1);
+                           });
+    // Contact k's springs between the unknowns of its blocks a and b (0:
+    // block i, 1: block j): the 12x12 block (a, b) of k_n g_n g_n^T, plus
+    // k_s G_s G_s^T if locked, in the stacked unknowns (D_i, D_j), g_n =
+    // [e_n; h_n] and G_s = [E_s; H_s].
+    auto spring_block = [&](const std::size_t k, const int a, const int b) {
+      const auto &K = kin[k];
+      Matrix12    m = K.normal_stiffness * (a == 0 ? K.en : K.hn)
+                   * (b == 0 ? K.en : K.hn).transpose();
+      if (contacts[k].state == ContactState::locked)
+        m += K.shear_stiffness * (a == 0 ? K.Es : K.Hs)
+             * (b == 0 ? K.Es : K.Hs).transpose();
+      return m;
+    };
 
     // Open-close iteration.
     const int       N = 12 * int(n);
@@ -742,71 +764,79 @@ namespace rockdda::dda3d
         if (state_iterations > ctrl.max_open_close
             || iterations > 2 * ctrl.max_open_close)
           return false;
-        Eigen::VectorXd F = Eigen::VectorXd::Zero(N);
-        for (std::size_t b = 0; b < n; ++b)
-          {
-            matrix.diag[b]        = K0[b];
-            F.segment<12>(12 * b) = F0[b];
-          }
-        for (auto &m : matrix.off)
-          m.setZero();
-        for (std::size_t k = 0; k < contacts.size(); ++k)
-          {
-            const auto &c = contacts[k];
-            if (c.state == ContactState::open)
-              continue;
-            const auto &K = kin[k];
-            const int   i = c.geometry.i, j = c.geometry.j;
-            // Stacked unknowns (D_i, D_j): gap g = g0 + [en; hn] . x.
-            Eigen::Matrix<double, 24, 1> gn;
-            gn << K.en, K.hn;
-            Eigen::Matrix<double, 24, 24> Kc
-              = K.normal_stiffness * gn * gn.transpose();
-            Eigen::Matrix<double, 24, 1> Fc = -K.normal_stiffness * K.g0 * gn;
-            Eigen::Matrix<double, 24, 2> gs;
-            gs << K.Es, K.Hs;
-            if (c.state == ContactState::locked)
+        // The contact springs, in chunks of blocks (diagonal blocks and
+        // loads) and of pairs (off-diagonal blocks), each adding its
+        // contacts in contact order: the serial sums, on any number of
+        // threads.
+        Eigen::VectorXd F(N);
+        dda::for_each_chunk(
+          chunks, n, 8, [&](const std::size_t lo, const std::size_t hi) {
+            for (std::size_t b = lo; b < hi; ++b)
               {
-                Kc += K.shear_stiffness * gs * gs.transpose();
-                Fc -= K.shear_stiffness * gs * K.s0;
+                auto &Kb = matrix.diag[b];
+                auto  Fb = F.segment<12>(12 * b);
+                Kb       = K0[b];
+                Fb       = F0[b];
+                for (int e = by_block.start[b]; e < by_block.start[b + 1]; ++e)
+                  {
+                    const std::size_t k    = by_block.entry[e] / 2;
+                    const int         side = by_block.entry[e] % 2;
+                    const auto       &c    = contacts[k];
+                    if (c.state == ContactState::open)
+                      continue;
+                    const auto  &K = kin[k];
+                    const double S
+                      = c.state == ContactState::sliding ? dda::shear_strength(
+                          c, c.normal_force, c.area, system.joints[c.joint])
+                                                         : 0.;
+                    if (side == 0 && c.state == ContactState::sliding)
+                      friction_applied[k] = -S * dir[k];
+                    if (clamped_[b])
+                      continue;
+                    const Vector12   &e_n = side == 0 ? K.en : K.hn;
+                    const Matrix12x2 &e_s = side == 0 ? K.Es : K.Hs;
+                    Kb += spring_block(k, side, side);
+                    // Stacked unknowns (D_i, D_j): gap g = g0 + [en; hn] . x.
+                    Vector12 f = -K.normal_stiffness * K.g0 * e_n;
+                    if (c.state == ContactState::locked)
+                      f -= K.shear_stiffness * e_s * K.s0;
+                    else // sliding: friction against the sliding direction
+                      f -= S * e_s * dir[k];
+                    Fb += f;
+                    // A clamped partner's prescribed motion moves to the
+                    // right side.
+                    const int other = side == 0 ? c.geometry.j : c.geometry.i;
+                    if (clamped_[other])
+                      Fb -= spring_block(k, side, 1 - side) * prescribed[other];
+                  }
+                if (clamped_[b])
+                  {
+                    Kb.setIdentity();
+                    Fb = prescribed[b];
+                  }
               }
-            else // sliding: friction against the sliding direction
+          });
+        // The upper block K_ij (i < j) of each pair.
+        dda::for_each_chunk(
+          chunks,
+          matrix.off.size(),
+          32,
+          [&](const std::size_t lo, const std::size_t hi) {
+            for (std::size_t p = lo; p < hi; ++p)
               {
-                const double S = dda::shear_strength(c,
-                                                     c.normal_force,
-                                                     c.area,
-                                                     system.joints[c.joint]);
-                Fc -= S * gs * dir[k];
-                friction_applied[k] = -S * dir[k];
+                matrix.off[p].setZero();
+                for (int e = by_slot.start[p]; e < by_slot.start[p + 1]; ++e)
+                  {
+                    const std::size_t k = by_slot.entry[e] / 2;
+                    if (contacts[k].state == ContactState::open)
+                      continue;
+                    const bool upper
+                      = contacts[k].geometry.i < contacts[k].geometry.j;
+                    matrix.off[p]
+                      += spring_block(k, upper ? 0 : 1, upper ? 1 : 0);
+                  }
               }
-            if (!clamped_[i])
-              {
-                matrix.diag[i] += Kc.block<12, 12>(0, 0);
-                F.segment<12>(12 * i) += Fc.head<12>();
-                // A clamped j's prescribed motion moves to the right side.
-                if (clamped_[j])
-                  F.segment<12>(12 * i)
-                    -= Kc.block<12, 12>(0, 12) * prescribed[j];
-              }
-            if (!clamped_[j])
-              {
-                matrix.diag[j] += Kc.block<12, 12>(12, 12);
-                F.segment<12>(12 * j) += Fc.tail<12>();
-                if (clamped_[i])
-                  F.segment<12>(12 * j)
-                    -= Kc.block<12, 12>(12, 0) * prescribed[i];
-              }
-            // The upper block K_ij (i < j) of the pair.
-            if (slot[k] >= 0)
-              matrix.off[slot[k]]
-                += i < j ? Kc.block<12, 12>(0, 12) : Kc.block<12, 12>(12, 0);
-          }
-        for (std::size_t b = 0; b < n; ++b)
-          if (clamped_[b])
-            {
-              matrix.diag[b].setIdentity();
-              F.segment<12>(12 * b) = prescribed[b];
-            }
+          });
         if (!solver.solve(matrix, F, D, !states_changed) || !D.allFinite())
           return false;
         solver_iterations += solver.last_iterations();

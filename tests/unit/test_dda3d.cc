@@ -25,6 +25,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -1570,8 +1571,11 @@ TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
   // blocks on) the positions must agree bit for bit. So must they on a
   // 10 x 10 wall (106 blocks, ~1,100 contacts), whose contact detection,
   // kinematics and state checks run in chunks (128 contacts, 32 block
-  // pairs) on the solver's threads: from 8 chunks on they run concurrently
-  // (TaskTeam), and the chunks write disjoint data joined in order.
+  // pairs) on the solver's threads, and so does the assembly of the
+  // contact springs (8 blocks, 32 pairs of blocks: each diagonal block,
+  // load and off-diagonal block summed by one chunk in contact order):
+  // from 8 chunks on they run concurrently (TaskTeam), and the chunks write
+  // disjoint data joined in order.
   const BlockSystem small_wall = test_scenes::brick_wall(4, 4);
   const double      L          = 1.; // the bricks' smallest dimension (m)
   struct Result
@@ -1580,6 +1584,8 @@ TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
     double             moved     = 0.;
     unsigned long      cg        = 0;
     int                separator = 0, sliding = 0, contacts = 0;
+    /// Pairs of blocks in contact in the last step (off-diagonal blocks).
+    int pairs = 0;
   };
   auto run = [&](const BlockSystem        &wall,
                  const dda::SolverType     type,
@@ -1611,6 +1617,12 @@ TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
         r.vertices.push_back(v);
     for (std::size_t b = 0; b < wall.blocks.size(); ++b)
       r.moved = std::max(r.moved, engine.displacement(b).norm());
+    std::set<std::pair<int, int>> pairs;
+    for (const auto &ct : engine.contacts())
+      if (!engine.clamped(ct.geometry.i) && !engine.clamped(ct.geometry.j))
+        pairs.emplace(std::min(ct.geometry.i, ct.geometry.j),
+                      std::max(ct.geometry.i, ct.geometry.j));
+    r.pairs     = static_cast<int>(pairs.size());
     r.separator = engine.linear_solver().separator_size();
     r.sliding   = engine.statistics().sliding;
     r.contacts  = engine.statistics().open + engine.statistics().sliding
@@ -1673,13 +1685,18 @@ TEST(Dda3dSolvers, IterativeMatchesDirectAndThreadsDoNotMatter)
   const BlockSystem large_wall = test_scenes::brick_wall(10, 10);
   const Result      one_large  = dilu(large_wall, 1, 300);
   const Result      two_large  = dilu(large_wall, 2, 300);
-  std::printf("106 blocks, %d contacts, %d sliding, largest displacement "
-              "%.3e m: 1 vs 2 threads differ by %.3e m\n",
+  std::printf("106 blocks, %d contacts, %d pairs, %d sliding, largest "
+              "displacement %.3e m: 1 vs 2 threads differ by %.3e m\n",
               one_large.contacts,
+              one_large.pairs,
               one_large.sliding,
               one_large.moved,
               difference(one_large, two_large));
-  EXPECT_GE(one_large.contacts, 8 * 128); // the loops do run on threads
+  // The loops do run on threads: >= 8 chunks of contacts, of blocks and of
+  // pairs of blocks in contact.
+  EXPECT_GE(one_large.contacts, 8 * 128);
+  EXPECT_GE(large_wall.blocks.size(), 8u * 8u);
+  EXPECT_GE(one_large.pairs, 8 * 32);
   EXPECT_GT(one_large.moved, 1e-5 * L);
   EXPECT_GT(one_large.sliding, 0);
   EXPECT_EQ(difference(one_large, two_large), 0.);

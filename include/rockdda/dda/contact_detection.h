@@ -104,6 +104,52 @@ namespace rockdda::dda
   }
 
   /**
+   * The items (e.g. contacts) of each of @p n_rows rows (e.g. blocks or
+   * pairs of blocks) in item order: items(r) is entry[start[r]] to
+   * entry[start[r + 1] - 1], each entry 2 k + side for item k listed under
+   * its row first(k) (side 0) or second(k) (side 1). A chunked loop over
+   * the rows that adds each row's items in this order sums as a serial loop
+   * over the items does, with each row written by one chunk: the same bits
+   * on any number of threads.
+   */
+  struct ItemsOfRows
+  {
+    std::vector<int> start, entry;
+  };
+
+  /// ItemsOfRows of @p n_items items, @p rows_of(k) giving the pair (first,
+  /// second) of item k's rows (-1: none).
+  template <typename RowsOf>
+  ItemsOfRows
+  items_of_rows(const int         n_rows,
+                const std::size_t n_items,
+                const RowsOf     &rows_of)
+  {
+    ItemsOfRows out;
+    out.start.assign(n_rows + 1, 0);
+    for (std::size_t k = 0; k < n_items; ++k)
+      {
+        const std::pair<int, int> r = rows_of(k);
+        for (const int row : {r.first, r.second})
+          if (row >= 0)
+            ++out.start[row + 1];
+      }
+    for (int r = 0; r < n_rows; ++r)
+      out.start[r + 1] += out.start[r];
+    out.entry.resize(out.start[n_rows]);
+    std::vector<int> next(out.start.begin(), out.start.end() - 1);
+    for (std::size_t k = 0; k < n_items; ++k)
+      {
+        const std::pair<int, int> r = rows_of(k);
+        if (r.first >= 0)
+          out.entry[next[r.first]++] = 2 * static_cast<int>(k);
+        if (r.second >= 0)
+          out.entry[next[r.second]++] = 2 * static_cast<int>(k) + 1;
+      }
+    return out;
+  }
+
+  /**
    * Options of the detection (lengths in m). Every length is per block, so
    * that the rules do not depend on the size of the domain or on where the
    * scene sits: the pair (i, j) is searched within max(reach_i, reach_j).

@@ -204,11 +204,15 @@ namespace rockdda::dda3d
    * and the pairs run in fixed chunks through @p run_chunks (possibly on
    * threads, dda::ChunkRunner; serially if empty), each chunk with its own
    * output, joined in order: the same list on any number of threads.
+   * If @p edges is given, it receives the edges of every block of a pair
+   * of the broad phase (polyhedron_edges(); left empty for the others), so
+   * that the caller need not compute them again on the same geometry.
    */
   std::vector<ContactCandidate>
   detect_contacts(const std::vector<const Polyhedron *> &blocks,
                   const DetectionTolerances             &tolerances,
-                  const dda::ChunkRunner                &run_chunks = {});
+                  const dda::ChunkRunner                &run_chunks = {},
+                  std::vector<PolyhedronEdges>          *edges      = nullptr);
 } // namespace rockdda::dda3d
 
 #endif
