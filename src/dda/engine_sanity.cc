@@ -324,7 +324,8 @@ namespace rockdda::dda
         const double n = -kin.normal_stiffness * assembler.gap(c, x);
         if (ct.state == ContactState::open)
           {
-            // A held open contact: up to its penetration bound, not capped
+            // A held open contact: up to its penetration bound, capped at
+            // the lighter block's weight rather than at 1 % of it
             // (update_factors in try_step).
             judge(
               c, "compression while open", n, 0., std::max(f_hold, hold[c]));
