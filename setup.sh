@@ -18,7 +18,7 @@ jobs=${JOBS:-$(nproc)}
 
 packages=(g++ make cmake libdeal.ii-dev libeigen3-dev libcgal-dev
   libgtest-dev libbenchmark-dev libfftw3-dev pkg-config python3
-  python3-matplotlib)
+  python3-matplotlib python3-h5py)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -29,7 +29,10 @@ this folder):
 Each model's DDA also writes WORK/NAME/dda/measurement_points.h5, the
 time series of points 1-5 in HDF5 (time; ux, uy, sigma_x, sigma_y, tau_xy
 per point: every row of its statistics.csv, i.e. every 0.01 s; layout in
-README.md), rewritten atomically at each checkpoint.
+README.md), rewritten atomically at each checkpoint. The tables and plots
+read the time series from it (with python3-h5py), else from statistics.h5,
+else from statistics.csv (older runs, or no h5py): the same tables, as the
+values are printed as the CSV prints them (measurement_rows()).
 
 Each model runs in WORK/NAME (default WORK = ./runs beside ROCKDDA's build
 folder) from a copy of ROCKDDA made once (WORK/rockdda), with checkpoints
@@ -95,6 +98,74 @@ def set_key(text, key, value):
 def read_csv(path):
     with open(path) as f:
         return list(csv.DictReader(f))
+
+
+SERIES_FIELDS = {"ux": "m", "uy": "m", "sigma_x": "Pa", "sigma_y": "Pa",
+                 "tau_xy": "Pa"}
+
+
+def h5py_or_none():
+    """The h5py module (Debian python3-h5py, installed by setup.sh), or
+    None without it (the CSV is read then)."""
+    try:
+        import h5py
+        return h5py
+    except ImportError:
+        return None
+
+
+def number(v):
+    """V as statistics.csv prints it (io::format_number: 12 significant
+    digits, C++'s %g), so that the tables from HDF5 equal those from the
+    CSV character for character."""
+    return "%.12g" % v
+
+
+def measurement_rows(out):
+    """(rows, source) of the time series of a model's DDA output folder
+    OUT: one dict per row of statistics.csv with the CSV's column names
+    (time_s, mpK_ux_m, mpK_uy_m, mpK_sigma_x_Pa, mpK_sigma_y_Pa,
+    mpK_tau_xy_Pa for each point K) and the values as the CSV prints them;
+    SOURCE the file read. Reads measurement_points.h5 (Measurement point
+    file = hdf5), else statistics.h5 (Snapshot format = hdf5), when h5py is
+    there, else statistics.csv (older runs); ([], None) without any."""
+    h5py = h5py_or_none()
+    mp = os.path.join(out, "measurement_points.h5")
+    if h5py and os.path.exists(mp):
+        with h5py.File(mp, "r") as f:
+            time_s = f["time"][:]
+            # rows x points (1-D for one point).
+            data = {q: f[q][:].reshape(len(time_s), -1)
+                    for q in SERIES_FIELDS}
+        rows = []
+        for i, t in enumerate(time_s):
+            r = {"time_s": number(t)}
+            for q, unit in SERIES_FIELDS.items():
+                for k, v in enumerate(data[q][i], 1):
+                    r["mp%d_%s_%s" % (k, q, unit)] = number(v)
+            rows.append(r)
+        return rows, mp
+    st = os.path.join(out, "statistics.h5")
+    if h5py and os.path.exists(st):
+        with h5py.File(st, "r") as f:
+            # The datasets in the order written (the CSV's), named as the
+            # CSV's header names them (io::Table::add_column).
+            names = []
+            f.id.links.iterate(lambda n: names.append(n.decode()),
+                               idx_type=h5py.h5.INDEX_CRT_ORDER)
+            cols = []
+            for n in names:
+                unit = f[n].attrs["unit"]
+                unit = unit.decode() if isinstance(unit, bytes) else unit
+                head = n if unit == "-" else \
+                    n + "_" + unit.replace("/", "_").replace("^", "p")
+                cols.append((head, f[n][:]))
+        return [{c: number(v[i]) for c, v in cols}
+                for i in range(len(cols[0][1]) if cols else 0)], st
+    csv_path = os.path.join(out, "statistics.csv")
+    if os.path.exists(csv_path):
+        return read_csv(csv_path), csv_path
+    return [], None
 
 
 def summary(path):
@@ -329,10 +400,8 @@ def collect(work, names, end_time):
             row["status"] = "done"
         else:
             row["status"] = "stopped"
-        stats = os.path.join(out, "statistics.csv")
-        data = [r for r in read_csv(stats)
-                if float(r["time_s"]) <= end_time + 1e-9] \
-            if os.path.exists(stats) else []
+        data, _ = measurement_rows(out)
+        data = [r for r in data if float(r["time_s"]) <= end_time + 1e-9]
         row["final_time_s"] = data[-1]["time_s"] if data else ""
         blocks_file = os.path.join(folder, "cut", "blocks.dda")
         if os.path.exists(blocks_file):

@@ -185,22 +185,6 @@ namespace rockdda::dda
                     "so that the foundation ends at rest (the drift is in "
                     "log.txt).");
         io::declare(prm,
-                    "Snapshot format",
-                    "vtu",
-                    Selection("vtu|hdf5"),
-                    "-",
-                    "'vtu': blocks-NNNNN.vtu and contacts-NNNNN.vtu with "
-                    "the series blocks.pvd and contacts.pvd (small scenes); "
-                    "'hdf5': one snapshot-NNNNN.h5 per snapshot (groups "
-                    "/blocks and /contacts, binary arrays) with the XDMF "
-                    "series blocks.xdmf and contacts.xdmf that ParaView "
-                    "opens as time series (large scenes: uncompressed, "
-                    "4-6x faster to write than the zlib-compressed VTU "
-                    "and 4-5x larger: 1.1 kB per block with its contacts). "
-                    "Same fields in both; see doc/user-guide.md. With "
-                    "'hdf5' the rows of statistics.csv are also written as "
-                    "statistics.h5 (one dataset per column, with its unit).");
-        io::declare(prm,
                     "Measurement point file",
                     "none",
                     Selection("none|hdf5"),
@@ -253,7 +237,7 @@ namespace rockdda::dda
         c.fixed_penalty       = shared.fixed_penalty;
         c.solver = SolverParameters<2>::parse_parameters(prm, prm_file);
         const std::string mode = prm.get("Seismic input");
-        hdf5_snapshots         = prm.get("Snapshot format") == "hdf5";
+        hdf5_snapshots         = shared.hdf5_output;
         point_file             = prm.get("Measurement point file") == "hdf5";
         const double gravity   = shared.gravity;
         prm.leave_subsection();
@@ -429,10 +413,8 @@ namespace rockdda::dda
         };
         if (hdf5_snapshots)
           loop.on_resume = [&]() { series.restore(block_files); };
-        loop.on_statistics = [&]() {
-          if (hdf5_snapshots)
-            write_table_hdf5(context.output, "statistics.h5", table);
-          if (point_file)
+        if (point_file)
+          loop.on_statistics = [&]() {
             context.output.write_with(
               "measurement_points.h5", [&](const std::string &tmp) {
                 write_series_hdf5(tmp,
@@ -440,7 +422,7 @@ namespace rockdda::dda
                                                            first_point_column,
                                                            dda->system()));
               });
-        };
+          };
         const auto step = [&](const double target) {
           last
             = dda->run_until(std::min(target, dda->time() + dda->time_step()));
@@ -516,7 +498,8 @@ namespace rockdda::dda
       /// End time, intervals, Checkpoint interval, Resume, settling steps
       /// and the fingerprint of the run's controls.
       RunSettings settings;
-      /// Snapshots as HDF5 + XDMF instead of VTU + PVD (and statistics.h5).
+      /// Snapshots as HDF5 + XDMF instead of VTU + PVD (statistics.h5:
+      /// RunLoop).
       bool hdf5_snapshots = false;
       /// Write measurement_points.h5.
       bool point_file = false;

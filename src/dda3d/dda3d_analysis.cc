@@ -205,6 +205,10 @@ namespace rockdda::dda3d
           "DDA 3d: " + std::to_string(sys.blocks.size()) + " blocks, penalty "
           + io::format_number(c.law.normal_penalty, 4) + " N/m, time step "
           + io::format_number(c.dt, 4) + " s");
+        if (settings.statistics_hdf5)
+          context.log.line("Snapshot format = hdf5: statistics.h5 beside "
+                           "statistics.csv; the 3D snapshots stay VTU (no "
+                           "HDF5 polyhedron writer)");
         io::Table table;
         for (const auto &[n, u] :
              std::vector<std::pair<std::string, std::string>>{

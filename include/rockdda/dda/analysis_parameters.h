@@ -64,6 +64,9 @@ namespace rockdda::dda
     double output_interval = 0.1;
     /// Spacing of rows of statistics.csv (s), >= 0; 0: every step.
     double statistics_interval = 0.;
+    /// 'Snapshot format' = hdf5: HDF5 + XDMF snapshots (2D; 3D keeps VTU)
+    /// and statistics.h5 beside statistics.csv (both).
+    bool hdf5_output = false;
     /// Velocity-dependent friction of every joint (JointMaterial::a_minus_b
     /// (-), reference_velocity and min_velocity (m/s)): A - B in [-1, 1],
     /// V0 > 0, 0 < V_min <= V0.

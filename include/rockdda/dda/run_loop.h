@@ -10,6 +10,7 @@
 #define ROCKDDA_DDA_RUN_LOOP_H
 
 #include <rockdda/dda/failure.h>
+#include <rockdda/dda/hdf5_output.h>
 #include <rockdda/io/analysis.h>
 #include <rockdda/io/binary_stream.h>
 #include <rockdda/io/checkpoint.h>
@@ -47,6 +48,9 @@ namespace rockdda::dda
     unsigned int settling_steps = 0;
     /// Continue from checkpoint.bin.
     bool resume = false;
+    /// Also write the table as statistics.h5 (write_table_hdf5()) wherever
+    /// statistics.csv is written ('Snapshot format' = hdf5).
+    bool statistics_hdf5 = false;
     /// The controls a resumed run must share (io::RunCheckpoint).
     std::string fingerprint;
   };
@@ -72,6 +76,7 @@ namespace rockdda::dda
     s.output_interval     = shared.output_interval;
     s.statistics_interval = shared.statistics_interval;
     s.settling_steps      = shared.settling_steps;
+    s.statistics_hdf5     = shared.hdf5_output;
     s.checkpoint_interval = prm.get_double("Checkpoint interval");
     s.resume              = prm.get_bool("Resume");
     return s;
@@ -167,8 +172,9 @@ namespace rockdda::dda
     std::function<void()> on_resume;
 
     /// Called wherever statistics.csv is written (each checkpoint, before
-    /// checkpoint.bin, and the end of the run), to write other files of
-    /// the table (e.g. statistics.h5) at the same cadence.
+    /// checkpoint.bin, and the end of the run), after statistics.h5 (if
+    /// RunSettings::statistics_hdf5), to write other files of the table
+    /// (e.g. measurement_points.h5) at the same cadence.
     std::function<void()> on_statistics;
 
     /// The run's progress (after run(): at its end).
@@ -195,6 +201,11 @@ namespace rockdda::dda
 
     void
     load_checkpoint();
+
+    /// The files of the table beside statistics.csv: statistics.h5 and
+    /// those of on_statistics.
+    void
+    write_table_files();
 
     /// A row, with the cuts since the previous one.
     void
@@ -224,10 +235,21 @@ namespace rockdda::dda
     w.put_string(engine.checkpoint());
     io::RunCheckpoint::put_rows(w, table);
     progress.put(w);
-    if (on_statistics)
-      on_statistics();
+    write_table_files();
     checkpoint_file.write(w, table);
     saved_at = engine.time();
+  }
+
+
+
+  template <typename EngineType>
+  void
+  RunLoop<EngineType>::write_table_files()
+  {
+    if (settings.statistics_hdf5)
+      write_table_hdf5(context.output, "statistics.h5", table);
+    if (on_statistics)
+      on_statistics();
   }
 
 
@@ -382,8 +404,7 @@ namespace rockdda::dda
     else if ((s.checkpoint_interval <= 0. && interrupted == 0)
              || !failure.empty())
       {
-        if (on_statistics)
-          on_statistics();
+        write_table_files();
         context.output.write("statistics.csv", table.csv());
       }
     if (interrupted != 0 && failure.empty())
