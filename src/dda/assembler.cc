@@ -10,6 +10,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <limits>
 
 namespace rockdda::dda
@@ -264,7 +267,7 @@ namespace rockdda::dda
     std::vector<std::uint64_t> face_key(contacts.size());
     for_each_chunk(params.run_chunks,
                    contacts.size(),
-                   256,
+                   contact_grain,
                    [&](const std::size_t lo, const std::size_t hi) {
                      for (std::size_t c = lo; c < hi; ++c)
                        {
@@ -338,6 +341,22 @@ namespace rockdda::dda
         std::lower_bound(unique_pairs.begin(), unique_pairs.end(), pairs[c])
         - unique_pairs.begin());
     matrix.reinit(n, unique_pairs);
+    // The contacts of each block and of each pair, in contact order, for
+    // assemble()'s chunks; the pairs whose coupling a clamp eliminates.
+    contacts_of_block
+      = items_of_rows(n, contacts.size(), [&](const std::size_t c) {
+          return contact_blocks[c];
+        });
+    contacts_of_pair
+      = items_of_rows(static_cast<int>(unique_pairs.size()),
+                      contacts.size(),
+                      [&](const std::size_t c) {
+                        return std::make_pair(contact_pair[c], -1);
+                      });
+    clamped_pairs.clear();
+    for (std::size_t p = 0; p < unique_pairs.size(); ++p)
+      if (clamped[unique_pairs[p].first] || clamped[unique_pairs[p].second])
+        clamped_pairs.push_back(static_cast<int>(p));
   }
 
 
@@ -394,9 +413,154 @@ namespace rockdda::dda
 
 
   void
+  Assembler::assemble_block(const std::vector<Contact> &contacts,
+                            const int                   b,
+                            Matrix6                    &Kb,
+                            Eigen::Ref<Vector6>         Fb) const
+  {
+    Kb = base_matrix[b];
+    Fb = base_rhs[b];
+    for (int e = contacts_of_block.start[b]; e < contacts_of_block.start[b + 1];
+         ++e)
+      {
+        const int                c   = contacts_of_block.entry[e] / 2;
+        const bool               i   = contacts_of_block.entry[e] % 2 == 0;
+        const Contact           &ct  = contacts[c];
+        const ContactKinematics &kin = contact_kinematics[c];
+        if (ct.state == ContactState::open)
+          continue;
+        const Vector6 &en = i ? kin.en : kin.hn;
+        const Vector6 &es = i ? kin.es : kin.hs;
+        const double   kn = kin.normal_stiffness;
+        Kb.noalias() += kn * en * en.transpose();
+        Fb -= (kn * kin.g0) * en;
+        if (ct.state == ContactState::locked)
+          {
+            const double ks = kin.shear_stiffness;
+            Kb.noalias() += ks * es * es.transpose();
+            Fb -= (ks * kin.s0) * es;
+          }
+        else
+          // Sliding: the friction force opposes the sliding direction.
+          Fb -= (ct.slide_direction
+                 * shear_strength(
+                   ct, ct.normal_force, kin.length, joints[ct.joint]))
+                * es;
+      }
+  }
+
+
+
+  void
+  Assembler::assemble_pair(const std::vector<Contact> &contacts,
+                           const int                   p,
+                           Matrix6                    &Kp) const
+  {
+    Kp.setZero();
+    for (int e = contacts_of_pair.start[p]; e < contacts_of_pair.start[p + 1];
+         ++e)
+      {
+        const int                c   = contacts_of_pair.entry[e] / 2;
+        const Contact           &ct  = contacts[c];
+        const ContactKinematics &kin = contact_kinematics[c];
+        if (ct.state == ContactState::open)
+          continue;
+        // K_ij with i < j: block i's vectors on the left.
+        const bool     upper = ct.geometry.block_i < ct.geometry.block_j;
+        const Vector6 &un    = upper ? kin.en : kin.hn;
+        const Vector6 &vn    = upper ? kin.hn : kin.en;
+        Kp.noalias() += kin.normal_stiffness * un * vn.transpose();
+        if (ct.state == ContactState::locked)
+          {
+            const Vector6 &us = upper ? kin.es : kin.hs;
+            const Vector6 &vs = upper ? kin.hs : kin.es;
+            Kp.noalias() += kin.shear_stiffness * us * vs.transpose();
+          }
+      }
+  }
+
+
+
+  void
   Assembler::assemble(const std::vector<Contact> &contacts,
                       BlockSparseMatrix          &K,
                       Eigen::VectorXd            &F) const
+  {
+    const int n = static_cast<int>(base_matrix.size());
+    F.resize(6 * n);
+    // Each block row and each pair adds its contacts in contact order, as a
+    // serial loop over the contacts does, and is written by one chunk: the
+    // same bits on any number of threads.
+    for_each_chunk(params.run_chunks,
+                   n,
+                   block_grain,
+                   [&](const std::size_t lo, const std::size_t hi) {
+                     for (std::size_t b = lo; b < hi; ++b)
+                       assemble_block(contacts,
+                                      static_cast<int>(b),
+                                      K.diag[b],
+                                      F.segment<6>(6 * b));
+                   });
+    for_each_chunk(params.run_chunks,
+                   K.off.size(),
+                   pair_grain,
+                   [&](const std::size_t lo, const std::size_t hi) {
+                     for (std::size_t p = lo; p < hi; ++p)
+                       assemble_pair(contacts, static_cast<int>(p), K.off[p]);
+                   });
+    // Clamped blocks: eliminate their prescribed displacements.
+    for (const int k : clamped_pairs)
+      {
+        const auto [i, j] = K.pairs[k];
+        if (clamped[i] && !clamped[j])
+          F.segment<6>(6 * j) -= K.off[k].transpose() * prescribed[i];
+        else if (clamped[j] && !clamped[i])
+          F.segment<6>(6 * i) -= K.off[k] * prescribed[j];
+        K.off[k].setZero();
+      }
+    for (int b = 0; b < n; ++b)
+      if (clamped[b])
+        F.segment<6>(6 * b) = K.diag[b] * prescribed[b];
+    if (std::getenv("ROCKDDA_CHECK_ASSEMBLY") != nullptr)
+      {
+        // TEMPORARY: the serial loop over the contacts, compared bit for
+        // bit.
+        BlockSparseMatrix R = K;
+        Eigen::VectorXd   G;
+        assemble_serial(contacts, R, G);
+        static long checks = 0, blocks = 0;
+        ++checks;
+        blocks += n;
+        bool same
+          = G.size() == F.size()
+            && std::memcmp(G.data(), F.data(), sizeof(double) * F.size()) == 0;
+        for (int b = 0; b < n && same; ++b)
+          same
+            = std::memcmp(R.diag[b].data(), K.diag[b].data(), sizeof(Matrix6))
+              == 0;
+        for (std::size_t p = 0; p < K.off.size() && same; ++p)
+          same = std::memcmp(R.off[p].data(), K.off[p].data(), sizeof(Matrix6))
+                 == 0;
+        if (!same)
+          {
+            std::fprintf(stderr, "ASSEMBLY MISMATCH at check %ld\n", checks);
+            std::abort();
+          }
+        if (checks % 1000 == 0)
+          std::fprintf(
+            stderr,
+            "assembly check %ld: identical (%ld block rows so far)\n",
+            checks,
+            blocks);
+      }
+  }
+
+
+
+  void
+  Assembler::assemble_serial(const std::vector<Contact> &contacts,
+                             BlockSparseMatrix          &K,
+                             Eigen::VectorXd            &F) const
   {
     const int n = static_cast<int>(base_matrix.size());
     F.resize(6 * n);

@@ -60,11 +60,30 @@ namespace rockdda::dda
                  const StepParameters       &parameters,
                  BlockSparseMatrix          &matrix);
 
-    /// Assemble K and F for the current contact states.
+    /**
+     * Assemble K and F for the current contact states: the diagonal blocks
+     * and loads in chunks of block_grain blocks, the off-diagonal blocks in
+     * chunks of pair_grain pairs (StepParameters::run_chunks), each row
+     * adding its contacts in contact order. The sums are those of a serial
+     * loop over the contacts, bit for bit, on any number of threads.
+     */
     void
     assemble(const std::vector<Contact> &contacts,
              BlockSparseMatrix          &matrix,
              Eigen::VectorXd            &rhs) const;
+
+    /// TEMPORARY: the serial loop over the contacts.
+    void
+    assemble_serial(const std::vector<Contact> &contacts,
+                    BlockSparseMatrix          &matrix,
+                    Eigen::VectorXd            &rhs) const;
+
+    /// Contacts per chunk of the kinematics in prepare_step().
+    static constexpr std::size_t contact_grain = 256;
+    /// Blocks per chunk of the assembly's diagonal blocks and loads.
+    static constexpr std::size_t block_grain = 8;
+    /// Pairs of blocks per chunk of the assembly's off-diagonal blocks.
+    static constexpr std::size_t pair_grain = 32;
 
     /// Recompute the shear kinematics of contact @p index after its shear
     /// reference changed (a contact that locks during the iteration).
@@ -157,6 +176,19 @@ namespace rockdda::dda
     force_tolerance_of(const ContactKinematics &k,
                        const int                block_i,
                        const int                block_j) const;
+    /// Diagonal block @p Kb and load @p Fb of block @p b: its own part and
+    /// its contacts' springs and friction, in contact order.
+    void
+    assemble_block(const std::vector<Contact> &contacts,
+                   const int                   b,
+                   Matrix6                    &Kb,
+                   Eigen::Ref<Vector6>         Fb) const;
+    /// Off-diagonal block @p Kp of pair @p p: its contacts' springs, in
+    /// contact order.
+    void
+    assemble_pair(const std::vector<Contact> &contacts,
+                  const int                   p,
+                  Matrix6                    &Kp) const;
     /// Put the stiffness of contact @p c's joint (over its length) in
     /// series with the penalty springs.
     void
@@ -178,11 +210,17 @@ namespace rockdda::dda
     std::vector<char>              clamped;
     std::vector<Vector6>           prescribed;
     std::vector<ContactKinematics> contact_kinematics;
-    /// Pair index of each contact (-1 for a contact within one block).
+    /// Pair index of each contact (its off-diagonal block).
     std::vector<int> contact_pair;
-    /// The two blocks of each contact (vertex block, edge block).
+    /// The two blocks of each contact (vertex block, edge block; distinct:
+    /// detection pairs different blocks).
     std::vector<std::pair<int, int>> contact_blocks;
-    std::vector<JointMaterial>       joints;
+    /// The contacts of each block (side 0: its vertex block, 1: its edge
+    /// block) and of each pair, in contact order (items_of_rows()).
+    ItemsOfRows contacts_of_block, contacts_of_pair;
+    /// The pairs with a clamped block (their coupling is eliminated).
+    std::vector<int>           clamped_pairs;
+    std::vector<JointMaterial> joints;
   };
 } // namespace rockdda::dda
 
