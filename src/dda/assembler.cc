@@ -10,9 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <limits>
 
 namespace rockdda::dda
@@ -512,108 +509,6 @@ namespace rockdda::dda
     for (const int k : clamped_pairs)
       {
         const auto [i, j] = K.pairs[k];
-        if (clamped[i] && !clamped[j])
-          F.segment<6>(6 * j) -= K.off[k].transpose() * prescribed[i];
-        else if (clamped[j] && !clamped[i])
-          F.segment<6>(6 * i) -= K.off[k] * prescribed[j];
-        K.off[k].setZero();
-      }
-    for (int b = 0; b < n; ++b)
-      if (clamped[b])
-        F.segment<6>(6 * b) = K.diag[b] * prescribed[b];
-    if (std::getenv("ROCKDDA_CHECK_ASSEMBLY") != nullptr)
-      {
-        // TEMPORARY: the serial loop over the contacts, compared bit for
-        // bit.
-        BlockSparseMatrix R = K;
-        Eigen::VectorXd   G;
-        assemble_serial(contacts, R, G);
-        static long checks = 0, blocks = 0;
-        ++checks;
-        blocks += n;
-        bool same
-          = G.size() == F.size()
-            && std::memcmp(G.data(), F.data(), sizeof(double) * F.size()) == 0;
-        for (int b = 0; b < n && same; ++b)
-          same
-            = std::memcmp(R.diag[b].data(), K.diag[b].data(), sizeof(Matrix6))
-              == 0;
-        for (std::size_t p = 0; p < K.off.size() && same; ++p)
-          same = std::memcmp(R.off[p].data(), K.off[p].data(), sizeof(Matrix6))
-                 == 0;
-        if (!same)
-          {
-            std::fprintf(stderr, "ASSEMBLY MISMATCH at check %ld\n", checks);
-            std::abort();
-          }
-        if (checks % 1000 == 0)
-          std::fprintf(
-            stderr,
-            "assembly check %ld: identical (%ld block rows so far)\n",
-            checks,
-            blocks);
-      }
-  }
-
-
-
-  void
-  Assembler::assemble_serial(const std::vector<Contact> &contacts,
-                             BlockSparseMatrix          &K,
-                             Eigen::VectorXd            &F) const
-  {
-    const int n = static_cast<int>(base_matrix.size());
-    F.resize(6 * n);
-    for (int b = 0; b < n; ++b)
-      {
-        K.diag[b]           = base_matrix[b];
-        F.segment<6>(6 * b) = base_rhs[b];
-      }
-    for (auto &m : K.off)
-      m.setZero();
-    auto add_spring = [&](const int      c,
-                          const double   k,
-                          const Vector6 &e,
-                          const Vector6 &h,
-                          const double   g0) {
-      const auto &g = contacts[c].geometry;
-      const int   i = g.block_i, j = g.block_j;
-      K.diag[i].noalias() += k * e * e.transpose();
-      K.diag[j].noalias() += k * h * h.transpose();
-      if (i < j)
-        K.off[contact_pair[c]].noalias() += k * e * h.transpose();
-      else
-        K.off[contact_pair[c]].noalias() += k * h * e.transpose();
-      F.segment<6>(6 * i) -= (k * g0) * e;
-      F.segment<6>(6 * j) -= (k * g0) * h;
-    };
-    for (int c = 0; c < static_cast<int>(contacts.size()); ++c)
-      {
-        const Contact           &ct  = contacts[c];
-        const ContactKinematics &kin = contact_kinematics[c];
-        if (ct.state == ContactState::open)
-          continue;
-        add_spring(c, kin.normal_stiffness, kin.en, kin.hn, kin.g0);
-        if (ct.state == ContactState::locked)
-          add_spring(c, kin.shear_stiffness, kin.es, kin.hs, kin.s0);
-        else
-          {
-            // Sliding: the friction force opposes the sliding direction.
-            const double f = ct.slide_direction
-                             * shear_strength(ct,
-                                              ct.normal_force,
-                                              kin.length,
-                                              joints[ct.joint]);
-            F.segment<6>(6 * ct.geometry.block_i) -= f * kin.es;
-            F.segment<6>(6 * ct.geometry.block_j) -= f * kin.hs;
-          }
-      }
-    // Clamped blocks: eliminate their prescribed displacements.
-    for (std::size_t k = 0; k < K.pairs.size(); ++k)
-      {
-        const auto [i, j] = K.pairs[k];
-        if (!clamped[i] && !clamped[j])
-          continue;
         if (clamped[i] && !clamped[j])
           F.segment<6>(6 * j) -= K.off[k].transpose() * prescribed[i];
         else if (clamped[j] && !clamped[i])

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "dda_test_scenes.h"
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -993,13 +994,21 @@ TEST(DdaSolvers, IterativeMatchesDirectOnABrickWall)
 TEST(DdaSolvers, ResultsDoNotDependOnTheThreadCount)
 {
   // The same sliding, rocking wall on 1, 2 and 3 threads: detection,
-  // kinematics and state checks run in chunks whose bounds depend only on
-  // the number of items, and the D-ILU's two subdomains (ordering forced
-  // from 10 blocks on) are the same for every thread count, so the block
-  // positions must agree bit for bit, not merely to a tolerance.
-  BlockSystem s = running_bond_wall(6, 8);
+  // kinematics, the assembly of the contact springs (in chunks of blocks and
+  // of pairs of blocks, each adding its contacts in contact order) and the
+  // state checks run in chunks whose bounds depend only on the number of
+  // items, and the D-ILU's two subdomains (ordering forced from 10 blocks
+  // on) are the same for every thread count, so the block positions must
+  // agree bit for bit, not merely to a tolerance. The wall is large enough
+  // for every one of these loops to run on threads (>= 8 chunks).
+  BlockSystem s = running_bond_wall(26, 16);
   s.gravity     = Point(4., -g_earth);
-  auto run      = [&](const int threads) {
+  struct Run
+  {
+    BlockSystem system;
+    std::size_t contacts = 0, pairs = 0, sliding = 0;
+  };
+  auto run = [&](const int threads) {
     Controls c               = controls(1e-3, 1., 1e11);
     c.solver.type            = SolverType::iterative;
     c.solver.subdomain_limit = 10;
@@ -1007,18 +1016,44 @@ TEST(DdaSolvers, ResultsDoNotDependOnTheThreadCount)
     DdaSystem dda(s, c);
     for (int k = 0; k < 30; ++k)
       dda.step();
-    return dda.system();
+    Run                              r{dda.system()};
+    std::vector<std::pair<int, int>> pairs;
+    for (const auto &ct : dda.contacts())
+      {
+        const auto &g = ct.geometry;
+        pairs.emplace_back(std::min(g.block_i, g.block_j),
+                           std::max(g.block_i, g.block_j));
+        r.sliding += ct.state == ContactState::sliding;
+      }
+    std::sort(pairs.begin(), pairs.end());
+    r.contacts = dda.contacts().size();
+    r.pairs    = std::unique(pairs.begin(), pairs.end()) - pairs.begin();
+    return r;
   };
-  const BlockSystem one   = run(1);
-  double            moved = 0.;
-  for (std::size_t b = 0; b < one.blocks.size(); ++b)
+  const Run one   = run(1);
+  double    moved = 0.;
+  // (By the centroids: the engine may start a polygon at another vertex.)
+  for (std::size_t b = 0; b < one.system.blocks.size(); ++b)
     moved = std::max(moved,
-                     (one.blocks[b].polygon.vertices[0]
-                      - s.blocks[b].polygon.vertices[0])
+                     (block_moments(one.system.blocks[b].polygon).centroid
+                      - block_moments(s.blocks[b].polygon).centroid)
                        .norm());
+  std::printf("%zu blocks, %zu contacts, %zu pairs, %zu sliding; moved %.3e "
+              "m\n",
+              s.blocks.size(),
+              one.contacts,
+              one.pairs,
+              one.sliding,
+              moved);
   EXPECT_GT(moved, 1e-4); // the wall moves: the test is not trivial
+  EXPECT_GT(one.sliding, 0u);
+  // The loops do run on threads: >= 8 chunks of contacts, of
+  // blocks and of pairs of blocks in contact.
+  EXPECT_GE(one.contacts, 8u * Assembler::contact_grain);
+  EXPECT_GE(s.blocks.size(), 8u * Assembler::block_grain);
+  EXPECT_GE(one.pairs, 8u * Assembler::pair_grain);
   for (const int threads : {2, 3})
-    EXPECT_EQ(max_vertex_difference(one, run(threads)), 0.)
+    EXPECT_EQ(max_vertex_difference(one.system, run(threads).system), 0.)
       << threads << " threads";
 }
 

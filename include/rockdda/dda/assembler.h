@@ -72,12 +72,6 @@ namespace rockdda::dda
              BlockSparseMatrix          &matrix,
              Eigen::VectorXd            &rhs) const;
 
-    /// TEMPORARY: the serial loop over the contacts.
-    void
-    assemble_serial(const std::vector<Contact> &contacts,
-                    BlockSparseMatrix          &matrix,
-                    Eigen::VectorXd            &rhs) const;
-
     /// Contacts per chunk of the kinematics in prepare_step().
     static constexpr std::size_t contact_grain = 256;
     /// Blocks per chunk of the assembly's diagonal blocks and loads.
