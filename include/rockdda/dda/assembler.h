@@ -74,10 +74,13 @@ namespace rockdda::dda
 
     /// Contacts per chunk of the kinematics in prepare_step().
     static constexpr std::size_t contact_grain = 256;
-    /// Blocks per chunk of the assembly's diagonal blocks and loads.
-    static constexpr std::size_t block_grain = 8;
+    /// Blocks per chunk of the assembly's diagonal blocks and loads (on
+    /// threads from 8 chunks on, TaskTeam: 1,013 blocks ran as fast with 8
+    /// as with 32, 127 and 251 blocks within 2-7 % of serial either way;
+    /// benchmarks/dda-scaling, section 12).
+    static constexpr std::size_t block_grain = 32;
     /// Pairs of blocks per chunk of the assembly's off-diagonal blocks.
-    static constexpr std::size_t pair_grain = 32;
+    static constexpr std::size_t pair_grain = 64;
 
     /// Recompute the shear kinematics of contact @p index after its shear
     /// reference changed (a contact that locks during the iteration).

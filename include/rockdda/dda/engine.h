@@ -445,7 +445,7 @@ namespace rockdda::dda
                 const Eigen::VectorXd      &x_k,
                 const Eigen::VectorXd      &x_hat,
                 const std::vector<double>  &tolerance_factor,
-                const std::vector<double>  &hold_tolerance) const;
+                const std::vector<double>  &hold_tolerance);
     /// Warnings about parameters outside the plausible range for rock
     /// (engine_sanity.cc): E, density, the record's PGA, a penalty too low
     /// for the weight of the blocks.
