@@ -410,69 +410,52 @@ namespace rockdda::dda
 
 
   void
-  Assembler::assemble_block(const std::vector<Contact> &contacts,
-                            const int                   b,
-                            Matrix6                    &Kb,
-                            Eigen::Ref<Vector6>         Fb) const
+  Assembler::add_to_block(const Contact           &ct,
+                          const ContactKinematics &kin,
+                          const bool               vertex_side,
+                          Matrix6                 &Kb,
+                          Eigen::Ref<Vector6>      Fb) const
   {
-    Kb = base_matrix[b];
-    Fb = base_rhs[b];
-    for (int e = contacts_of_block.start[b]; e < contacts_of_block.start[b + 1];
-         ++e)
+    if (ct.state == ContactState::open)
+      return;
+    const Vector6 &en = vertex_side ? kin.en : kin.hn;
+    const Vector6 &es = vertex_side ? kin.es : kin.hs;
+    const double   kn = kin.normal_stiffness;
+    Kb.noalias() += kn * en * en.transpose();
+    Fb -= (kn * kin.g0) * en;
+    if (ct.state == ContactState::locked)
       {
-        const int                c   = contacts_of_block.entry[e] / 2;
-        const bool               i   = contacts_of_block.entry[e] % 2 == 0;
-        const Contact           &ct  = contacts[c];
-        const ContactKinematics &kin = contact_kinematics[c];
-        if (ct.state == ContactState::open)
-          continue;
-        const Vector6 &en = i ? kin.en : kin.hn;
-        const Vector6 &es = i ? kin.es : kin.hs;
-        const double   kn = kin.normal_stiffness;
-        Kb.noalias() += kn * en * en.transpose();
-        Fb -= (kn * kin.g0) * en;
-        if (ct.state == ContactState::locked)
-          {
-            const double ks = kin.shear_stiffness;
-            Kb.noalias() += ks * es * es.transpose();
-            Fb -= (ks * kin.s0) * es;
-          }
-        else
-          // Sliding: the friction force opposes the sliding direction.
-          Fb -= (ct.slide_direction
-                 * shear_strength(
-                   ct, ct.normal_force, kin.length, joints[ct.joint]))
-                * es;
+        const double ks = kin.shear_stiffness;
+        Kb.noalias() += ks * es * es.transpose();
+        Fb -= (ks * kin.s0) * es;
       }
+    else
+      // Sliding: the friction force opposes the sliding direction.
+      Fb
+        -= (ct.slide_direction
+            * shear_strength(ct, ct.normal_force, kin.length, joints[ct.joint]))
+           * es;
   }
 
 
 
   void
-  Assembler::assemble_pair(const std::vector<Contact> &contacts,
-                           const int                   p,
-                           Matrix6                    &Kp) const
+  Assembler::add_to_pair(const Contact           &ct,
+                         const ContactKinematics &kin,
+                         Matrix6                 &Kp) const
   {
-    Kp.setZero();
-    for (int e = contacts_of_pair.start[p]; e < contacts_of_pair.start[p + 1];
-         ++e)
+    if (ct.state == ContactState::open)
+      return;
+    // K_ij with i < j: block i's vectors on the left.
+    const bool     upper = ct.geometry.block_i < ct.geometry.block_j;
+    const Vector6 &un    = upper ? kin.en : kin.hn;
+    const Vector6 &vn    = upper ? kin.hn : kin.en;
+    Kp.noalias() += kin.normal_stiffness * un * vn.transpose();
+    if (ct.state == ContactState::locked)
       {
-        const int                c   = contacts_of_pair.entry[e] / 2;
-        const Contact           &ct  = contacts[c];
-        const ContactKinematics &kin = contact_kinematics[c];
-        if (ct.state == ContactState::open)
-          continue;
-        // K_ij with i < j: block i's vectors on the left.
-        const bool     upper = ct.geometry.block_i < ct.geometry.block_j;
-        const Vector6 &un    = upper ? kin.en : kin.hn;
-        const Vector6 &vn    = upper ? kin.hn : kin.en;
-        Kp.noalias() += kin.normal_stiffness * un * vn.transpose();
-        if (ct.state == ContactState::locked)
-          {
-            const Vector6 &us = upper ? kin.es : kin.hs;
-            const Vector6 &vs = upper ? kin.hs : kin.es;
-            Kp.noalias() += kin.shear_stiffness * us * vs.transpose();
-          }
+        const Vector6 &us = upper ? kin.es : kin.hs;
+        const Vector6 &vs = upper ? kin.hs : kin.es;
+        Kp.noalias() += kin.shear_stiffness * us * vs.transpose();
       }
   }
 
@@ -485,26 +468,74 @@ namespace rockdda::dda
   {
     const int n = static_cast<int>(base_matrix.size());
     F.resize(6 * n);
-    // Each block row and each pair adds its contacts in contact order, as a
-    // serial loop over the contacts does, and is written by one chunk: the
-    // same bits on any number of threads.
-    for_each_chunk(params.run_chunks,
-                   n,
-                   block_grain,
-                   [&](const std::size_t lo, const std::size_t hi) {
-                     for (std::size_t b = lo; b < hi; ++b)
-                       assemble_block(contacts,
-                                      static_cast<int>(b),
-                                      K.diag[b],
-                                      F.segment<6>(6 * b));
-                   });
-    for_each_chunk(params.run_chunks,
-                   K.off.size(),
-                   pair_grain,
-                   [&](const std::size_t lo, const std::size_t hi) {
-                     for (std::size_t p = lo; p < hi; ++p)
-                       assemble_pair(contacts, static_cast<int>(p), K.off[p]);
-                   });
+    // Each block row and each pair adds its contacts in contact order. On
+    // threads, each row is written by one chunk; on one (or a scene too
+    // small for the 8 chunks from which the runner uses threads) a single
+    // pass over the contacts adds them in the same order per row, reading
+    // each contact once: the same bits either way.
+    if (params.threads < 2 || static_cast<std::size_t>(n) < 8 * block_grain)
+      {
+        for (int b = 0; b < n; ++b)
+          {
+            K.diag[b]           = base_matrix[b];
+            F.segment<6>(6 * b) = base_rhs[b];
+          }
+        for (auto &m : K.off)
+          m.setZero();
+        for (std::size_t c = 0; c < contacts.size(); ++c)
+          {
+            const auto [i, j] = contact_blocks[c];
+            const auto &kin   = contact_kinematics[c];
+            add_to_block(
+              contacts[c], kin, true, K.diag[i], F.segment<6>(6 * i));
+            add_to_block(
+              contacts[c], kin, false, K.diag[j], F.segment<6>(6 * j));
+            add_to_pair(contacts[c], kin, K.off[contact_pair[c]]);
+          }
+      }
+    else
+      {
+        for_each_chunk(params.run_chunks,
+                       n,
+                       block_grain,
+                       [&](const std::size_t lo, const std::size_t hi) {
+                         for (std::size_t b = lo; b < hi; ++b)
+                           {
+                             K.diag[b]           = base_matrix[b];
+                             F.segment<6>(6 * b) = base_rhs[b];
+                             for (int e = contacts_of_block.start[b];
+                                  e < contacts_of_block.start[b + 1];
+                                  ++e)
+                               {
+                                 const int c = contacts_of_block.entry[e] / 2;
+                                 add_to_block(contacts[c],
+                                              contact_kinematics[c],
+                                              contacts_of_block.entry[e] % 2
+                                                == 0,
+                                              K.diag[b],
+                                              F.segment<6>(6 * b));
+                               }
+                           }
+                       });
+        for_each_chunk(params.run_chunks,
+                       K.off.size(),
+                       pair_grain,
+                       [&](const std::size_t lo, const std::size_t hi) {
+                         for (std::size_t p = lo; p < hi; ++p)
+                           {
+                             K.off[p].setZero();
+                             for (int e = contacts_of_pair.start[p];
+                                  e < contacts_of_pair.start[p + 1];
+                                  ++e)
+                               {
+                                 const int c = contacts_of_pair.entry[e] / 2;
+                                 add_to_pair(contacts[c],
+                                             contact_kinematics[c],
+                                             K.off[p]);
+                               }
+                           }
+                       });
+      }
     // Clamped blocks: eliminate their prescribed displacements.
     for (const int k : clamped_pairs)
       {

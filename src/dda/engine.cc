@@ -375,6 +375,7 @@ namespace rockdda::dda
           par.fixed_targets[f] += uv * scene.seismic.vertical;
       }
     par.run_chunks = chunks();
+    par.threads    = solver.n_threads();
     par.clamped    = &clamped_block;
     assembler.prepare_step(scene, contacts, par, matrix);
     solver.new_pattern(matrix, &scene.blocks);

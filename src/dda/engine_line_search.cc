@@ -60,73 +60,79 @@ namespace rockdda::dda
       double f_hold;          // closing / sliding threshold of a held contact
       double f_open;          // tension at which it opens
       bool   shear;
+      bool   moves; // whether the contact moves along d (else no term)
     };
-    // The terms of the contacts are independent: in chunks, joined in
-    // contact order (the same list on any number of threads).
-    const std::vector<Term> terms = joined_chunks<Term>(
-      chunks(),
-      contacts.size(),
-      256,
-      [&](const std::size_t lo, const std::size_t hi, std::vector<Term> &out) {
-        for (std::size_t c = lo; c < hi; ++c)
-          {
-            const Contact       &ct    = contacts[c];
-            const auto          &kin   = assembler.kinematics()[c];
-            const JointMaterial &joint = scene.joints[ct.joint];
-            const int            ci    = static_cast<int>(c);
-            Term                 t;
-            t.g      = assembler.gap(ci, x_k);
-            t.dg     = assembler.gap(ci, x_hat) - t.g;
-            t.s      = assembler.shear_displacement(ci, x_k);
-            t.ds     = assembler.shear_displacement(ci, x_hat) - t.s;
-            t.p      = kin.normal_stiffness;
-            t.ps     = kin.shear_stiffness;
-            t.closed = ct.state != ContactState::open;
-            t.f      = escalated_tolerance(kin, tolerance_factor[c]);
-            t.f_hold = std::max(t.f, hold_tolerance[c]);
-            t.f_open = ct.state == ContactState::locked ? t.f_hold : t.f;
-            // An intact joint with tensile strength is a linear spring while it
-            // holds (breaking is decided by the state check, not here).
-            t.linear_normal = t.closed && !ct.broken
-                              && ct.state == ContactState::locked
-                              && joint.tensile > 0.;
-            t.contact     = &ct;
-            t.joint       = &joint;
-            t.length      = kin.length;
-            t.lin_shear_k = 0.;
-            t.lin_shear_f = 0.;
-            t.S           = 0.;
-            t.o           = 0.;
-            // The locked members of a face group slide on their resultant
-            // (check_face_groups): left linear here.
-            t.shear = t.closed && !frictionless(ct, joint)
-                      && !(ct.state == ContactState::locked
-                           && assembler.groups()[c] >= 0);
-            if (t.shear)
-              {
-                const double S
-                  = shear_strength(ct, ct.normal_force, kin.length, joint);
-                // The state check's rules, with the strength S(N) of the normal
-                // force N at the point of the line (Coulomb):
-                if (ct.state == ContactState::locked)
-                  {
-                    // slides when |p_s s| exceeds S + f;
-                    t.lin_shear_k = t.ps;
-                    t.S           = t.f_hold;
-                  }
-                else
-                  {
-                    // keeps the friction force S until its slip reverses by
-                    // more than f / p_s, then unloads elastically.
-                    t.lin_shear_f = ct.slide_direction * S;
-                    t.o           = ct.slide_direction * t.f;
-                    t.S_sliding   = S;
-                  }
-              }
-            if (t.dg != 0. || t.ds != 0.)
-              out.push_back(t);
-          }
-      });
+    // The terms of the contacts are independent: in chunks (the same terms
+    // on any number of threads).
+    std::vector<Term> terms(contacts.size());
+    for_each_chunk(chunks(),
+                   contacts.size(),
+                   256,
+                   [&](const std::size_t lo, const std::size_t hi) {
+                     for (std::size_t c = lo; c < hi; ++c)
+                       {
+                         const Contact       &ct    = contacts[c];
+                         const auto          &kin   = assembler.kinematics()[c];
+                         const JointMaterial &joint = scene.joints[ct.joint];
+                         const int            ci    = static_cast<int>(c);
+                         Term                &t     = terms[c];
+                         t.g                        = assembler.gap(ci, x_k);
+                         t.dg = assembler.gap(ci, x_hat) - t.g;
+                         t.s  = assembler.shear_displacement(ci, x_k);
+                         t.ds = assembler.shear_displacement(ci, x_hat) - t.s;
+                         t.p  = kin.normal_stiffness;
+                         t.ps = kin.shear_stiffness;
+                         t.closed = ct.state != ContactState::open;
+                         t.f = escalated_tolerance(kin, tolerance_factor[c]);
+                         t.f_hold = std::max(t.f, hold_tolerance[c]);
+                         t.f_open
+                           = ct.state == ContactState::locked ? t.f_hold : t.f;
+                         // An intact joint with tensile strength is a linear
+                         // spring while it holds (breaking is decided by the
+                         // state check, not here).
+                         t.linear_normal = t.closed && !ct.broken
+                                           && ct.state == ContactState::locked
+                                           && joint.tensile > 0.;
+                         t.contact     = &ct;
+                         t.joint       = &joint;
+                         t.length      = kin.length;
+                         t.lin_shear_k = 0.;
+                         t.lin_shear_f = 0.;
+                         t.S           = 0.;
+                         t.o           = 0.;
+                         // The locked members of a face group slide on their
+                         // resultant (check_face_groups): left linear here.
+                         t.shear = t.closed && !frictionless(ct, joint)
+                                   && !(ct.state == ContactState::locked
+                                        && assembler.groups()[c] >= 0);
+                         if (t.shear)
+                           {
+                             const double S = shear_strength(ct,
+                                                             ct.normal_force,
+                                                             kin.length,
+                                                             joint);
+                             // The state check's rules, with the strength S(N)
+                             // of the normal force N at the point of the line
+                             // (Coulomb):
+                             if (ct.state == ContactState::locked)
+                               {
+                                 // slides when |p_s s| exceeds S + f;
+                                 t.lin_shear_k = t.ps;
+                                 t.S           = t.f_hold;
+                               }
+                             else
+                               {
+                                 // keeps the friction force S until its slip
+                                 // reverses by more than f / p_s, then unloads
+                                 // elastically.
+                                 t.lin_shear_f = ct.slide_direction * S;
+                                 t.o           = ct.slide_direction * t.f;
+                                 t.S_sliding   = S;
+                               }
+                           }
+                         t.moves = t.dg != 0. || t.ds != 0.;
+                       }
+                   });
 
     // phi'(alpha) = d^T grad Pi(x_k + alpha d): the assembled system gives
     // (alpha - 1) a, corrected by the true minus the linearised contact
@@ -135,6 +141,8 @@ namespace rockdda::dda
       double v = (alpha - 1.) * a;
       for (const Term &t : terms)
         {
+          if (!t.moves)
+            continue;
           const double g = t.g + alpha * t.dg;
           const double p = t.p;
           if (!t.linear_normal)

@@ -36,9 +36,12 @@ namespace rockdda::dda
     /// Target positions of the fixed points at the end of the step (m).
     std::vector<geometry::Point> fixed_targets;
     ContactLaw                   law;
-    /// Runs the contact kinematics in chunks, possibly on threads
-    /// (ChunkRunner).
+    /// Runs the contact kinematics and the assembly in chunks, possibly on
+    /// threads (ChunkRunner).
     ChunkRunner run_chunks;
+    /// Threads of run_chunks: with fewer than 2 the assembly makes one pass
+    /// over the contacts instead of one per block and per pair.
+    unsigned int threads = 1;
     /// Which blocks their fixed points clamp (clamped_blocks()); nullptr:
     /// none, every fixed point is a penalty spring.
     const std::vector<char> *clamped = nullptr;
@@ -61,11 +64,12 @@ namespace rockdda::dda
                  BlockSparseMatrix          &matrix);
 
     /**
-     * Assemble K and F for the current contact states: the diagonal blocks
-     * and loads in chunks of block_grain blocks, the off-diagonal blocks in
-     * chunks of pair_grain pairs (StepParameters::run_chunks), each row
-     * adding its contacts in contact order. The sums are those of a serial
-     * loop over the contacts, bit for bit, on any number of threads.
+     * Assemble K and F for the current contact states: on threads, the
+     * diagonal blocks and loads in chunks of block_grain blocks and the
+     * off-diagonal blocks in chunks of pair_grain pairs
+     * (StepParameters::run_chunks), each row adding its contacts in contact
+     * order; otherwise in one pass over the contacts. The sums are the same,
+     * bit for bit, on any number of threads.
      */
     void
     assemble(const std::vector<Contact> &contacts,
@@ -75,8 +79,7 @@ namespace rockdda::dda
     /// Contacts per chunk of the kinematics in prepare_step().
     static constexpr std::size_t contact_grain = 256;
     /// Blocks per chunk of the assembly's diagonal blocks and loads (on
-    /// threads from 8 chunks on, TaskTeam: 1,013 blocks ran as fast with 8
-    /// as with 32, 127 and 251 blocks within 2-7 % of serial either way;
+    /// threads from 8 chunks on: 1,013 blocks ran as fast with 8 as with 32;
     /// benchmarks/dda-scaling, section 12).
     static constexpr std::size_t block_grain = 32;
     /// Pairs of blocks per chunk of the assembly's off-diagonal blocks.
@@ -173,19 +176,20 @@ namespace rockdda::dda
     force_tolerance_of(const ContactKinematics &k,
                        const int                block_i,
                        const int                block_j) const;
-    /// Diagonal block @p Kb and load @p Fb of block @p b: its own part and
-    /// its contacts' springs and friction, in contact order.
+    /// Add contact @p ct's springs and friction to the diagonal block @p Kb
+    /// and load @p Fb of its vertex block (@p vertex_side) or edge block.
     void
-    assemble_block(const std::vector<Contact> &contacts,
-                   const int                   b,
-                   Matrix6                    &Kb,
-                   Eigen::Ref<Vector6>         Fb) const;
-    /// Off-diagonal block @p Kp of pair @p p: its contacts' springs, in
-    /// contact order.
+    add_to_block(const Contact           &ct,
+                 const ContactKinematics &kin,
+                 const bool               vertex_side,
+                 Matrix6                 &Kb,
+                 Eigen::Ref<Vector6>      Fb) const;
+    /// Add contact @p ct's springs to the off-diagonal block @p Kp of its
+    /// pair.
     void
-    assemble_pair(const std::vector<Contact> &contacts,
-                  const int                   p,
-                  Matrix6                    &Kp) const;
+    add_to_pair(const Contact           &ct,
+                const ContactKinematics &kin,
+                Matrix6                 &Kp) const;
     /// Put the stiffness of contact @p c's joint (over its length) in
     /// series with the penalty springs.
     void
