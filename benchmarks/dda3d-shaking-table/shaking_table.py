@@ -9,6 +9,8 @@ sliding3d-shaking-table.prm (dt = 1e-4 s).
 usage: shaking_table.py ROCKDDA BLOCKS [--modes loading,displacement]
        [--penalty 1e10,2e10,...] [--dt 0.005,...] [--end 22.4 (s; the record is 2.4 s shorter:
        the filter's padding)]
+       [--contact-damping 0,1,...] [--step-damping 0,1,...]
+       [--strain-damping 0,1e-4,...]
        [--out shaking_table.csv] [--histories DIR]
 
 Columns: mode, dt_s, penalty_N_per_m, status (ok, or the run's failure),
@@ -17,10 +19,12 @@ at the end / |u_a| at the end), error_history (max over t of |u - u_a| /
 |u_a| at the end), onset_s (first time the slide exceeds 1e-4 m; the
 analytical onset in the row 'analytical'; the input acceleration at the
 onset against the yield acceleration is checked by the unit test), wall_s, steps, cuts. --histories keeps each run's statistics.csv as
-DIR/MODE-DT-PENALTY.csv.
+DIR/MODE-DT-PENALTY[-cdZETA][-sbBETA][-sdETA].csv; contact_damping,
+contact_step_damping, strain_damping_s.
 """
 import argparse
 import csv
+import itertools
 import math
 import os
 import re
@@ -35,6 +39,8 @@ PRM = os.path.join(HERE, "..", "..", "parameter-files")
 sys.path.insert(0, os.path.join(HERE, "..", "dda3d"))
 from fig4_2_error import summary  # noqa: E402
 
+# Keys of the DDA 3d section that the template leaves at their defaults.
+OPTIONAL = ("Contact damping ratio", "Contact step damping", "Strain damping")
 ONSET = 1e-4  # m: 1e3 x the elastic slip of the contact springs at 1e10 N/m
 
 
@@ -51,6 +57,9 @@ def run(rockdda, template, replace, work, name, blocks=None):
         values = iter(value if isinstance(value, list) else [value])
         text, n = re.subn(rf"(set {re.escape(key)}\s*=).*",
                           lambda m: f"{m.group(1)} {next(values)}", text)
+        if n == 0 and key in OPTIONAL:  # a key at its default: add it
+            text, n = re.subn(r"(\n(\s*)set Contact penalty\s*=.*)",
+                              rf"\g<1>\n\g<2>set {key} = {value}", text)
         assert n == (len(value) if isinstance(value, list) else 1), key
     text = re.sub(r"set Output directory\s*=.*",
                   f"set Output directory = {name}", text)
@@ -79,6 +88,12 @@ def main():
     p.add_argument("--penalty", default="1e10,2e10,4e10")
     p.add_argument("--dt", default="0.005")
     p.add_argument("--end", default="22.4")
+    p.add_argument("--contact-damping", default="0",
+                   help="Contact damping ratios (-), comma-separated")
+    p.add_argument("--step-damping", default="0",
+                   help="Contact step damping values (-), comma-separated")
+    p.add_argument("--strain-damping", default="0",
+                   help="Strain damping values (s), comma-separated")
     p.add_argument("--out", default="shaking_table.csv")
     p.add_argument("--histories")
     a = p.parse_args()
@@ -106,51 +121,67 @@ def main():
                    float("nan"))
     rows = [["analytical", "1e-4", "-", "ok",
              f"{sum(e * l for e, l in zip(end, line)):.6f}", "0", "0",
-             f"{onset_a:.3f}", "", "", ""]]
+             f"{onset_a:.3f}", "", "", "", "", "", ""]]
     print(*rows[-1], flush=True)
     if a.histories:
         os.makedirs(a.histories, exist_ok=True)
         shutil.copy(os.path.join(ref, "statistics.csv"),
                     os.path.join(a.histories, "analytical.csv"))
-    for mode in a.modes.split(","):
-        for dt in a.dt.split(","):
-            for pen in a.penalty.split(","):
-                name = f"{mode}-{dt}-{pen}"
-                out, status, wall = run(
-                    a.rockdda, os.path.join(PRM, "dda3d-shaking-table.prm"),
-                    {"Time step": ["0.005", dt], "Contact penalty": pen,
-                     "Seismic input": mode, "End time": a.end,
-                     "Duration": record},
-                    work, name, a.blocks)
-                stats = os.path.join(out, "statistics.csv")
-                if not os.path.exists(stats):
-                    rows.append([mode, dt, pen, status] + [""] * 7)
-                    print(*rows[-1], flush=True)
-                    continue
-                hist = table(stats)
-                err_h, onset, u = 0., float("nan"), (0., 0., 0.)
-                for r in hist:
-                    u = tuple(r[f"mp1_u{c}_m"] - r.get(f"ground_u{c}_m", 0.)
-                              for c in "xyz")
-                    if math.isnan(onset) and math.hypot(*u) > ONSET:
-                        onset = r["time_s"]
-                    err_h = max(err_h, math.dist(u, at(r["time_s"])) / scale)
-                s = summary(out) if status == "ok" else {}
-                err_f = math.dist(u, end) / scale
-                rows.append([mode, dt, pen, status,
-                             f"{sum(e * l for e, l in zip(u, line)):.6f}",
-                             f"{err_f:.3e}", f"{err_h:.3e}", f"{onset:.3f}",
-                             f"{wall:.2f}",
-                             int(s.get("steps", 0)),
-                             int(s.get("time_step_cuts", 0))])
-                print(*rows[-1], flush=True)
-                if a.histories:
-                    shutil.copy(stats, os.path.join(a.histories,
-                                                    name + ".csv"))
+    for mode, zeta, beta, eta, dt, pen in itertools.product(
+            a.modes.split(","), a.contact_damping.split(","),
+            a.step_damping.split(","), a.strain_damping.split(","),
+            a.dt.split(","),
+            a.penalty.split(",")):
+        name = f"{mode}-{dt}-{pen}"
+        replace = {"Time step": ["0.005", dt], "Contact penalty": pen,
+                   "Seismic input": mode, "End time": a.end,
+                   "Duration": record}
+        # (Keys at their defaults are left out: the history names
+        # and an older driver stay as they were.)
+        if zeta != "0":
+            replace["Contact damping ratio"] = zeta
+            name += f"-cd{zeta}"
+        if beta != "0":
+            replace["Contact step damping"] = beta
+            name += f"-sb{beta}"
+        if eta != "0":
+            replace["Strain damping"] = eta
+            name += f"-sd{eta}"
+        out, status, wall = run(
+            a.rockdda, os.path.join(PRM, "dda3d-shaking-table.prm"),
+            replace, work, name, a.blocks)
+        stats = os.path.join(out, "statistics.csv")
+        if not os.path.exists(stats):
+            rows.append([mode, dt, pen, status] + [""] * 7
+                        + [zeta, beta, eta])
+            print(*rows[-1], flush=True)
+            continue
+        hist = table(stats)
+        err_h, onset, u = 0., float("nan"), (0., 0., 0.)
+        for r in hist:
+            u = tuple(r[f"mp1_u{c}_m"] - r.get(f"ground_u{c}_m", 0.)
+                      for c in "xyz")
+            if math.isnan(onset) and math.hypot(*u) > ONSET:
+                onset = r["time_s"]
+            err_h = max(err_h, math.dist(u, at(r["time_s"])) / scale)
+        s = summary(out) if status == "ok" else {}
+        err_f = math.dist(u, end) / scale
+        rows.append([mode, dt, pen, status,
+                     f"{sum(e * l for e, l in zip(u, line)):.6f}",
+                     f"{err_f:.3e}", f"{err_h:.3e}", f"{onset:.3f}",
+                     f"{wall:.2f}",
+                     int(s.get("steps", 0)),
+                     int(s.get("time_step_cuts", 0)), zeta, beta, eta])
+        print(*rows[-1], flush=True)
+        if a.histories:
+            shutil.copy(stats, os.path.join(a.histories,
+                                            name + ".csv"))
     with open(a.out, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["mode", "dt_s", "penalty_N_per_m", "status", "slide_m",
-                    "error_final", "error_history", "onset_s", "wall_s", "steps", "cuts"])
+                    "error_final", "error_history", "onset_s", "wall_s", "steps", "cuts",
+                    "contact_damping", "contact_step_damping",
+                    "strain_damping_s"])
         w.writerows(rows)
     shutil.rmtree(work)
 

@@ -6,17 +6,20 @@ final displacement vector against the analytical solution (analysis type
 sliding3d at dt = 1e-5 s, converged to ~1e-5), and the wall time.
 
 usage: fig4_2_error.py ROCKDDA [--dt 0.01,0.005,...] [--penalty 1e7,...]
-       [--strain-damping 0,1e-3,...] [--repeat 3] [--cases a,b]
-       [--out fig4_2_error.csv]
+       [--strain-damping 0,1e-3,...] [--contact-damping 0,0.5,...]
+       [--step-damping 0,1,...]
+       [--repeat 3] [--cases a,b] [--out fig4_2_error.csv]
 
 Runs parameter-files/dda3d-fig4-2{a,b}.prm and sliding3d-fig4-2{a,b}.prm
-with the time step, penalty and strain damping (Kelvin-Voigt viscous time
-eta, s) replaced, in a scratch folder; writes one CSV row per run: case, dt_s,
-penalty_N_per_m, strain_damping_s, ux, uy, uz, error, wall_s (the median of
+with the time step, penalty, strain damping (Kelvin-Voigt viscous time
+eta, s), contact damping ratio and contact step damping (-) replaced, in a scratch folder; writes
+one CSV row per run: case, dt_s, penalty_N_per_m, strain_damping_s,
+contact_damping, contact_step_damping, ux, uy, uz, error, wall_s (the median of
 --repeat runs: the machine is shared), steps, cuts.
 """
 import argparse
 import csv
+import itertools
 import math
 import os
 import re
@@ -49,7 +52,8 @@ def run(rockdda, template, replace, work, name):
     for key, value in replace.items():
         text, n = re.subn(rf"(set {re.escape(key)}\s*=).*", rf"\g<1> {value}",
                           text)
-        if n == 0 and key == "Strain damping":
+        if n == 0 and key in ("Strain damping", "Contact damping ratio",
+                              "Contact step damping"):
             text, n = re.subn(r"(\n(\s*)set Time step\s*=.*)",
                               rf"\g<1>\n\g<2>set {key} = {value}", text)
         assert n == 1, key
@@ -77,6 +81,10 @@ def main():
     p.add_argument("--penalty", default="1e7,1e8,1e9")
     p.add_argument("--strain-damping", default="0",
                    help="Strain damping values (s), comma-separated")
+    p.add_argument("--contact-damping", default="0",
+                   help="Contact damping ratios (-), comma-separated")
+    p.add_argument("--step-damping", default="0",
+                   help="Contact step damping values (-), comma-separated")
     p.add_argument("--repeat", type=int, default=1,
                    help="runs per setting; the wall time is their median")
     p.add_argument("--cases", default="a,b")
@@ -94,26 +102,31 @@ def main():
         ref, _ = run(a.rockdda, os.path.join(PRM, f"sliding3d-fig4-2{case}.prm"),
                      {"Time step": "1e-5"}, work, f"ref-{case}")
         r = [ref["final_displacement_" + c] for c in "xyz"]
-        for eta in a.strain_damping.split(","):
-            for dt in a.dt.split(","):
-                for pen in a.penalty.split(","):
-                    name = f"dda3d-{case}-{dt}-{pen}-{eta}"
-                    s, wall = run(a.rockdda,
-                                  os.path.join(PRM, f"dda3d-fig4-2{case}.prm"),
-                                  {"Time step": dt, "Contact penalty": pen,
-                                   "Settling steps": a.settling,
-                                   "Strain damping": eta},
-                                  work, name)
-                    u = [s["mp1_u" + c] for c in "xyz"]
-                    err = math.dist(u, r) / math.hypot(*r)
-                    rows.append([case, dt, pen, eta]
-                                + [f"{x:.6f}" for x in u]
-                                + [f"{err:.3e}", f"{wall:.2f}",
-                                   int(s["steps"]), int(s["time_step_cuts"])])
-                    print(*rows[-1], flush=True)
+        for eta, zeta, beta, dt, pen in itertools.product(
+                a.strain_damping.split(","), a.contact_damping.split(","),
+                a.step_damping.split(","), a.dt.split(","),
+                a.penalty.split(",")):
+            name = f"dda3d-{case}-{dt}-{pen}-{eta}-{zeta}-{beta}"
+            replace = {"Time step": dt, "Contact penalty": pen,
+                       "Settling steps": a.settling, "Strain damping": eta}
+            if zeta != "0":  # (a driver without the key runs the rest)
+                replace["Contact damping ratio"] = zeta
+            if beta != "0":
+                replace["Contact step damping"] = beta
+            s, wall = run(a.rockdda,
+                          os.path.join(PRM, f"dda3d-fig4-2{case}.prm"),
+                          replace, work, name)
+            u = [s["mp1_u" + c] for c in "xyz"]
+            err = math.dist(u, r) / math.hypot(*r)
+            rows.append([case, dt, pen, eta, zeta, beta]
+                        + [f"{x:.6f}" for x in u]
+                        + [f"{err:.3e}", f"{wall:.2f}",
+                           int(s["steps"]), int(s["time_step_cuts"])])
+            print(*rows[-1], flush=True)
     with open(a.out, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["case", "dt_s", "penalty_N_per_m", "strain_damping_s",
+                    "contact_damping", "contact_step_damping",
                     "ux_m", "uy_m", "uz_m",
                     "error", "wall_s", "steps", "cuts"])
         w.writerows(rows)

@@ -4,6 +4,7 @@
  * checks, the open-close iteration with step cutting, and the energy
  * ledger (Shi 1988, 2001; doc/theory/dda3d.md).
  */
+#include <rockdda/dda/contact_damping.h>
 #include <rockdda/dda/logarithmic_strain.h>
 #include <rockdda/dda/strain_damping.h>
 #include <rockdda/dda3d/engine.h>
@@ -203,6 +204,15 @@ namespace rockdda::dda3d
     if (!(ctrl.strain_damping >= 0. && std::isfinite(ctrl.strain_damping)))
       throw InputError("strain damping " + std::to_string(ctrl.strain_damping)
                        + " s; valid: >= 0 s");
+    if (!(ctrl.contact_damping >= 0. && std::isfinite(ctrl.contact_damping)))
+      throw InputError("contact damping ratio "
+                       + std::to_string(ctrl.contact_damping)
+                       + "; valid: >= 0");
+    if (!(ctrl.contact_step_damping >= 0.
+          && std::isfinite(ctrl.contact_step_damping)))
+      throw InputError("contact step damping "
+                       + std::to_string(ctrl.contact_step_damping)
+                       + "; valid: >= 0");
     if (!(ctrl.law.normal_penalty > 0.) || !(ctrl.law.shear_ratio > 0.))
       throw InputError("contact penalty and shear ratio must be > 0");
     if (!(ctrl.max_displacement_ratio > 0.))
@@ -361,6 +371,11 @@ namespace rockdda::dda3d
       }
     // Block terms (as FreeBlocks::step()), with the strain damping.
     const dda::StrainDamping damping(ctrl.strain_damping, h, ctrl.dynamic);
+    // The contacts' dashpots (their end-of-step velocity is 2 D / h - v).
+    const dda::ContactDamping      dashpots(ctrl.contact_damping,
+                                       ctrl.contact_step_damping,
+                                       h,
+                                       ctrl.dynamic);
     std::vector<PolyhedronMoments> moments(n);
     std::vector<Matrix12>          K0(n);
     std::vector<Vector12>          F0(n), Fext(n);
@@ -587,6 +602,15 @@ namespace rockdda::dda3d
               = dda::contact_springs(ctrl.law, system.joints[c.joint], c.area);
             K.normal_stiffness = springs.normal;
             K.shear_stiffness  = springs.shear;
+            {
+              // The lighter free block's mass (a clamped block's is
+              // infinite).
+              const double inf = std::numeric_limits<double>::infinity();
+              const double mi  = clamped_[g.i] ? inf : mass[g.i],
+                           mj  = clamped_[g.j] ? inf : mass[g.j];
+              K.normal_dashpot = dashpots.dashpot(springs.normal, mi, mj);
+              K.shear_dashpot  = dashpots.dashpot(springs.shear, mi, mj);
+            }
             // The shared rule of both engines (dda/contact_mechanics.h) with
             // the representation error of the local coordinates the gap and
             // the shear displacement are measured from as the round-off. No
@@ -658,15 +682,33 @@ namespace rockdda::dda3d
     // Contact k's springs between the unknowns of its blocks a and b (0:
     // block i, 1: block j): the 12x12 block (a, b) of k_n g_n g_n^T, plus
     // k_s G_s G_s^T if locked, in the stacked unknowns (D_i, D_j), g_n =
-    // [e_n; h_n] and G_s = [E_s; H_s].
+    // [e_n; h_n] and G_s = [E_s; H_s]; each spring with its dashpot's
+    // 2 c / h.
     auto spring_block = [&](const std::size_t k, const int a, const int b) {
       const auto &K = kin[k];
-      Matrix12    m = K.normal_stiffness * (a == 0 ? K.en : K.hn)
+      Matrix12 m = (K.normal_stiffness + dashpots.stiffness(K.normal_dashpot))
+                   * (a == 0 ? K.en : K.hn)
                    * (b == 0 ? K.en : K.hn).transpose();
       if (contacts[k].state == ContactState::locked)
-        m += K.shear_stiffness * (a == 0 ? K.Es : K.Hs)
-             * (b == 0 ? K.Es : K.Hs).transpose();
+        m += (K.shear_stiffness + dashpots.stiffness(K.shear_dashpot))
+             * (a == 0 ? K.Es : K.Hs) * (b == 0 ? K.Es : K.Hs).transpose();
       return m;
+    };
+    // The blocks' velocities at the start of the step as Shi's scheme
+    // carries them (times the dynamic control), and contact k's normal
+    // and shear rates of the stacked vectors (x_i, x_j).
+    std::vector<Vector12> v0(n);
+    for (std::size_t b = 0; b < n; ++b)
+      v0[b] = ctrl.dynamic * system.blocks[b].velocity;
+    auto normal_rate
+      = [&](const std::size_t k, const std::vector<Vector12> &x) {
+          return kin[k].en.dot(x[contacts[k].geometry.i])
+                 + kin[k].hn.dot(x[contacts[k].geometry.j]);
+        };
+    auto shear_rate = [&](const std::size_t k, const std::vector<Vector12> &x) {
+      return Eigen::Vector2d(kin[k].Es.transpose() * x[contacts[k].geometry.i]
+                             + kin[k].Hs.transpose()
+                                 * x[contacts[k].geometry.j]);
     };
 
     // Open-close iteration.
@@ -802,6 +844,13 @@ namespace rockdda::dda3d
                       f -= K.shear_stiffness * e_s * K.s0;
                     else // sliding: friction against the sliding direction
                       f -= S * e_s * dir[k];
+                    // The dashpots' c v terms.
+                    if (dashpots.active())
+                      {
+                        f += K.normal_dashpot * normal_rate(k, v0) * e_n;
+                        if (c.state == ContactState::locked)
+                          f += K.shear_dashpot * e_s * shear_rate(k, v0);
+                      }
                     Fb += f;
                     // A clamped partner's prescribed motion moves to the
                     // right side.
@@ -1032,6 +1081,22 @@ namespace rockdda::dda3d
             moments[b].volume
               * elasticity_matrix(system.materials[system.blocks[b].material]),
             Vector6(Db[b].tail<6>()));
+      }
+    if (dashpots.active())
+      {
+        // The dashpots' work c v' . d over the step, v' = 2 D / h - v.
+        std::vector<Vector12> v1(n);
+        for (std::size_t b = 0; b < n; ++b)
+          v1[b] = (2. / h) * Db[b] - v0[b];
+        for (std::size_t k = 0; k < contacts.size(); ++k)
+          if (contacts[k].state != ContactState::open)
+            {
+              damping_work += kin[k].normal_dashpot * normal_rate(k, v1)
+                              * normal_rate(k, Db);
+              if (contacts[k].state == ContactState::locked)
+                damping_work += kin[k].shear_dashpot
+                                * shear_rate(k, v1).dot(shear_rate(k, Db));
+            }
       }
     for (std::size_t k = 0; k < contacts.size(); ++k)
       {

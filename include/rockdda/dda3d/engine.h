@@ -90,6 +90,9 @@ namespace rockdda::dda3d
     /// Normal and shear spring (N/m): the penalty, in series with the
     /// joint's stiffness over the contact area (dda::contact_springs()).
     double normal_stiffness = 0., shear_stiffness = 0.;
+    /// Normal and shear dashpot (N s/m; dda::ContactDamping), 0 without
+    /// contact damping.
+    double normal_dashpot = 0., shear_dashpot = 0.;
     /// Round-off of the gap and shear displacement (m): the representation
     /// error of the local coordinates of the contact points
     /// (dda::coordinate_round_off()).
@@ -153,6 +156,14 @@ namespace rockdda::dda3d
     /// dda::StrainDamping): a strain mode of angular frequency omega gets
     /// the damping ratio eta omega / 2; rigid motions are not damped. 0: none.
     double strain_damping = 0.;
+    /// Dashpots of the closed contacts as a ratio of critical of each
+    /// spring with the lighter free block's mass (-, >= 0;
+    /// dda::ContactDamping). 0: none.
+    double contact_damping = 0.;
+    /// The contacts' numerical dashpot beta k dt / 2 (-, >= 0;
+    /// dda::ContactDamping): velocity amplification -1 / (1 + beta) of the
+    /// stiff contact modes instead of -1. 0: none.
+    double contact_step_damping = 0.;
     /// Normal penalty and shear ratio (dda::ContactLaw).
     ContactLaw law;
     /// Penalty of fixed points (N/m); 0: 10 x the normal penalty. Blocks
@@ -193,7 +204,8 @@ namespace rockdda::dda3d
   {
     double kinetic = 0., strain = 0., contact = 0., potential = 0.,
            friction = 0., load_work = 0.;
-    /// Energy dissipated by the strain damping (J; dda::StrainDamping).
+    /// Energy dissipated by the strain damping (J; dda::StrainDamping)
+    /// and the contact dashpots (dda::ContactDamping).
     double damping = 0.;
 
     /// kinetic + strain + contact + potential + friction + damping - load
