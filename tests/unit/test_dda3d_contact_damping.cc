@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 using namespace rockdda;
 using namespace rockdda::dda3d;
@@ -19,6 +20,38 @@ using namespace rockdda::dda3d;
 namespace
 {
   const double pi = std::acos(-1.);
+
+  /// A box [@p lo, @p hi] (block 2) on a base box [@p base_lo, @p base_hi]
+  /// (block 1) clamped by 4 non-collinear fixed points @p anchors; one
+  /// material (2700 kg/m^3, Young's modulus @p young, 0.25), friction 30
+  /// deg, gravity @p gravity.
+  BlockSystem
+  box_on_base(const double              young,
+              const Point              &base_lo,
+              const Point              &base_hi,
+              const Point              &lo,
+              const Point              &hi,
+              const std::vector<Point> &anchors,
+              const Point              &gravity)
+  {
+    BlockSystem s;
+    s.materials.push_back({2700., young, 0.25, 1});
+    dda::JointMaterial joint;
+    joint.friction_deg = 30.;
+    s.joints.push_back(joint);
+    Block base;
+    base.id         = 1;
+    base.material   = 0;
+    base.polyhedron = make_box(base_lo, base_hi);
+    Block box       = base;
+    box.id          = 2;
+    box.polyhedron  = make_box(lo, hi);
+    s.blocks        = {base, box};
+    for (const Point &p : anchors)
+      s.fixed_points.push_back({0, p, Point::Zero()});
+    s.gravity = gravity;
+    return s;
+  }
 
   /// Result of one drop.
   struct Drop
@@ -43,30 +76,21 @@ namespace
   Drop
   drop(const double zeta, const double omega_dt)
   {
-    BlockSystem s;
-    s.materials.push_back({2700., 1e10, 0.25, 1});
-    dda::JointMaterial joint;
-    joint.friction_deg = 30.;
-    s.joints.push_back(joint);
-    Block base;
-    base.id         = 1;
-    base.material   = 0;
-    base.polyhedron = make_box(Point(-0.5, -0.5, -0.5), Point(0.5, 0.5, 0.));
-    Block box       = base;
-    box.id          = 2;
-    box.polyhedron  = make_box(Point(-0.1, -0.1, 1e-3), Point(0.1, 0.1, 0.101));
-    const double v0 = 0.1;
-    box.velocity(2) = -v0;
-    s.blocks        = {base, box};
-    for (const Point &p : {Point(-0.3, -0.3, -0.2),
-                           Point(0.3, -0.3, -0.2),
-                           Point(0., 0.3, -0.2),
-                           Point(0., 0., -0.4)})
-      s.fixed_points.push_back({0, p, Point::Zero()});
-    s.gravity            = Point::Zero();
-    const double   m     = 2700. * 0.2 * 0.2 * 0.1;
-    const double   p     = 1e6;
-    const double   omega = std::sqrt(4. * p / m);
+    const double v0         = 0.1;
+    BlockSystem  s          = box_on_base(1e10,
+                                Point(-0.5, -0.5, -0.5),
+                                Point(0.5, 0.5, 0.),
+                                Point(-0.1, -0.1, 1e-3),
+                                Point(0.1, 0.1, 0.101),
+                                {Point(-0.3, -0.3, -0.2),
+                                           Point(0.3, -0.3, -0.2),
+                                           Point(0., 0.3, -0.2),
+                                           Point(0., 0., -0.4)},
+                                Point::Zero());
+    s.blocks[1].velocity(2) = -v0;
+    const double   m        = 2700. * 0.2 * 0.2 * 0.1;
+    const double   p        = 1e6;
+    const double   omega    = std::sqrt(4. * p / m);
     EngineControls c;
     c.law.normal_penalty = p;
     c.contact_damping    = zeta;
@@ -178,26 +202,17 @@ TEST(Dda3dContactDamping, StepDampingRemovesTheAlternatingVelocityOfAStiffMode)
   // 1e-9 m g L above its start, 0).
   for (const double beta : {0., 1.})
     {
-      BlockSystem s;
-      s.materials.push_back({2700., 1e13, 0.25, 1});
-      dda::JointMaterial joint;
-      joint.friction_deg = 30.;
-      s.joints.push_back(joint);
-      Block base;
-      base.id         = 1;
-      base.material   = 0;
-      base.polyhedron = make_box(Point(-3., -1.5, -1.), Point(3., 1.5, 0.));
-      Block box       = base;
-      box.id          = 2;
-      box.polyhedron  = make_box(Point(-0.5, -0.5, 0.), Point(0.5, 0.5, 1.));
-      s.blocks        = {base, box};
-      for (const Point &p : {Point(-2., -1., -0.5),
-                             Point(2., -1., -0.5),
-                             Point(0., 1., -0.5),
-                             Point(0., 0., -0.9)})
-        s.fixed_points.push_back({0, p, Point::Zero()});
-      s.gravity = Point(0., 0., -9.80665);
-      EngineControls c;
+      const BlockSystem s = box_on_base(1e13,
+                                        Point(-3., -1.5, -1.),
+                                        Point(3., 1.5, 0.),
+                                        Point(-0.5, -0.5, 0.),
+                                        Point(0.5, 0.5, 1.),
+                                        {Point(-2., -1., -0.5),
+                                         Point(2., -1., -0.5),
+                                         Point(0., 1., -0.5),
+                                         Point(0., 0., -0.9)},
+                                        Point(0., 0., -9.80665));
+      EngineControls    c;
       c.dt                   = 0.005;
       c.law.normal_penalty   = 1e11;
       c.contact_step_damping = beta;
