@@ -80,81 +80,52 @@ namespace
   }
 } // namespace
 
+// The sends differ only in their name: one definition each from a macro
+// (blocking, then non-blocking).
+#define ROCKDDA_COUNTED_SEND(NAME)                     \
+  int NAME(const void  *buf,                           \
+           int          count,                         \
+           MPI_Datatype type,                          \
+           int          dest,                          \
+           int          tag,                           \
+           MPI_Comm     comm)                          \
+  {                                                    \
+    add(#NAME, bytes(count, type), 0);                 \
+    return P##NAME(buf, count, type, dest, tag, comm); \
+  }
+#define ROCKDDA_COUNTED_ISEND(NAME)                             \
+  int NAME(const void  *buf,                                    \
+           int          count,                                  \
+           MPI_Datatype type,                                   \
+           int          dest,                                   \
+           int          tag,                                    \
+           MPI_Comm     comm,                                   \
+           MPI_Request *request)                                \
+  {                                                             \
+    add(#NAME, bytes(count, type), 0);                          \
+    return P##NAME(buf, count, type, dest, tag, comm, request); \
+  }
+
+// Reductions that give every rank (or a prefix of) the result.
+#define ROCKDDA_COUNTED_REDUCTION(NAME)                      \
+  int NAME(const void  *sendbuf,                             \
+           void        *recvbuf,                             \
+           int          count,                               \
+           MPI_Datatype type,                                \
+           MPI_Op       op,                                  \
+           MPI_Comm     comm)                                \
+  {                                                          \
+    add(#NAME, bytes(count, type), bytes(count, type));      \
+    return P##NAME(sendbuf, recvbuf, count, type, op, comm); \
+  }
+
 extern "C" {
-int
-MPI_Send(const void  *buf,
-         int          count,
-         MPI_Datatype type,
-         int          dest,
-         int          tag,
-         MPI_Comm     comm)
-{
-  add("MPI_Send", bytes(count, type), 0);
-  return PMPI_Send(buf, count, type, dest, tag, comm);
-}
-
-int
-MPI_Ssend(const void  *buf,
-          int          count,
-          MPI_Datatype type,
-          int          dest,
-          int          tag,
-          MPI_Comm     comm)
-{
-  add("MPI_Ssend", bytes(count, type), 0);
-  return PMPI_Ssend(buf, count, type, dest, tag, comm);
-}
-
-int
-MPI_Rsend(const void  *buf,
-          int          count,
-          MPI_Datatype type,
-          int          dest,
-          int          tag,
-          MPI_Comm     comm)
-{
-  add("MPI_Rsend", bytes(count, type), 0);
-  return PMPI_Rsend(buf, count, type, dest, tag, comm);
-}
-
-int
-MPI_Isend(const void  *buf,
-          int          count,
-          MPI_Datatype type,
-          int          dest,
-          int          tag,
-          MPI_Comm     comm,
-          MPI_Request *request)
-{
-  add("MPI_Isend", bytes(count, type), 0);
-  return PMPI_Isend(buf, count, type, dest, tag, comm, request);
-}
-
-int
-MPI_Irsend(const void  *buf,
-           int          count,
-           MPI_Datatype type,
-           int          dest,
-           int          tag,
-           MPI_Comm     comm,
-           MPI_Request *request)
-{
-  add("MPI_Irsend", bytes(count, type), 0);
-  return PMPI_Irsend(buf, count, type, dest, tag, comm, request);
-}
-
-int
-MPI_Issend(const void  *buf,
-           int          count,
-           MPI_Datatype type,
-           int          dest,
-           int          tag,
-           MPI_Comm     comm,
-           MPI_Request *request)
-{
-  add("MPI_Issend", bytes(count, type), 0);
-  return PMPI_Issend(buf, count, type, dest, tag, comm, request);
-}
+ROCKDDA_COUNTED_SEND(MPI_Send)
+ROCKDDA_COUNTED_SEND(MPI_Ssend)
+ROCKDDA_COUNTED_SEND(MPI_Rsend)
+ROCKDDA_COUNTED_ISEND(MPI_Isend)
+ROCKDDA_COUNTED_ISEND(MPI_Irsend)
+ROCKDDA_COUNTED_ISEND(MPI_Issend)
 
 int
 MPI_Recv(void        *buf,
@@ -211,17 +182,7 @@ MPI_Sendrecv(const void  *sendbuf,
                        status);
 }
 
-int
-MPI_Allreduce(const void  *sendbuf,
-              void        *recvbuf,
-              int          count,
-              MPI_Datatype type,
-              MPI_Op       op,
-              MPI_Comm     comm)
-{
-  add("MPI_Allreduce", bytes(count, type), bytes(count, type));
-  return PMPI_Allreduce(sendbuf, recvbuf, count, type, op, comm);
-}
+ROCKDDA_COUNTED_REDUCTION(MPI_Allreduce)
 
 int
 MPI_Reduce(const void  *sendbuf,
@@ -250,29 +211,9 @@ MPI_Barrier(MPI_Comm comm)
   return PMPI_Barrier(comm);
 }
 
-int
-MPI_Scan(const void  *sendbuf,
-         void        *recvbuf,
-         int          count,
-         MPI_Datatype type,
-         MPI_Op       op,
-         MPI_Comm     comm)
-{
-  add("MPI_Scan", bytes(count, type), bytes(count, type));
-  return PMPI_Scan(sendbuf, recvbuf, count, type, op, comm);
-}
+ROCKDDA_COUNTED_REDUCTION(MPI_Scan)
 
-int
-MPI_Exscan(const void  *sendbuf,
-           void        *recvbuf,
-           int          count,
-           MPI_Datatype type,
-           MPI_Op       op,
-           MPI_Comm     comm)
-{
-  add("MPI_Exscan", bytes(count, type), bytes(count, type));
-  return PMPI_Exscan(sendbuf, recvbuf, count, type, op, comm);
-}
+ROCKDDA_COUNTED_REDUCTION(MPI_Exscan)
 
 int
 MPI_Allgather(const void  *sendbuf,
