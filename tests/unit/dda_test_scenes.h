@@ -18,6 +18,7 @@
 #include <initializer_list>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace rockdda::dda::test_scenes
 {
@@ -274,6 +275,61 @@ namespace rockdda::dda::test_scenes
       note(face.force.norm() - face.limit,
            "resultant shear of a face's locked contacts");
     return worst;
+  }
+
+  /// Successive peak tilts of a freely rocking block (free_rocking()).
+  struct FreeRocking
+  {
+    /// Largest |tilt| (rad) between two sign changes of the tilt, the
+    /// first the release tilt: one per impact.
+    std::vector<double> peaks;
+    /// Accepted steps without a closed contact (the block in the air).
+    unsigned long airborne = 0;
+  };
+
+  /**
+   * A w x h block of density @p rho (E 40 GPa, nu 0.2, plane strain,
+   * friction 41 deg: it cannot slide) standing on a fixed base under
+   * gravity, released at rest tilted by @p tilt (rad) about its left
+   * corner, rocks for @p duration (s) of dynamic steps @p dt at the normal
+   * penalty @p penalty. Housner (1963) gives the rigid block on a rigid
+   * base: every impact keeps 1 - 3/2 sin^2 alpha of the angular velocity
+   * (tan alpha = w / h) and the block never leaves the base, so small peak
+   * tilts fall by (1 - 3/2 sin^2 alpha)^2 from one impact to the next.
+   */
+  inline FreeRocking
+  free_rocking(const double w,
+               const double h,
+               const double rho,
+               const double tilt,
+               const double penalty,
+               const double dt,
+               const double duration)
+  {
+    BlockSystem s               = one_material_scene(rho, 4e10, 0.2, 41.);
+    s.materials[0].plane_strain = true;
+    s.gravity                   = Point(0., -g_earth);
+    fix_block(s, add_block(s, rectangle(-0.5 * w, -0.5 * h, 2. * w, 0.5 * h)));
+    const int b      = add_block(s, rotated(rectangle(0., 0., w, h), tilt));
+    Controls  c      = controls(dt, 1., penalty);
+    c.solver.threads = 1;
+    DdaSystem   dda(s, c);
+    FreeRocking r;
+    double      peak = tilt, last = tilt;
+    while (dda.time() < duration - 1e-3 * dt)
+      {
+        const StepReport step = dda.step();
+        r.airborne += step.n_sliding + step.n_locked == 0 ? 1 : 0;
+        const double th = tilt + dda.system().blocks[b].rotation;
+        if (th * last < 0.)
+          {
+            r.peaks.push_back(peak);
+            peak = 0.;
+          }
+        peak = std::max(peak, std::abs(th));
+        last = th;
+      }
+    return r;
   }
 
 } // namespace rockdda::dda::test_scenes
