@@ -10,7 +10,7 @@ usage: shaking_table.py ROCKDDA BLOCKS [--modes loading,displacement]
        [--penalty 1e10,2e10,...] [--dt 0.005,...] [--end 22.4 (s; the record is 2.4 s shorter:
        the filter's padding)]
        [--contact-damping 0,1,...] [--step-damping 0,1,...]
-       [--strain-damping 0,1e-4,...]
+       [--strain-damping 0,1e-4,...] [--stiff-velocity false,true]
        [--out shaking_table.csv] [--histories DIR]
 
 Columns: mode, dt_s, penalty_N_per_m, status (ok, or the run's failure),
@@ -19,8 +19,9 @@ at the end / |u_a| at the end), error_history (max over t of |u - u_a| /
 |u_a| at the end), onset_s (first time the slide exceeds 1e-4 m; the
 analytical onset in the row 'analytical'; the input acceleration at the
 onset against the yield acceleration is checked by the unit test), wall_s, steps, cuts. --histories keeps each run's statistics.csv as
-DIR/MODE-DT-PENALTY[-cdZETA][-sbBETA][-sdETA].csv; contact_damping,
-contact_step_damping, strain_damping_s.
+DIR/MODE-DT-PENALTY[-cdZETA][-sbBETA][-sdETA][-sv].csv; contact_damping,
+contact_step_damping, strain_damping_s, stiff_velocity (key "Stiff mode
+velocity").
 """
 import argparse
 import csv
@@ -40,7 +41,8 @@ sys.path.insert(0, os.path.join(HERE, "..", "dda3d"))
 from fig4_2_error import summary  # noqa: E402
 
 # Keys of the DDA 3d section that the template leaves at their defaults.
-OPTIONAL = ("Contact damping ratio", "Contact step damping", "Strain damping")
+OPTIONAL = ("Contact damping ratio", "Contact step damping", "Strain damping",
+            "Stiff mode velocity")
 ONSET = 1e-4  # m: 1e3 x the elastic slip of the contact springs at 1e10 N/m
 
 
@@ -94,6 +96,9 @@ def main():
                    help="Contact step damping values (-), comma-separated")
     p.add_argument("--strain-damping", default="0",
                    help="Strain damping values (s), comma-separated")
+    p.add_argument("--stiff-velocity", default="false",
+                   help="Stiff mode velocity values (false, true), "
+                   "comma-separated")
     p.add_argument("--out", default="shaking_table.csv")
     p.add_argument("--histories")
     a = p.parse_args()
@@ -121,15 +126,16 @@ def main():
                    float("nan"))
     rows = [["analytical", "1e-4", "-", "ok",
              f"{sum(e * l for e, l in zip(end, line)):.6f}", "0", "0",
-             f"{onset_a:.3f}", "", "", "", "", "", ""]]
+             f"{onset_a:.3f}", "", "", "", "", "", "", ""]]
     print(*rows[-1], flush=True)
     if a.histories:
         os.makedirs(a.histories, exist_ok=True)
         shutil.copy(os.path.join(ref, "statistics.csv"),
                     os.path.join(a.histories, "analytical.csv"))
-    for mode, zeta, beta, eta, dt, pen in itertools.product(
+    for mode, zeta, beta, eta, sv, dt, pen in itertools.product(
             a.modes.split(","), a.contact_damping.split(","),
             a.step_damping.split(","), a.strain_damping.split(","),
+            a.stiff_velocity.split(","),
             a.dt.split(","),
             a.penalty.split(",")):
         name = f"{mode}-{dt}-{pen}"
@@ -147,13 +153,16 @@ def main():
         if eta != "0":
             replace["Strain damping"] = eta
             name += f"-sd{eta}"
+        if sv != "false":
+            replace["Stiff mode velocity"] = sv
+            name += "-sv"
         out, status, wall = run(
             a.rockdda, os.path.join(PRM, "dda3d-shaking-table.prm"),
             replace, work, name, a.blocks)
         stats = os.path.join(out, "statistics.csv")
         if not os.path.exists(stats):
             rows.append([mode, dt, pen, status] + [""] * 7
-                        + [zeta, beta, eta])
+                        + [zeta, beta, eta, sv])
             print(*rows[-1], flush=True)
             continue
         hist = table(stats)
@@ -171,7 +180,7 @@ def main():
                      f"{err_f:.3e}", f"{err_h:.3e}", f"{onset:.3f}",
                      f"{wall:.2f}",
                      int(s.get("steps", 0)),
-                     int(s.get("time_step_cuts", 0)), zeta, beta, eta])
+                     int(s.get("time_step_cuts", 0)), zeta, beta, eta, sv])
         print(*rows[-1], flush=True)
         if a.histories:
             shutil.copy(stats, os.path.join(a.histories,
@@ -181,7 +190,7 @@ def main():
         w.writerow(["mode", "dt_s", "penalty_N_per_m", "status", "slide_m",
                     "error_final", "error_history", "onset_s", "wall_s", "steps", "cuts",
                     "contact_damping", "contact_step_damping",
-                    "strain_damping_s"])
+                    "strain_damping_s", "stiff_velocity"])
         w.writerows(rows)
     shutil.rmtree(work)
 

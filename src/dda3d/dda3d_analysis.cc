@@ -31,6 +31,7 @@ namespace rockdda::dda3d
 {
   namespace
   {
+    using dealii::Patterns::Bool;
     using dealii::Patterns::Double;
     using dealii::Patterns::Integer;
     using dealii::Patterns::Selection;
@@ -106,6 +107,23 @@ namespace rockdda::dda3d
                     "1 removes it in one step, above 1 the contact creeps. "
                     "Booked with the above.");
         io::declare(prm,
+                    "Stiff mode velocity",
+                    "false",
+                    Bool(),
+                    "-",
+                    "false: Shi's end-of-step velocity v' = 2 D / dt - v, "
+                    "whose modes stiff for the step (omega dt >> 1: contact "
+                    "springs, fixed points, block elasticity at a large "
+                    "penalty or E) keep a velocity that changes sign every "
+                    "step. true: the velocity solve (2 M / dt^2 + K) v'' = "
+                    "(2 M / dt^2) v' + K D / dt gives each stiff mode its "
+                    "mean rate over the step (an inelastic contact, "
+                    "amplification ~1.4 / (omega dt)) and leaves resolved "
+                    "ones (omega dt << 1) Shi's to O((omega dt)^2); the "
+                    "foundation moves with the exact ground velocity. The "
+                    "kinetic energy removed is booked as damping "
+                    "(doc/theory/dda3d.md, Velocity of the stiff modes).");
+        io::declare(prm,
                     "Seismic input",
                     "none",
                     Selection("none|loading|displacement"),
@@ -168,6 +186,7 @@ namespace rockdda::dda3d
         c.law.normal_penalty   = prm.get_double("Contact penalty");
         c.contact_damping      = prm.get_double("Contact damping ratio");
         c.contact_step_damping = prm.get_double("Contact step damping");
+        c.stiff_velocity       = prm.get_bool("Stiff mode velocity");
         settings               = dda::run_settings(shared, prm);
         const std::string seismic_mode = prm.get("Seismic input");
         c.solver = dda::SolverParameters<3>::parse_parameters(prm, prm_file);

@@ -684,15 +684,23 @@ namespace rockdda::dda3d
     // k_s G_s G_s^T if locked, in the stacked unknowns (D_i, D_j), g_n =
     // [e_n; h_n] and G_s = [E_s; H_s]; each spring with its dashpot's
     // 2 c / h.
-    auto spring_block = [&](const std::size_t k, const int a, const int b) {
-      const auto &K = kin[k];
-      Matrix12 m = (K.normal_stiffness + dashpots.stiffness(K.normal_dashpot))
-                   * (a == 0 ? K.en : K.hn)
+    auto springs_of = [&](const std::size_t k,
+                          const int         a,
+                          const int         b,
+                          const bool        with_dashpots) {
+      const auto  &K = kin[k];
+      const double cn
+        = with_dashpots ? dashpots.stiffness(K.normal_dashpot) : 0.,
+        cs       = with_dashpots ? dashpots.stiffness(K.shear_dashpot) : 0.;
+      Matrix12 m = (K.normal_stiffness + cn) * (a == 0 ? K.en : K.hn)
                    * (b == 0 ? K.en : K.hn).transpose();
       if (contacts[k].state == ContactState::locked)
-        m += (K.shear_stiffness + dashpots.stiffness(K.shear_dashpot))
-             * (a == 0 ? K.Es : K.Hs) * (b == 0 ? K.Es : K.Hs).transpose();
+        m += (K.shear_stiffness + cs) * (a == 0 ? K.Es : K.Hs)
+             * (b == 0 ? K.Es : K.Hs).transpose();
       return m;
+    };
+    auto spring_block = [&](const std::size_t k, const int a, const int b) {
+      return springs_of(k, a, b, true);
     };
     // The blocks' velocities at the start of the step as Shi's scheme
     // carries them (times the dynamic control), and contact k's normal
@@ -729,6 +737,13 @@ namespace rockdda::dda3d
     int                          state_iterations = 0, iterations = 0;
     bool                         converged = false;
     std::vector<Vector12>        Db(n);
+    // Contact k's gap and shear displacement at the end of the step of the
+    // last solve.
+    auto gap_after
+      = [&](const std::size_t k) { return kin[k].g0 + normal_rate(k, Db); };
+    auto shear_after = [&](const std::size_t k) {
+      return Eigen::Vector2d(kin[k].s0 + shear_rate(k, Db));
+    };
     // Face groups: the resultant of the members' shear displacements
     // (oriented as on block i of the group's first member), the
     // direction in which a member that starts to slide slides, so that
@@ -775,10 +790,8 @@ namespace rockdda::dda3d
       return contacts[k].geometry.i == group_i[group[k]] ? 1. : -1.;
     };
     auto slip3 = [&](const std::size_t k) {
-      const auto &K = kin[k];
-      const int   i = contacts[k].geometry.i, j = contacts[k].geometry.j;
-      const Eigen::Vector2d s
-        = K.s0 + K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j];
+      const auto           &K = kin[k];
+      const Eigen::Vector2d s = shear_after(k);
       return Point(s.x() * K.t1 + s.y() * K.t2);
     };
     auto group_direction
@@ -980,12 +993,10 @@ namespace rockdda::dda3d
             const std::size_t c_k = lo / grain;
             for (std::size_t k = lo; k < hi; ++k)
               {
-                auto        &c = contacts[k];
-                const auto  &K = kin[k];
-                const int    i = c.geometry.i, j = c.geometry.j;
-                const double g = K.g0 + K.en.dot(Db[i]) + K.hn.dot(Db[j]);
-                const Eigen::Vector2d s
-                  = K.s0 + K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j];
+                auto                 &c = contacts[k];
+                const auto           &K = kin[k];
+                const double          g = gap_after(k);
+                const Eigen::Vector2d s = shear_after(k);
                 // Chatter: 10 x and 100 x the weight part after two and three
                 // changes; the round-off part stays a floor.
                 const double f
@@ -1072,7 +1083,114 @@ namespace rockdda::dda3d
             return false;
       }
 
+    // The end-of-step velocities: Shi's v' = 2 D / h - v (a clamped block's:
+    // the step's mean), and with the stiff-mode velocity solve
+    // (doc/theory/dda3d.md, "Velocity of the stiff modes")
+    //   (2 M / h^2 + K) v'' = (2 M / h^2) v' + K D / h,
+    // K the step's stiffness without dashpots (elasticity, fixed points,
+    // closed contacts' springs): each spring's relative velocity is drawn
+    // to its mean rate in the step with the weight k against the inertia
+    // 2 M / h^2. Clamped blocks move with the ground: its exact velocity.
+    std::vector<Vector12> v_end(n);
+    for (std::size_t b = 0; b < n; ++b)
+      v_end[b] = clamped_[b] ? Vector12(Db[b] / h)
+                             : Vector12((2. / h) * Db[b] - v0[b]);
+    double kinetic_removed = 0.;
+    if (ctrl.stiff_velocity && ctrl.dynamic > 0.)
+      {
+        Point vg = Point::Zero(), dug = Point::Zero();
+        if (ctrl.ground_displacement)
+          {
+            // The ground displacement is C^2 (exact integral of a
+            // piecewise linear record, or sampled at dt / 20): its central
+            // difference over 2e-3 h is its velocity to round-off.
+            const double d = 1e-3 * h;
+            vg             = (ctrl.ground_displacement(t + h + d)
+                  - ctrl.ground_displacement(t + h - d))
+                 / (2. * d);
+            dug = ug - ctrl.ground_displacement(t);
+          }
+        std::vector<Vector12> vc(n, Vector12::Zero());
+        std::vector<Matrix12> M(n);
+        for (std::size_t b = 0; b < n; ++b)
+          {
+            M[b] = mass_matrix(
+              moments[b], system.materials[system.blocks[b].material].density);
+            if (clamped_[b])
+              vc[b].head<3>() = vg;
+          }
+        Eigen::VectorXd F(N), V(N);
+        for (std::size_t b = 0; b < n; ++b)
+          V.segment<12>(12 * b) = clamped_[b] ? vc[b] : v_end[b];
+        dda::for_each_chunk(
+          chunks, n, 8, [&](const std::size_t lo, const std::size_t hi) {
+            for (std::size_t b = lo; b < hi; ++b)
+              {
+                auto &Kb = matrix.diag[b];
+                auto  Fb = F.segment<12>(12 * b);
+                if (clamped_[b])
+                  {
+                    Kb.setIdentity();
+                    Fb = vc[b];
+                    continue;
+                  }
+                const Matrix12 inertia = (2. / (h * h)) * M[b];
+                Kb                     = K0[b];
+                Fb = inertia * v_end[b] + (K0[b] - inertia) * (Db[b] / h);
+                for (int e = by_block.start[b]; e < by_block.start[b + 1]; ++e)
+                  {
+                    const std::size_t k    = by_block.entry[e] / 2;
+                    const int         side = by_block.entry[e] % 2;
+                    const auto       &c    = contacts[k];
+                    if (c.state == ContactState::open)
+                      continue;
+                    const int other = side == 0 ? c.geometry.j : c.geometry.i;
+                    Kb += springs_of(k, side, side, false);
+                    Fb += springs_of(k, side, side, false) * (Db[b] / h)
+                          + springs_of(k, side, 1 - side, false)
+                              * (Db[other] / h - vc[other]);
+                  }
+              }
+          });
+        // Fixed points: their anchors move with the ground.
+        for (const auto &f : system.fixed_points)
+          if (!clamped_[f.block])
+            F.segment<12>(12 * f.block)
+              += ctrl.fixed_penalty
+                 * displacement_matrix(moments[f.block].centroid, f.point)
+                     .transpose()
+                 * (vg - dug / h);
+        for (std::size_t p = 0; p < matrix.off.size(); ++p)
+          {
+            matrix.off[p].setZero();
+            for (int e = by_slot.start[p]; e < by_slot.start[p + 1]; ++e)
+              {
+                const std::size_t k = by_slot.entry[e] / 2;
+                if (contacts[k].state == ContactState::open)
+                  continue;
+                const bool upper
+                  = contacts[k].geometry.i < contacts[k].geometry.j;
+                matrix.off[p]
+                  += springs_of(k, upper ? 0 : 1, upper ? 1 : 0, false);
+              }
+          }
+        if (!solver.solve(matrix, F, V, false) || !V.allFinite())
+          return false;
+        solver_iterations += solver.last_iterations();
+        for (std::size_t b = 0; b < n; ++b)
+          {
+            const Vector12 v
+              = clamped_[b] ? vc[b] : Vector12(V.segment<12>(12 * b));
+            if (!clamped_[b])
+              kinetic_removed
+                += 0.5 * v_end[b].dot(M[b] * v_end[b]) - 0.5 * v.dot(M[b] * v);
+            v_end[b] = v;
+          }
+      }
+
     // Accept: energy terms of the step, contact states, geometry.
+    // The kinetic energy the stiff-mode velocity solve removed.
+    damping_work += kinetic_removed;
     for (std::size_t b = 0; b < n; ++b)
       {
         load_work += Fext[b].dot(Db[b]);
@@ -1102,12 +1220,11 @@ namespace rockdda::dda3d
       {
         auto       &c = contacts[k];
         const auto &K = kin[k];
-        const int   i = c.geometry.i, j = c.geometry.j;
+        const int   j = c.geometry.j;
         if (c.state == ContactState::sliding)
           {
-            const Eigen::Vector2d s
-              = K.s0 + K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j];
-            const double S = dda::shear_strength(c,
+            const Eigen::Vector2d s = shear_after(k);
+            const double          S = dda::shear_strength(c,
                                                  c.normal_force,
                                                  c.area,
                                                  system.joints[c.joint]);
@@ -1123,9 +1240,8 @@ namespace rockdda::dda3d
             // storing nothing made the ledger gain S^2 / 2 k_s at every
             // lock-to-slide and every relock: 2.4e-4 m g L in 0.2 s of a
             // block on an incline at a penalty of 1e-3 E L.)
-            const Eigen::Vector2d slip
-              = K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j];
-            const double stored_before
+            const Eigen::Vector2d slip = shear_rate(k, Db);
+            const double          stored_before
               = shear_at_start[k].squaredNorm() / (2. * K.shear_stiffness);
             friction_work
               += -friction_applied[k].dot(slip)
@@ -1151,8 +1267,7 @@ namespace rockdda::dda3d
           c.has_reference = false;
         // The next step's slip rate (dda::friction_coefficient()): the
         // shear displacement increment of this step over its length.
-        c.slip_rate
-          = (K.Es.transpose() * Db[i] + K.Hs.transpose() * Db[j]).norm() / h;
+        c.slip_rate = shear_rate(k, Db).norm() / h;
       }
     for (std::size_t b = 0; b < n; ++b)
       {
@@ -1181,14 +1296,9 @@ namespace rockdda::dda3d
         Vector6               e;
         e << L(0, 0), L(1, 1), L(2, 2), 2. * L(0, 1), 2. * L(1, 2),
           2. * L(0, 2);
-        block.stress = rotate_voigt(block.stress + C * e, R, 1.);
-        block.strain = rotate_voigt(block.strain + e, R, 0.5);
-        // A clamped block moves with its prescribed motion: its velocity
-        // is the step's mean.
-        block.velocity
-          = clamped_[b]
-              ? Vector12(Db[b] / h)
-              : Vector12((2. / h) * Db[b] - ctrl.dynamic * block.velocity);
+        block.stress   = rotate_voigt(block.stress + C * e, R, 1.);
+        block.strain   = rotate_voigt(block.strain + e, R, 0.5);
+        block.velocity = v_end[b];
       }
     stored                  = std::move(contacts);
     last_solution           = D;

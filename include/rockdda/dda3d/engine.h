@@ -164,6 +164,19 @@ namespace rockdda::dda3d
     /// dda::ContactDamping): velocity amplification -1 / (1 + beta) of the
     /// stiff contact modes instead of -1. 0: none.
     double contact_step_damping = 0.;
+    /**
+     * The end-of-step velocity of the stiff modes (doc/theory/dda3d.md,
+     * "Velocity of the stiff modes"): false, Shi's v' = 2 D / dt - v for
+     * every block; true, v' is then corrected by the velocity solve
+     * (2 M / dt^2 + K) v'' = (2 M / dt^2) v' + K D / dt, K the step's
+     * stiffness (closed contacts' springs, fixed points, the blocks'
+     * elasticity): a mode stiff for the step (omega dt >> 1) gets the
+     * step's mean rate (its velocity amplification ~sqrt(2) / (omega dt)
+     * instead of Shi's -1), a resolved one (omega dt << 1) keeps Shi's
+     * velocity to O((omega dt)^2); clamped blocks get the exact ground
+     * velocity. The kinetic energy it removes is booked as damping.
+     */
+    bool stiff_velocity = false;
     /// Normal penalty and shear ratio (dda::ContactLaw).
     ContactLaw law;
     /// Penalty of fixed points (N/m); 0: 10 x the normal penalty. Blocks
