@@ -3,7 +3,8 @@
 against time: the analytical rigid wedge (sliding3d) and the DDA runs kept
 by shaking_table.py --histories DIR.
 
-usage: plot_history.py DIR OUT.png RUN [RUN ...]   (RUN: MODE-DT-PENALTY)
+usage: plot_history.py DIR OUT.png RUN [RUN ...]
+       (RUN: MODE-DT-PENALTY[-OPTIONS], as shaking_table.py names them)
 """
 import csv
 import math
@@ -34,12 +35,14 @@ def main():
     for run in runs:
         h = rows(os.path.join(folder, run + ".csv"))
         mode, dt, pen = run.split("-", 2)
+        pen, _, options = pen.partition("-")
+        extra = ", stiff-mode velocity" if "sv" in options.split("-") else ""
         ax.plot([r["time_s"] for r in h],
                 [sum((r[f"mp1_u{c}_m"] - r.get(f"ground_u{c}_m", 0.)) * l
                      for c, l in zip("xyz", line)) for r in h],
                 "--" if mode == "displacement" else "-", lw=1.2,
                 label=f"3D DDA, {mode} mode, p = {float(pen):.0e} N/m, "
-                      f"dt = {dt} s")
+                      f"dt = {dt} s{extra}")
     ax.set_xlabel("time (s; the record starts after 1.2 s of filter padding)")
     ax.set_ylabel("slide along the line of intersection (m)")
     ax.set_title("Shaking-table wedge 51.4/065.8, 51.4/295.2: 2 Hz, 0.21 g, "
