@@ -81,6 +81,23 @@ namespace rockdda::dda::internal
 
 
   void
+  ThreadPair::late_phase(const std::chrono::steady_clock::duration own,
+                         const std::chrono::steady_clock::duration waited)
+  {
+    const bool is_late
+      = waited > 4 * own && waited > std::chrono::microseconds(50);
+    late = is_late ? late + 1 : 0;
+    if (late >= 8)
+      {
+        late          = 0;
+        serial_phases = 4096;
+        rest();
+      }
+  }
+
+
+
+  void
   ThreadPair::loop()
   {
     unsigned seen = 0;

@@ -4,7 +4,9 @@
  * thread that run the two halves of a parallel phase (the two subdomains
  * of the linear solver's D-ILU sweeps, two phases per CG iteration).
  * Phases are short (tens to hundreds of microseconds), so the worker waits
- * by spinning, then yields, then sleeps. Measured against TBB for these
+ * by spinning, then yields, then sleeps; when the machine's cores are
+ * taken by other processes the phases fall back to the calling thread
+ * (late_phase()). Measured against TBB for these
  * phases (benchmarks/dda-scaling, wall-25x40 from rest, 2 threads, back to
  * back): TBB's parallel_invoke in a task arena was 8-10 % slower at 1,000
  * blocks (its workers sleep between phases) and equal at 4,000; every
@@ -15,6 +17,7 @@
 #define ROCKDDA_DDA_THREAD_PAIR_H
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <thread>
@@ -56,11 +59,23 @@ namespace rockdda::dda::internal
           f(1);
           return;
         }
+      if (serial_phases > 0)
+        {
+          // The machine's cores are taken (see late_phase()): both halves
+          // here, in the order of one thread.
+          --serial_phases;
+          f(0);
+          f(1);
+          return;
+        }
       task    = [](void *c, int part) { (*static_cast<F *>(c))(part); };
       context = &f;
       post();
+      const auto start = std::chrono::steady_clock::now();
       f(0);
+      const auto own = std::chrono::steady_clock::now();
       wait();
+      late_phase(own - start, std::chrono::steady_clock::now() - own);
     }
 
     /// Let the worker sleep at once instead of spinning (call after the
@@ -76,6 +91,21 @@ namespace rockdda::dda::internal
     wait();
     void
     loop();
+    /**
+     * Called after each parallel phase with the caller's own work and how
+     * long it then waited for the worker. A worker that keeps arriving much
+     * later than the caller's half took (8 phases in a row, each waiting
+     * more than 4x its own work and 50 us) is not being scheduled: other
+     * processes hold the cores, and every phase would pay a scheduler
+     * time slice. The next 4096 phases then run on the calling thread,
+     * after which two threads are tried again. Results are the same either
+     * way (the halves touch disjoint data and run in the order 0, 1).
+     * Measured: benchmarks/dda-scaling, section 15.
+     */
+    void
+                 late_phase(const std::chrono::steady_clock::duration own,
+                            const std::chrono::steady_clock::duration waited);
+    unsigned int late = 0, serial_phases = 0;
 
     void (*task)(void *, int)       = nullptr;
     void                   *context = nullptr;
