@@ -702,6 +702,33 @@ namespace rockdda::dda3d
     auto spring_block = [&](const std::size_t k, const int a, const int b) {
       return springs_of(k, a, b, true);
     };
+    // The upper block K_ij (i < j) of each pair of the matrix: the springs
+    // of its closed contacts (with their dashpots' 2 c / h if asked).
+    auto fill_pairs = [&](const bool with_dashpots) {
+      dda::for_each_chunk(chunks,
+                          matrix.off.size(),
+                          32,
+                          [&](const std::size_t lo, const std::size_t hi) {
+                            for (std::size_t p = lo; p < hi; ++p)
+                              {
+                                matrix.off[p].setZero();
+                                for (int e = by_slot.start[p];
+                                     e < by_slot.start[p + 1];
+                                     ++e)
+                                  {
+                                    const std::size_t k = by_slot.entry[e] / 2;
+                                    if (contacts[k].state == ContactState::open)
+                                      continue;
+                                    const bool upper = contacts[k].geometry.i
+                                                       < contacts[k].geometry.j;
+                                    matrix.off[p] += springs_of(k,
+                                                                upper ? 0 : 1,
+                                                                upper ? 1 : 0,
+                                                                with_dashpots);
+                                  }
+                              }
+                          });
+    };
     // The blocks' velocities at the start of the step as Shi's scheme
     // carries them (times the dynamic control), and contact k's normal
     // and shear rates of the stacked vectors (x_i, x_j).
@@ -879,26 +906,7 @@ namespace rockdda::dda3d
               }
           });
         // The upper block K_ij (i < j) of each pair.
-        dda::for_each_chunk(
-          chunks,
-          matrix.off.size(),
-          32,
-          [&](const std::size_t lo, const std::size_t hi) {
-            for (std::size_t p = lo; p < hi; ++p)
-              {
-                matrix.off[p].setZero();
-                for (int e = by_slot.start[p]; e < by_slot.start[p + 1]; ++e)
-                  {
-                    const std::size_t k = by_slot.entry[e] / 2;
-                    if (contacts[k].state == ContactState::open)
-                      continue;
-                    const bool upper
-                      = contacts[k].geometry.i < contacts[k].geometry.j;
-                    matrix.off[p]
-                      += spring_block(k, upper ? 0 : 1, upper ? 1 : 0);
-                  }
-              }
-          });
+        fill_pairs(true);
         if (!solver.solve(matrix, F, D, !states_changed) || !D.allFinite())
           return false;
         solver_iterations += solver.last_iterations();
@@ -1160,20 +1168,7 @@ namespace rockdda::dda3d
                  * displacement_matrix(moments[f.block].centroid, f.point)
                      .transpose()
                  * (vg - dug / h);
-        for (std::size_t p = 0; p < matrix.off.size(); ++p)
-          {
-            matrix.off[p].setZero();
-            for (int e = by_slot.start[p]; e < by_slot.start[p + 1]; ++e)
-              {
-                const std::size_t k = by_slot.entry[e] / 2;
-                if (contacts[k].state == ContactState::open)
-                  continue;
-                const bool upper
-                  = contacts[k].geometry.i < contacts[k].geometry.j;
-                matrix.off[p]
-                  += springs_of(k, upper ? 0 : 1, upper ? 1 : 0, false);
-              }
-          }
+        fill_pairs(false);
         if (!solver.solve(matrix, F, V, false) || !V.allFinite())
           return false;
         solver_iterations += solver.last_iterations();

@@ -53,6 +53,74 @@ namespace
     return s;
   }
 
+  /// The 1 m cube (E = 1e13 Pa, a rigid block) resting on a clamped 6 x 3 x
+  /// 1 m base under gravity: the scene of the stiff-mode tests.
+  BlockSystem
+  stiff_cube_on_base()
+  {
+    return box_on_base(1e13,
+                       Point(-3., -1.5, -1.),
+                       Point(3., 1.5, 0.),
+                       Point(-0.5, -0.5, 0.),
+                       Point(0.5, 0.5, 1.),
+                       {Point(-2., -1., -0.5),
+                        Point(2., -1., -0.5),
+                        Point(0., 1., -0.5),
+                        Point(0., 0., -0.9)},
+                       Point(0., 0., -9.80665));
+  }
+
+  /// A box 0.2 x 0.2 x 0.1 m 1 mm above a clamped base, without gravity,
+  /// moving down at @p v0 (m/s): the scene of the drop tests.
+  BlockSystem
+  falling_box(const double v0)
+  {
+    BlockSystem s           = box_on_base(1e10,
+                                Point(-0.5, -0.5, -0.5),
+                                Point(0.5, 0.5, 0.),
+                                Point(-0.1, -0.1, 1e-3),
+                                Point(0.1, 0.1, 0.101),
+                                {Point(-0.3, -0.3, -0.2),
+                                           Point(0.3, -0.3, -0.2),
+                                           Point(0., 0.3, -0.2),
+                                           Point(0., 0., -0.4)},
+                                Point::Zero());
+    s.blocks[1].velocity(2) = -v0;
+    return s;
+  }
+
+  /// What 200 steps of a block resting on its contact springs show.
+  struct Resting
+  {
+    /// Largest |total normal force / weight - 1| of a step after the
+    /// first 20 (-), largest energy balance (J), largest speed of block 1
+    /// after the first 20 steps (m/s).
+    double worst = 0., balance = -1e300, speed = 0.;
+  };
+
+  /// Advance @p engine by 200 steps of @p dt with a block of weight
+  /// @p weight (N) resting on the contacts.
+  Resting
+  rest_on_springs(Engine &engine, const double dt, const double weight)
+  {
+    Resting r;
+    for (int k = 1; k <= 200; ++k)
+      {
+        engine.advance_to(k * dt);
+        r.balance     = std::max(r.balance, engine.energy().balance());
+        double normal = 0.;
+        for (const auto &ct : engine.contacts())
+          normal += ct.state == ContactState::open ? 0. : ct.normal_force;
+        if (k > 20)
+          {
+            r.worst = std::max(r.worst, std::abs(normal / weight - 1.));
+            r.speed
+              = std::max(r.speed, engine.scene().blocks[1].velocity.norm());
+          }
+      }
+    return r;
+  }
+
   /// Result of one drop.
   struct Drop
   {
@@ -76,21 +144,11 @@ namespace
   Drop
   drop(const double zeta, const double omega_dt)
   {
-    const double v0         = 0.1;
-    BlockSystem  s          = box_on_base(1e10,
-                                Point(-0.5, -0.5, -0.5),
-                                Point(0.5, 0.5, 0.),
-                                Point(-0.1, -0.1, 1e-3),
-                                Point(0.1, 0.1, 0.101),
-                                {Point(-0.3, -0.3, -0.2),
-                                           Point(0.3, -0.3, -0.2),
-                                           Point(0., 0.3, -0.2),
-                                           Point(0., 0., -0.4)},
-                                Point::Zero());
-    s.blocks[1].velocity(2) = -v0;
-    const double   m        = 2700. * 0.2 * 0.2 * 0.1;
-    const double   p        = 1e6;
-    const double   omega    = std::sqrt(4. * p / m);
+    const double   v0    = 0.1;
+    BlockSystem    s     = falling_box(v0);
+    const double   m     = 2700. * 0.2 * 0.2 * 0.1;
+    const double   p     = 1e6;
+    const double   omega = std::sqrt(4. * p / m);
     EngineControls c;
     c.law.normal_penalty = p;
     c.contact_damping    = zeta;
@@ -202,33 +260,15 @@ TEST(Dda3dContactDamping, StepDampingRemovesTheAlternatingVelocityOfAStiffMode)
   // 1e-9 m g L above its start, 0).
   for (const double beta : {0., 1.})
     {
-      const BlockSystem s = box_on_base(1e13,
-                                        Point(-3., -1.5, -1.),
-                                        Point(3., 1.5, 0.),
-                                        Point(-0.5, -0.5, 0.),
-                                        Point(0.5, 0.5, 1.),
-                                        {Point(-2., -1., -0.5),
-                                         Point(2., -1., -0.5),
-                                         Point(0., 1., -0.5),
-                                         Point(0., 0., -0.9)},
-                                        Point(0., 0., -9.80665));
+      const BlockSystem s = stiff_cube_on_base();
       EngineControls    c;
       c.dt                   = 0.005;
       c.law.normal_penalty   = 1e11;
       c.contact_step_damping = beta;
-      Engine       engine(s, c);
-      const double weight = 2700. * 9.80665;
-      double       worst = 0., balance = -1e300;
-      for (int k = 1; k <= 200; ++k)
-        {
-          engine.advance_to(k * c.dt);
-          balance       = std::max(balance, engine.energy().balance());
-          double normal = 0.;
-          for (const auto &ct : engine.contacts())
-            normal += ct.state == ContactState::open ? 0. : ct.normal_force;
-          if (k > 20)
-            worst = std::max(worst, std::abs(normal / weight - 1.));
-        }
+      Engine        engine(s, c);
+      const double  weight = 2700. * 9.80665;
+      const Resting r      = rest_on_springs(engine, c.dt, weight);
+      const double  worst = r.worst, balance = r.balance;
       std::printf("beta %.0f: largest |normal force / weight - 1| of a step "
                   "after the first 20: %.3e; damping booked %.3e J, max "
                   "balance %.2e J\n",
@@ -266,36 +306,15 @@ TEST(Dda3dContactDamping, StiffModeVelocityRestsABlockOnStiffSpringsAtOnce)
   // none.
   for (const bool stiff : {false, true})
     {
-      const BlockSystem s = box_on_base(1e13,
-                                        Point(-3., -1.5, -1.),
-                                        Point(3., 1.5, 0.),
-                                        Point(-0.5, -0.5, 0.),
-                                        Point(0.5, 0.5, 1.),
-                                        {Point(-2., -1., -0.5),
-                                         Point(2., -1., -0.5),
-                                         Point(0., 1., -0.5),
-                                         Point(0., 0., -0.9)},
-                                        Point(0., 0., -9.80665));
+      const BlockSystem s = stiff_cube_on_base();
       EngineControls    c;
       c.dt                 = 0.005;
       c.law.normal_penalty = 1e11;
       c.stiff_velocity     = stiff;
-      Engine       engine(s, c);
-      const double weight = 2700. * 9.80665;
-      double       worst = 0., balance = -1e300, speed = 0.;
-      for (int k = 1; k <= 200; ++k)
-        {
-          engine.advance_to(k * c.dt);
-          balance       = std::max(balance, engine.energy().balance());
-          double normal = 0.;
-          for (const auto &ct : engine.contacts())
-            normal += ct.state == ContactState::open ? 0. : ct.normal_force;
-          if (k > 20)
-            {
-              worst = std::max(worst, std::abs(normal / weight - 1.));
-              speed = std::max(speed, engine.scene().blocks[1].velocity.norm());
-            }
-        }
+      Engine        engine(s, c);
+      const double  weight = 2700. * 9.80665;
+      const Resting r      = rest_on_springs(engine, c.dt, weight);
+      const double  worst = r.worst, balance = r.balance, speed = r.speed;
       std::printf("stiff-mode velocity %d: largest |normal force / weight - "
                   "1| of a step after the first 20: %.3e, largest |v| "
                   "%.3e; damping booked %.3e J, max balance %.2e J\n",
@@ -341,18 +360,8 @@ TEST(Dda3dContactDamping, StiffModeVelocityMakesAStiffImpactInelastic)
   for (const double p : {1e11, 1e6})
     for (const bool stiff : {false, true})
       {
-        BlockSystem s           = box_on_base(1e10,
-                                    Point(-0.5, -0.5, -0.5),
-                                    Point(0.5, 0.5, 0.),
-                                    Point(-0.1, -0.1, 1e-3),
-                                    Point(0.1, 0.1, 0.101),
-                                    {Point(-0.3, -0.3, -0.2),
-                                               Point(0.3, -0.3, -0.2),
-                                               Point(0., 0.3, -0.2),
-                                               Point(0., 0., -0.4)},
-                                    Point::Zero());
-        s.blocks[1].velocity(2) = -v0;
-        const double   omega    = std::sqrt(4. * p / m);
+        BlockSystem    s     = falling_box(v0);
+        const double   omega = std::sqrt(4. * p / m);
         EngineControls c;
         c.law.normal_penalty = p;
         c.stiff_velocity     = stiff;
@@ -423,16 +432,7 @@ TEST(Dda3dContactDamping, StiffModeVelocityCarriesABlockStuckToAMovingBase)
   const double U = 0.01, w = 4. * pi;
   for (const bool stiff : {false, true})
     {
-      const BlockSystem s = box_on_base(1e13,
-                                        Point(-3., -1.5, -1.),
-                                        Point(3., 1.5, 0.),
-                                        Point(-0.5, -0.5, 0.),
-                                        Point(0.5, 0.5, 1.),
-                                        {Point(-2., -1., -0.5),
-                                         Point(2., -1., -0.5),
-                                         Point(0., 1., -0.5),
-                                         Point(0., 0., -0.9)},
-                                        Point(0., 0., -9.80665));
+      const BlockSystem s = stiff_cube_on_base();
       EngineControls    c;
       c.dt                  = 0.005;
       c.law.normal_penalty  = 1e11;
