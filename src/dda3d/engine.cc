@@ -729,6 +729,16 @@ namespace rockdda::dda3d
                               }
                           });
     };
+    // Calls f(k, side) for each closed contact k of block b, in contact
+    // order; side 0: b is the contact's block i, 1: its block j.
+    auto for_closed_contacts_of = [&](const std::size_t b, const auto &f) {
+      for (int e = by_block.start[b]; e < by_block.start[b + 1]; ++e)
+        {
+          const std::size_t k = by_block.entry[e] / 2;
+          if (contacts[k].state != ContactState::open)
+            f(k, by_block.entry[e] % 2);
+        }
+    };
     // The blocks' velocities at the start of the step as Shi's scheme
     // carries them (times the dynamic control), and contact k's normal
     // and shear rates of the stacked vectors (x_i, x_j).
@@ -859,13 +869,9 @@ namespace rockdda::dda3d
                 auto  Fb = F.segment<12>(12 * b);
                 Kb       = K0[b];
                 Fb       = F0[b];
-                for (int e = by_block.start[b]; e < by_block.start[b + 1]; ++e)
-                  {
-                    const std::size_t k    = by_block.entry[e] / 2;
-                    const int         side = by_block.entry[e] % 2;
-                    const auto       &c    = contacts[k];
-                    if (c.state == ContactState::open)
-                      continue;
+                for_closed_contacts_of(
+                  b, [&](const std::size_t k, const int side) {
+                    const auto  &c = contacts[k];
                     const auto  &K = kin[k];
                     const double S
                       = c.state == ContactState::sliding ? dda::shear_strength(
@@ -874,7 +880,7 @@ namespace rockdda::dda3d
                     if (side == 0 && c.state == ContactState::sliding)
                       friction_applied[k] = -S * dir[k];
                     if (clamped_[b])
-                      continue;
+                      return;
                     const Vector12   &e_n = side == 0 ? K.en : K.hn;
                     const Matrix12x2 &e_s = side == 0 ? K.Es : K.Hs;
                     Kb += spring_block(k, side, side);
@@ -897,7 +903,7 @@ namespace rockdda::dda3d
                     const int other = side == 0 ? c.geometry.j : c.geometry.i;
                     if (clamped_[other])
                       Fb -= spring_block(k, side, 1 - side) * prescribed[other];
-                  }
+                  });
                 if (clamped_[b])
                   {
                     Kb.setIdentity();
@@ -1145,19 +1151,16 @@ namespace rockdda::dda3d
                 const Matrix12 inertia = (2. / (h * h)) * M[b];
                 Kb                     = K0[b];
                 Fb = inertia * v_end[b] + (K0[b] - inertia) * (Db[b] / h);
-                for (int e = by_block.start[b]; e < by_block.start[b + 1]; ++e)
-                  {
-                    const std::size_t k    = by_block.entry[e] / 2;
-                    const int         side = by_block.entry[e] % 2;
-                    const auto       &c    = contacts[k];
-                    if (c.state == ContactState::open)
-                      continue;
-                    const int other = side == 0 ? c.geometry.j : c.geometry.i;
-                    Kb += springs_of(k, side, side, false);
-                    Fb += springs_of(k, side, side, false) * (Db[b] / h)
+                for_closed_contacts_of(
+                  b, [&](const std::size_t k, const int side) {
+                    const auto &c     = contacts[k];
+                    const int   other = side == 0 ? c.geometry.j : c.geometry.i;
+                    const Matrix12 own = springs_of(k, side, side, false);
+                    Kb += own;
+                    Fb += own * (Db[b] / h)
                           + springs_of(k, side, 1 - side, false)
                               * (Db[other] / h - vc[other]);
-                  }
+                  });
               }
           });
         // Fixed points: their anchors move with the ground.
