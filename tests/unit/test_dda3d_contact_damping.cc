@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "dda3d_test_scenes.h"
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -21,53 +22,19 @@ namespace
 {
   const double pi = std::acos(-1.);
 
-  /// A box [@p lo, @p hi] (block 2) on a base box [@p base_lo, @p base_hi]
-  /// (block 1) clamped by 4 non-collinear fixed points @p anchors; one
-  /// material (2700 kg/m^3, Young's modulus @p young, 0.25), friction 30
-  /// deg, gravity @p gravity.
-  BlockSystem
-  box_on_base(const double              young,
-              const Point              &base_lo,
-              const Point              &base_hi,
-              const Point              &lo,
-              const Point              &hi,
-              const std::vector<Point> &anchors,
-              const Point              &gravity)
-  {
-    BlockSystem s;
-    s.materials.push_back({2700., young, 0.25, 1});
-    dda::JointMaterial joint;
-    joint.friction_deg = 30.;
-    s.joints.push_back(joint);
-    Block base;
-    base.id         = 1;
-    base.material   = 0;
-    base.polyhedron = make_box(base_lo, base_hi);
-    Block box       = base;
-    box.id          = 2;
-    box.polyhedron  = make_box(lo, hi);
-    s.blocks        = {base, box};
-    for (const Point &p : anchors)
-      s.fixed_points.push_back({0, p, Point::Zero()});
-    s.gravity = gravity;
-    return s;
-  }
-
   /// The 1 m cube (E = 1e13 Pa, a rigid block) resting on a clamped 6 x 3 x
   /// 1 m base under gravity: the scene of the stiff-mode tests.
   BlockSystem
   stiff_cube_on_base()
   {
-    return box_on_base(1e13,
-                       Point(-3., -1.5, -1.),
-                       Point(3., 1.5, 0.),
-                       Point(-0.5, -0.5, 0.),
-                       Point(0.5, 0.5, 1.),
-                       {Point(-2., -1., -0.5),
-                        Point(2., -1., -0.5),
-                        Point(0., 1., -0.5),
-                        Point(0., 0., -0.9)},
-                       Point(0., 0., -9.80665));
+    return test_scenes::incline_scene(0.,
+                                      30.,
+                                      Point(-3., -1.5, -1.),
+                                      Point(3., 1.5, 0.),
+                                      Point(-0.5, -0.5, 0.),
+                                      Point(0.5, 0.5, 1.),
+                                      {2700., 1e13, 0.25, 1})
+      .system;
   }
 
   /// A box 0.2 x 0.2 x 0.1 m 1 mm above a clamped base, without gravity,
@@ -75,16 +42,15 @@ namespace
   BlockSystem
   falling_box(const double v0)
   {
-    BlockSystem s           = box_on_base(1e10,
-                                Point(-0.5, -0.5, -0.5),
-                                Point(0.5, 0.5, 0.),
-                                Point(-0.1, -0.1, 1e-3),
-                                Point(0.1, 0.1, 0.101),
-                                {Point(-0.3, -0.3, -0.2),
-                                           Point(0.3, -0.3, -0.2),
-                                           Point(0., 0.3, -0.2),
-                                           Point(0., 0., -0.4)},
-                                Point::Zero());
+    BlockSystem s = test_scenes::incline_scene(0.,
+                                               30.,
+                                               Point(-0.5, -0.5, -0.5),
+                                               Point(0.5, 0.5, 0.),
+                                               Point(-0.1, -0.1, 1e-3),
+                                               Point(0.1, 0.1, 0.101),
+                                               {2700., 1e10, 0.25, 1})
+                      .system;
+    s.gravity               = Point::Zero();
     s.blocks[1].velocity(2) = -v0;
     return s;
   }
