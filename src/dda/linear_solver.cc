@@ -8,9 +8,9 @@
 #include <deal.II/base/mpi.h>
 
 #include <Eigen/Cholesky>
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include "block_cholesky.h"
 #include "distributed_solver.h"
 #include "task_team.h"
 #include "thread_pair.h"
@@ -149,100 +149,16 @@ namespace rockdda::dda
 
 
 
-  /// The direct solver: a lower-triangular CSC copy of the matrix whose
-  /// values are gathered from the block storage through a fixed map, and
-  /// its sparse LDL^T factorisation (Eigen SimplicialLDLT, AMD ordering).
-  /// The symbolic analysis is kept while the block pattern is unchanged.
-  /// (CHOLMOD's supernodal LL^T was measured 1.3-3x slower at 1,000
-  /// blocks with the reference BLAS of this machine and is not used.)
+  /// The direct solver: the block sparse Cholesky factorisation of the
+  /// matrix (internal::BlockCholeskyOf, minimum-degree ordering of the
+  /// blocks), its ordering and fill-in kept while the block pattern is
+  /// unchanged. It replaced a scalar sparse LDL^T (Eigen SimplicialLDLT)
+  /// that spent most of its time in index work (doc/theory/dda.md, "Linear
+  /// solvers"; benchmarks/dda-scaling README).
   template <int dofs>
   struct LinearSolverOf<dofs>::Direct
   {
-    using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-    Sparse                                                               matrix;
-    Eigen::SimplicialLDLT<Sparse, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
-    /// For each stored value: block kind (0 diag, 1 off), index, entry.
-    std::vector<int>  source_block, source_entry;
-    std::vector<char> source_kind;
-    /// The pattern analysed last.
-    std::vector<std::pair<int, int>> analysed_pairs;
-    int                              analysed_blocks = -1;
-
-    /// True if the factorisation has only positive pivots.
-    bool
-    positive_definite() const
-    {
-      if (ldlt.info() != Eigen::Success)
-        return false;
-      return !(ldlt.vectorD().array() <= 0.).any();
-    }
-
-    void
-    analyse(const Matrix &K)
-    {
-      const int n = K.n_blocks();
-      if (n == analysed_blocks && K.pairs == analysed_pairs)
-        return;
-      analysed_blocks = n;
-      analysed_pairs  = K.pairs;
-      // Column block c: the diagonal block's lower part, then the
-      // transposed upper blocks K_cj (j > c) as rows of block j.
-      std::vector<std::vector<std::pair<int, int>>> below(n);
-      for (std::size_t k = 0; k < K.pairs.size(); ++k)
-        below[K.pairs[k].first].emplace_back(K.pairs[k].second,
-                                             static_cast<int>(k));
-      for (auto &b : below)
-        std::sort(b.begin(), b.end());
-      matrix.resize(dofs * n, dofs * n);
-      // Per block row: the lower triangle of the diagonal block and the
-      // full off-diagonal blocks.
-      std::size_t nnz = (dofs * (dofs + 1) / 2) * static_cast<std::size_t>(n)
-                        + dofs * dofs * K.pairs.size();
-      matrix.resizeNonZeros(nnz);
-      source_block.resize(nnz);
-      source_entry.resize(nnz);
-      source_kind.resize(nnz);
-      int *outer = matrix.outerIndexPtr();
-      int *inner = matrix.innerIndexPtr();
-      int  pos   = 0;
-      for (int c = 0; c < n; ++c)
-        for (int a = 0; a < dofs; ++a)
-          {
-            outer[dofs * c + a] = pos;
-            for (int b = a; b < dofs; ++b)
-              {
-                inner[pos]        = dofs * c + b;
-                source_kind[pos]  = 0;
-                source_block[pos] = c;
-                source_entry[pos] = b + dofs * a; // (b, a) column-major
-                ++pos;
-              }
-            for (const auto &[j, k] : below[c])
-              for (int b = 0; b < dofs; ++b)
-                {
-                  // entry (dofs j + b, dofs c + a) = K_cj(a, b)
-                  inner[pos]        = dofs * j + b;
-                  source_kind[pos]  = 1;
-                  source_block[pos] = k;
-                  source_entry[pos] = a + dofs * b;
-                  ++pos;
-                }
-          }
-      outer[dofs * n] = pos;
-      gather(K);
-      ldlt.analyzePattern(matrix);
-    }
-
-    void
-    gather(const Matrix &K)
-    {
-      double    *v = matrix.valuePtr();
-      const auto n = source_kind.size();
-      for (std::size_t p = 0; p < n; ++p)
-        v[p] = source_kind[p] == 0
-                 ? K.diag[source_block[p]].data()[source_entry[p]]
-                 : K.off[source_block[p]].data()[source_entry[p]];
-    }
+    internal::BlockCholeskyOf<dofs> cholesky;
   };
 
 
@@ -888,7 +804,7 @@ namespace rockdda::dda
       {
         if (!direct)
           direct = std::make_unique<Direct>();
-        direct->analyse(K);
+        direct->cholesky.analyse(K);
       }
     else if (options.preconditioner == Preconditioner::block_dilu)
       {
@@ -914,13 +830,11 @@ namespace rockdda::dda
         if (!same_matrix || !factorised)
           {
             factorised = false;
-            direct->gather(K);
-            direct->ldlt.factorize(direct->matrix);
-            if (!direct->positive_definite())
+            if (!direct->cholesky.factorize(K))
               return false;
             factorised = true;
           }
-        x = direct->ldlt.solve(f);
+        direct->cholesky.solve(f, x);
         return x.allFinite();
       }
 

@@ -560,8 +560,11 @@ namespace
 // base (mu W L / (2 E H) = 4 um, 2.6 %), and never more than the retreat.
 // The first three cycles are the wedge's seating (the block lags the wedge
 // by up to 7e-6 m and catches up); from the fourth on the slip equals the
-// wedge's descent times the taper (kinematics: measured within 1.2e-7 m,
-// asserted 0.5 % of the retreat). The static path splits each contraction
+// wedge's descent times the taper, up to the change of the block's elastic
+// length between the ends of two cycles, which the drag bounds: mu W L /
+// (2 E H) = 4.3 um, 2.7 % of the retreat (measured within 1.2e-7 m here and
+// 3.0e-6 m in UTM coordinates: which end takes how much of a contraction
+// is round-off sensitive, see below). The static path splits each contraction
 // between the two ends only to within a few per cent (cycles of 1.53-1.57e-4
 // m, and at 100 E one of 0.98e-4 in ten), hence 10 % for the mean. It does
 // not depend on the penalty (10 and 100 x E) or on where the scene sits,
@@ -569,6 +572,9 @@ namespace
 TEST(DdaThermal, WedgeRatchetAdvancesByTheBackFacesRetreat)
 {
   const double exact = alpha * 10. * 4. / 2.;
+  // The drag's elastic shortening mu W L / (2 E H), L = H = 4 m.
+  const double shortening
+    = std::tan(40. * M_PI / 180.) * 2600. * g_earth * 4. * 4. / (2. * young);
   for (const double penalty : {10. * young, 100. * young})
     {
       const auto cycles = minimal_ratchet(true, penalty, 7);
@@ -580,7 +586,7 @@ TEST(DdaThermal, WedgeRatchetAdvancesByTheBackFacesRetreat)
           if (k < 3)
             continue;
           mean += c.slip / (cycles.size() - 3);
-          EXPECT_NEAR(c.slip, c.descent_x_taper, 0.005 * exact) << k;
+          EXPECT_NEAR(c.slip, c.descent_x_taper, shortening) << k;
           EXPECT_GT(c.slip, 0.) << k;
           EXPECT_LT(c.slip, exact * (1. + 1e-3)) << k;
         }
@@ -599,7 +605,7 @@ TEST(DdaThermal, WedgeRatchetAdvancesByTheBackFacesRetreat)
   for (std::size_t k = 3; k < utm.size(); ++k)
     {
       mean += utm[k].slip / (utm.size() - 3);
-      EXPECT_NEAR(utm[k].slip, utm[k].descent_x_taper, 0.005 * exact) << k;
+      EXPECT_NEAR(utm[k].slip, utm[k].descent_x_taper, shortening) << k;
     }
   EXPECT_NEAR(mean, exact, 0.1 * exact);
 }

@@ -2,7 +2,7 @@
  * @file
  * The linear system of DDA: a symmetric sparse matrix of dofs x dofs
  * blocks (6 in 2D, 12 in 3D) with a pattern fixed within a step, and its
- * direct (sparse LDL^T) and iterative (block-Jacobi or block D-ILU
+ * direct (block sparse Cholesky) and iterative (block-Jacobi or block D-ILU
  * preconditioned CG) solvers, written once over the block size.
  */
 #ifndef ROCKDDA_DDA_LINEAR_SOLVER_H
@@ -69,8 +69,9 @@ namespace rockdda::dda
     /// Direct for up to automatic_limit blocks, iterative above (measured
     /// faster from about 60 blocks, benchmarks/dda-scaling).
     automatic,
-    /// Sparse LDL^T (Eigen SimplicialLDLT, AMD ordering), pattern analysed
-    /// once per step, factorised per open-close iteration.
+    /// Sparse Cholesky on the dofs x dofs blocks (AMD ordering of the block
+    /// graph), pattern analysed when it changes, factorised per open-close
+    /// iteration.
     direct,
     /// Block-Jacobi preconditioned conjugate gradients, warm-started.
     iterative,

@@ -256,7 +256,7 @@ namespace rockdda::dda3d
    * the previous step, then the open-close iteration: assemble the block
    * terms (as FreeBlocks) and the contact springs into a block-sparse
    * matrix of 12x12 blocks (pattern: the contact pairs of the step), solve
-   * (dda::LinearSolverOf<12>: sparse LDL^T or D-ILU preconditioned CG
+   * (dda::LinearSolverOf<12>: block sparse Cholesky or D-ILU preconditioned CG
    * warm-started from the previous step), check every contact, until no state
    * changes and the friction of sliding contacts has converged. A step that
    * does not converge, or moves a vertex further than the allowed displacement,
