@@ -131,15 +131,27 @@ namespace rockdda::dda::internal
         const Eigen::LLT<Dense, Eigen::Lower> llt(L);
         if (llt.info() != Eigen::Success)
           return false;
-        L = llt.matrixL();
-        if (!(L.diagonal().array() > 0.).all())
+        // The column stores L_kk^-1 (lower): the blocks below and the
+        // solves then take dense products only.
+        const Dense &C = llt.matrixLLT();
+        L.setZero();
+        for (int c = 0; c < dofs; ++c)
+          {
+            L(c, c) = 1. / C(c, c);
+            for (int i = c + 1; i < dofs; ++i)
+              {
+                double v = 0.;
+                for (int j = c; j < i; ++j)
+                  v -= C(i, j) * L(j, c);
+                L(i, c) = v / C(i, i);
+              }
+          }
+        if (!L.allFinite() || !(L.diagonal().array() > 0.).all())
           return false;
         // L_ik = K_ik L_kk^-T.
         const int s = start[k] + 1, e = start[k + 1];
         for (int m = s; m < e; ++m)
-          L.transpose()
-            .template triangularView<Eigen::Upper>()
-            .template solveInPlace<Eigen::OnTheRight>(factor[m]);
+          factor[m] = (factor[m] * L.transpose()).eval();
         int u = update_start[k];
         for (int a = s; a < e; ++a)
           for (int b = a; b < e; ++b)
@@ -162,9 +174,7 @@ namespace rockdda::dda::internal
     Vector v;
     for (int k = 0; k < n; ++k)
       {
-        v = y.template segment<dofs>(dofs * k);
-        factor[start[k]].template triangularView<Eigen::Lower>().solveInPlace(
-          v);
+        v.noalias() = factor[start[k]] * y.template segment<dofs>(dofs * k);
         y.template segment<dofs>(dofs * k) = v;
         for (int m = start[k] + 1; m < start[k + 1]; ++m)
           y.template segment<dofs>(dofs * row[m]).noalias() -= factor[m] * v;
@@ -175,11 +185,8 @@ namespace rockdda::dda::internal
         for (int m = start[k] + 1; m < start[k + 1]; ++m)
           v.noalias()
             -= factor[m].transpose() * y.template segment<dofs>(dofs * row[m]);
-        factor[start[k]]
-          .transpose()
-          .template triangularView<Eigen::Upper>()
-          .solveInPlace(v);
-        y.template segment<dofs>(dofs * k) = v;
+        y.template segment<dofs>(dofs * k).noalias()
+          = factor[start[k]].transpose() * v;
       }
     x.resize(dofs * n);
     for (int b = 0; b < n; ++b)

@@ -20,13 +20,13 @@ namespace rockdda::dda::internal
    * blocks themselves: the minimum-degree ordering P (Eigen's AMD) and the
    * fill-in of L come from the block graph (the pairs), once per pattern;
    * the numeric factorisation is right-looking with dense dofs x dofs
-   * operations (a Cholesky factor per diagonal block, triangular solves
-   * for the column below it, and the Schur updates into precomputed
-   * targets). Compared with a scalar sparse LDL^T on the same matrix this
-   * does the same arithmetic without an index per entry, and needs no
-   * copy of the matrix into compressed storage (George & Liu 1981,
-   * Computer Solution of Large Sparse Positive Definite Systems, ch. 5
-   * and 7; Davis 2006, Direct Methods for Sparse Linear Systems, ch. 4).
+   * operations (a Cholesky factor per diagonal block, kept as its inverse
+   * so that the column below it and the solves are dense products, and
+   * the Schur updates into precomputed targets). Compared with a scalar sparse
+   * LDL^T on the same matrix this does the same arithmetic without an index per
+   * entry, and needs no copy of the matrix into compressed storage (George &
+   * Liu 1981, Computer Solution of Large Sparse Positive Definite Systems, ch.
+   * 5 and 7; Davis 2006, Direct Methods for Sparse Linear Systems, ch. 4).
    */
   template <int dofs>
   class BlockCholeskyOf
@@ -63,7 +63,8 @@ namespace rockdda::dda::internal
     std::vector<std::pair<int, int>> pairs;
     /// new_of[old block] and old_of[new block].
     std::vector<int> new_of, old_of;
-    /// Column k of L: factor[start[k]] is its diagonal factor (lower),
+    /// Column k of L: factor[start[k]] is the inverse of its diagonal
+    /// factor (lower),
     /// factor[start[k] + 1 ..< start[k + 1]] the blocks of rows
     /// row[start[k] + 1 ..] (ascending, > k).
     std::vector<int>   start, row;
