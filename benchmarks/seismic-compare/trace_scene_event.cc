@@ -10,9 +10,10 @@
  * time step (s). Changes (defaults: parameter-files/masada/
  * ratchet-earthquakes-block1.prm): penalty=N/m (1e13), infill=0|1 (1),
  * slices=N (4), bedding_shear=Pa/m (1e9), cliff=m (8), crack_top=m (0.2),
- * crack_bottom=m (0.02). The heat solution is a cheap one (degree 1, 24
- * steps a cycle): only the eigenstrains of the settled scene depend on it.
- * Prints the episode's slip, dynamic slip, largest rotation, steps, cuts
+ * crack_bottom=m (0.02), damping=- (0: the episode's contact damping ratio,
+ * EpisodeControls::contact_damping). The heat solution is a cheap one (degree
+ * 1, 24 steps a cycle): only the eigenstrains of the settled scene depend on
+ * it. Prints the episode's slip, dynamic slip, largest rotation, steps, cuts
  * and energy balance change.
  */
 #include <rockdda/coupling/compare.h>
@@ -44,6 +45,7 @@ main(int argc, char **argv)
   RatchetGeometry  geometry;
   RatchetMaterials materials;
   RatchetControls  controls;
+  EpisodeControls  ec;
   geometry.infill_top_depth         = 6.;
   geometry.infill_height            = 2.;
   geometry.supply_distance          = 2.;
@@ -71,6 +73,8 @@ main(int argc, char **argv)
         geometry.crack_top_width = v;
       else if (key == "crack_bottom")
         geometry.crack_bottom_width = v;
+      else if (key == "damping")
+        ec.contact_damping = v;
       else
         {
           std::fprintf(stderr, "unknown key %s\n", key.c_str());
@@ -114,17 +118,17 @@ main(int argc, char **argv)
   heat.spin_up_cycles    = 3;
   heat.samples_per_cycle = 24;
   const PeriodicBlockTemperature temperature(scene.heat_blocks, forcing, heat);
-  RatchetRun      run(scene, temperature, forcing, 8e-6, controls);
-  EpisodeControls ec;
+  RatchetRun run(scene, temperature, forcing, 8e-6, controls);
   ec.time_step          = dt;
   const EpisodeRecord r = run.run_episode(record, ec);
   const double        sec
     = std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
         .count();
-  std::printf("dt %.4e s: slip %.3f mm (dynamic %.3f mm), max rotation "
-              "%.3e rad, %lu dynamic steps, %lu cuts, balance change %.3e "
-              "of %.3e J/m, %.1f s\n",
+  std::printf("dt %.4e s, contact damping %.3f: slip %.3f mm (dynamic %.3f "
+              "mm), max rotation %.3e rad, %lu dynamic steps, %lu cuts, "
+              "balance change %.3e of %.3e J/m, %.1f s\n",
               dt,
+              ec.contact_damping,
               1e3 * r.slip,
               1e3 * r.dynamic_slip,
               r.max_rotation,

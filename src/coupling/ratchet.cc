@@ -374,6 +374,11 @@ namespace rockdda::coupling
                      ec.rest_time_key,
                      ec.rest_time,
                      ">= 0 s");
+    require_in_range(ec.contact_damping >= 0.
+                       && std::isfinite(ec.contact_damping),
+                     ec.contact_damping_key,
+                     ec.contact_damping,
+                     ">= 0");
     EpisodeRecord r;
     // The thermal time of the end of the last cycle: the eigenstrains stay
     // those set there (or at settling, before the first cycle).
@@ -399,6 +404,11 @@ namespace rockdda::coupling
     const unsigned long steps0 = engine->n_steps, cuts0 = engine->n_cuts;
     engine->set_time_step(ec.time_step);
     engine->set_dynamic(1.);
+    // The joints' dashpots act in the dynamic steps only (the static steps
+    // of the cycles are not damped by them in any case).
+    const double damping_before = engine->controls().contact_damping;
+    engine->set_contact_damping(ec.contact_damping,
+                                engine->controls().contact_step_damping);
     engine->set_seismic_input(input, start);
     const dda::EnergyLedger e0 = engine->energy();
     try
@@ -425,6 +435,8 @@ namespace rockdda::coupling
     r.dynamic_cuts             = engine->n_cuts - cuts0;
     r.dynamic_slip             = displacement() - d0;
 
+    engine->set_contact_damping(damping_before,
+                                engine->controls().contact_step_damping);
     // Back to static steps at the run's pseudo time step: the step grows
     // back from the dynamic one (static steps, the inertia term shrinking),
     // then the scene is brought to equilibrium as at a sample.

@@ -489,6 +489,22 @@ namespace rockdda::coupling
                     "'calibrate' analysis); the contact penalty stays "
                     "'Ratchet/Contact penalty'.");
         io::declare(prm,
+                    "Contact damping ratio",
+                    "0",
+                    Double(0., 1.),
+                    "-",
+                    "Viscous dashpots in parallel with the closed contacts' "
+                    "springs during the dynamic steps of an earthquake, as a "
+                    "ratio of critical, 0 to 1 (0: none): c = 2 ratio "
+                    "sqrt(k m) (N s/m), k the spring (N/m), m the lighter "
+                    "free block's mass (kg); the physical damping of the "
+                    "joints, chiefly the bedding joint's elastic shear mode, "
+                    "which otherwise only the time step's numerical damping "
+                    "(about omega dt / 4) damps, so that the episode's slip "
+                    "depends on 'Time step'. Rock joints: a few per cent "
+                    "(doc/theory/dda.md, Contact damping; "
+                    "benchmarks/seismic-compare/README.md).");
+        io::declare(prm,
                     "Rest time",
                     "2",
                     Double(0., 100.),
@@ -596,9 +612,11 @@ namespace rockdda::coupling
         quakes.minimum_pga       = prm.get_double("Minimum PGA");
         quakes.episode.time_step = prm.get_double("Time step");
         quakes.episode.rest_time = prm.get_double("Rest time");
-        quakes.quakes_on_scene   = prm.get_bool("Earthquakes alone");
-        quakes.block1_penalty    = prm.get_double("Block 1 penalty");
-        quakes.threads           = prm.get_integer("Threads");
+        quakes.episode.contact_damping
+          = prm.get_double("Contact damping ratio");
+        quakes.quakes_on_scene = prm.get_bool("Earthquakes alone");
+        quakes.block1_penalty  = prm.get_double("Block 1 penalty");
+        quakes.threads         = prm.get_integer("Threads");
         prm.leave_subsection();
         io::require(quakes.catalogues == 0
                       || quakes.gr.max_magnitude > quakes.gr.min_magnitude,

@@ -65,6 +65,11 @@ namespace rockdda::coupling
                      o.episode.rest_time_key,
                      o.episode.rest_time,
                      ">= 0 s");
+    require_in_range(o.episode.contact_damping >= 0.
+                       && std::isfinite(o.episode.contact_damping),
+                     o.episode.contact_damping_key,
+                     o.episode.contact_damping,
+                     ">= 0");
     require_in_range(o.block1_penalty > 0.,
                      "Ratchet earthquakes/Block 1 penalty",
                      o.block1_penalty,

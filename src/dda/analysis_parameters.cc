@@ -79,6 +79,43 @@ namespace rockdda::dda
                 "of Table 4-1's 1 m, 20 MPa block at 0.61 of critical "
                 "(benchmarks/dda3d/README.md).");
     io::declare(prm,
+                "Contact damping ratio",
+                "0",
+                Double(0.),
+                "-",
+                "Viscous dashpot in parallel with each spring of a closed "
+                "contact (the normal one, and the shear one while it is "
+                "locked), as a ratio of critical, >= 0 (0: none): "
+                "c = 2 ratio sqrt(k m) (N s/m), k the spring (N/m; a "
+                "joint's stiffness over the contact's share of the joint "
+                "in series with the penalty), m the lighter free block's "
+                "mass (kg). A single contact rebounds with the restitution "
+                "coefficient exp(-ratio pi / sqrt(1 - ratio^2)) (ratio < 1); "
+                "a block on n such contacts in parallel (n = 2 on a face in "
+                "2D) has sqrt(n) x the ratio in its mode on them. Physical: "
+                "rock "
+                "joints a few per cent. The energy it dissipates is booked in "
+                "the energy ledger (damping). Only in dynamic steps; the "
+                "contact states and friction use the spring forces alone ("
+                  + std::string(dim == 2 ? "doc/theory/dda.md"
+                                         : "doc/theory/dda3d.md")
+                  + ", Contact damping).");
+    io::declare(prm,
+                "Contact step damping",
+                "0",
+                Double(0.),
+                "-",
+                "Numerical dashpot beta k dt / 2 (N s/m) in parallel "
+                "with each spring k (N/m) of a closed contact as the "
+                "above, >= 0 (0: none), dt the step (s): a contact mode "
+                "the step resolves (omega dt << 1) is damped at the "
+                "ratio beta omega dt / 4 (vanishing with dt, as the "
+                "scheme's own numerical damping), a stiff one (omega dt "
+                ">> 1, where Shi's velocity update has amplification "
+                "-1) gets the amplification -1 / (1 + beta) per step; "
+                "1 removes it in one step, above 1 the contact creeps. "
+                "Booked with the above.");
+    io::declare(prm,
                 "Maximum open-close iterations",
                 "12",
                 Integer(1, 100),
@@ -249,6 +286,8 @@ namespace rockdda::dda
     time_step              = prm.get_double("Time step");
     dynamic                = prm.get_double("Dynamic control");
     strain_damping         = prm.get_double("Strain damping");
+    contact_damping        = prm.get_double("Contact damping ratio");
+    contact_step_damping   = prm.get_double("Contact step damping");
     max_open_close         = prm.get_integer("Maximum open-close iterations");
     max_displacement_ratio = prm.get_double("Maximum displacement ratio");
     shear_ratio            = prm.get_double("Shear penalty ratio");
@@ -284,6 +323,17 @@ namespace rockdda::dda
                 s + "Strain damping",
                 strain_damping,
                 ">= 0 s");
+    io::require(contact_damping >= 0. && std::isfinite(contact_damping),
+                prm_file,
+                s + "Contact damping ratio",
+                contact_damping,
+                ">= 0");
+    io::require(contact_step_damping >= 0.
+                  && std::isfinite(contact_step_damping),
+                prm_file,
+                s + "Contact step damping",
+                contact_step_damping,
+                ">= 0");
     io::require(max_displacement_ratio > 0. && max_displacement_ratio <= 1.,
                 prm_file,
                 s + "Maximum displacement ratio",

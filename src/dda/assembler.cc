@@ -3,6 +3,7 @@
  * Assembly of the 2D DDA equations (Shi 1988, ch. 2-4; Shi 1993).
  */
 #include <rockdda/dda/assembler.h>
+#include <rockdda/dda/contact_damping.h>
 #include <rockdda/dda/strain_damping.h>
 
 #include <Eigen/Cholesky>
@@ -100,6 +101,31 @@ namespace rockdda::dda
     k.force_tolerance  = force_tolerance_of(k,
                                            contact.geometry.block_i,
                                            contact.geometry.block_j);
+  }
+
+
+
+  void
+  Assembler::set_dashpots(const BlockSystem &system, const int c)
+  {
+    ContactKinematics   &k = contact_kinematics[c];
+    const ContactDamping dashpots(params.contact_damping,
+                                  params.contact_step_damping,
+                                  params.dt,
+                                  params.dynamic);
+    const auto [i, j] = contact_blocks[c];
+    // The lighter free block's mass (a clamped block's is infinite).
+    const double inf = std::numeric_limits<double>::infinity();
+    const double mi  = clamped[i] ? inf : mass[i](0, 0),
+                 mj  = clamped[j] ? inf : mass[j](0, 0);
+    k.normal_dashpot = dashpots.dashpot(k.normal_stiffness, mi, mj);
+    k.shear_dashpot  = dashpots.dashpot(k.shear_stiffness, mi, mj);
+    // The relative rates at the start of the step (the carried-over
+    // velocity, times the dynamic control, as the inertia term's).
+    const Vector6 vi = params.dynamic * system.blocks[i].velocity;
+    const Vector6 vj = params.dynamic * system.blocks[j].velocity;
+    k.normal_rate    = k.en.dot(vi) + k.hn.dot(vj);
+    k.shear_rate     = k.es.dot(vi) + k.hs.dot(vj);
   }
 
 
@@ -329,6 +355,10 @@ namespace rockdda::dda
     if (any_joint_stiffness(joints))
       for (std::size_t c = 0; c < contacts.size(); ++c)
         set_springs(static_cast<int>(c), contacts[c]);
+    // Their dashpots (the springs' final values) and rates.
+    if (damped())
+      for (std::size_t c = 0; c < contacts.size(); ++c)
+        set_dashpots(system, static_cast<int>(c));
     std::vector<std::pair<int, int>> unique_pairs = pairs;
     std::sort(unique_pairs.begin(), unique_pairs.end());
     unique_pairs.erase(std::unique(unique_pairs.begin(), unique_pairs.end()),
@@ -373,6 +403,8 @@ namespace rockdda::dda
     k.shear_stiffness  = old.shear_stiffness;
     k.force_tolerance  = old.force_tolerance;
     k.weight_tolerance = old.weight_tolerance;
+    if (damped())
+      set_dashpots(system, index);
   }
 
 
@@ -421,13 +453,24 @@ namespace rockdda::dda
     const Vector6 &en = vertex_side ? kin.en : kin.hn;
     const Vector6 &es = vertex_side ? kin.es : kin.hs;
     const double   kn = kin.normal_stiffness;
-    Kb.noalias() += kn * en * en.transpose();
+    // The dashpots (ContactDamping): the force -c v' with the end-of-step
+    // rate v' = 2 d / h - v adds 2 c / h to the spring and c v to the load.
+    const bool damped_step = damped();
+    Kb.noalias()
+      += (kn + (damped_step ? 2. * kin.normal_dashpot / params.dt : 0.)) * en
+         * en.transpose();
     Fb -= (kn * kin.g0) * en;
+    if (damped_step)
+      Fb += (kin.normal_dashpot * kin.normal_rate) * en;
     if (ct.state == ContactState::locked)
       {
         const double ks = kin.shear_stiffness;
-        Kb.noalias() += ks * es * es.transpose();
+        Kb.noalias()
+          += (ks + (damped_step ? 2. * kin.shear_dashpot / params.dt : 0.)) * es
+             * es.transpose();
         Fb -= (ks * kin.s0) * es;
+        if (damped_step)
+          Fb += (kin.shear_dashpot * kin.shear_rate) * es;
       }
     else
       // Sliding: the friction force opposes the sliding direction.
@@ -447,15 +490,21 @@ namespace rockdda::dda
     if (ct.state == ContactState::open)
       return;
     // K_ij with i < j: block i's vectors on the left.
-    const bool     upper = ct.geometry.block_i < ct.geometry.block_j;
-    const Vector6 &un    = upper ? kin.en : kin.hn;
-    const Vector6 &vn    = upper ? kin.hn : kin.en;
-    Kp.noalias() += kin.normal_stiffness * un * vn.transpose();
+    const bool     upper       = ct.geometry.block_i < ct.geometry.block_j;
+    const Vector6 &un          = upper ? kin.en : kin.hn;
+    const Vector6 &vn          = upper ? kin.hn : kin.en;
+    const bool     damped_step = damped();
+    Kp.noalias() += (kin.normal_stiffness
+                     + (damped_step ? 2. * kin.normal_dashpot / params.dt : 0.))
+                    * un * vn.transpose();
     if (ct.state == ContactState::locked)
       {
         const Vector6 &us = upper ? kin.es : kin.hs;
         const Vector6 &vs = upper ? kin.hs : kin.es;
-        Kp.noalias() += kin.shear_stiffness * us * vs.transpose();
+        Kp.noalias()
+          += (kin.shear_stiffness
+              + (damped_step ? 2. * kin.shear_dashpot / params.dt : 0.))
+             * us * vs.transpose();
       }
   }
 

@@ -213,6 +213,8 @@ namespace rockdda::dda
         c.min_time_step          = prm.get_double("Minimum time step");
         c.dynamic                = shared.dynamic;
         c.strain_damping         = shared.strain_damping;
+        c.contact_damping        = shared.contact_damping;
+        c.contact_step_damping   = shared.contact_step_damping;
         c.max_iterations         = shared.max_open_close;
         c.line_search            = prm.get_bool("Line search");
         c.hold_fraction          = prm.get_double("Hold fraction");

@@ -99,6 +99,7 @@ namespace rockdda::dda
     if (!(ctrl.strain_damping >= 0.) || !std::isfinite(ctrl.strain_damping))
       throw InputError("strain damping " + num(ctrl.strain_damping)
                        + " s; valid: >= 0 s");
+    set_contact_damping(ctrl.contact_damping, ctrl.contact_step_damping);
     if (!(ctrl.law.normal_penalty > 0.)
         || !std::isfinite(ctrl.law.normal_penalty))
       throw InputError("contact penalty " + num(ctrl.law.normal_penalty)
@@ -341,16 +342,18 @@ namespace rockdda::dda
   {
     std::vector<Contact> contacts = start;
     StepParameters       par;
-    par.dt                = h;
-    par.dynamic           = ctrl.dynamic;
-    par.strain_damping    = ctrl.strain_damping;
-    par.law               = ctrl.law;
-    par.fixed_penalty     = ctrl.fixed_penalty;
-    par.body_acceleration = scene.gravity;
-    const auto   mode     = scene.seismic.mode;
-    const double a_ground = mode == SeismicInput::Mode::inertial
-                              ? ground.acceleration(t + 0.5 * h)
-                              : 0.;
+    par.dt                   = h;
+    par.dynamic              = ctrl.dynamic;
+    par.strain_damping       = ctrl.strain_damping;
+    par.contact_damping      = ctrl.contact_damping;
+    par.contact_step_damping = ctrl.contact_step_damping;
+    par.law                  = ctrl.law;
+    par.fixed_penalty        = ctrl.fixed_penalty;
+    par.body_acceleration    = scene.gravity;
+    const auto   mode        = scene.seismic.mode;
+    const double a_ground    = mode == SeismicInput::Mode::inertial
+                                 ? ground.acceleration(t + 0.5 * h)
+                                 : 0.;
     par.body_acceleration -= a_ground * scene.seismic.direction;
     // Vertical component (0 without a vertical record).
     const double a_vertical = mode == SeismicInput::Mode::inertial
@@ -840,6 +843,27 @@ namespace rockdda::dda
             assembler.moments()[b].area
               * elasticity_matrix(scene.materials[scene.blocks[b].material]),
             Eigen::Vector3d(x.segment<3>(6 * b + 3)));
+    // The contact dashpots' work c v' d over the step (d the gap or shear
+    // increment, v' = 2 d / h - v its end-of-step rate): dissipated.
+    if (ctrl.dynamic > 0.
+        && (ctrl.contact_damping > 0. || ctrl.contact_step_damping > 0.))
+      for (std::size_t c = 0; c < contacts.size(); ++c)
+        {
+          const Contact &ct = contacts[c];
+          if (ct.state == ContactState::open)
+            continue;
+          const auto  &kin = assembler.kinematics()[c];
+          const int    ci  = static_cast<int>(c);
+          const double dg  = assembler.gap(ci, x) - kin.g0;
+          damping_work
+            += kin.normal_dashpot * (2. * dg / h - kin.normal_rate) * dg;
+          if (ct.state == ContactState::locked)
+            {
+              const double ds = assembler.shear_displacement(ci, x) - kin.s0;
+              damping_work
+                += kin.shear_dashpot * (2. * ds / h - kin.shear_rate) * ds;
+            }
+        }
     if (a_ground != 0.)
       for (std::size_t b = 0; b < scene.blocks.size(); ++b)
         load_work += -a_ground * assembler.masses()[b](0, 0)
@@ -1295,6 +1319,20 @@ namespace rockdda::dda
         accepted_balance = std::numeric_limits<double>::quiet_NaN();
       }
     ctrl.dynamic = dynamic;
+  }
+
+
+
+  void
+  DdaSystem::set_contact_damping(const double ratio, const double step_ratio)
+  {
+    if (!(ratio >= 0.) || !std::isfinite(ratio))
+      throw InputError("contact damping ratio " + num(ratio) + "; valid: >= 0");
+    if (!(step_ratio >= 0.) || !std::isfinite(step_ratio))
+      throw InputError("contact step damping " + num(step_ratio)
+                       + "; valid: >= 0");
+    ctrl.contact_damping      = ratio;
+    ctrl.contact_step_damping = step_ratio;
   }
 
 

@@ -21,6 +21,11 @@
  * line, the friction force of a sliding one as assembled), so that a step
  * shortened by the search ends where some contact changes state. Locked
  * members of face groups slide on their resultant and are left linear.
+ * The contact dashpots (ContactDamping, in dynamic steps) are quadratic
+ * terms (c / h) (g - g0)^2 - c v (g - g0) of the closed contacts of the
+ * iteration's states (the shear one of the locked ones): part of the
+ * assembled matrix and load, they are linear along the line and need no
+ * correction (a contact's state is decided by its spring force alone).
  */
 #include <rockdda/dda/contact_law.h>
 #include <rockdda/dda/engine.h>

@@ -76,37 +76,6 @@ namespace rockdda::dda3d
                     "has one). A block of weight W on n contacts sinks by "
                     "W / (n p).");
         io::declare(prm,
-                    "Contact damping ratio",
-                    "0",
-                    Double(0.),
-                    "-",
-                    "Viscous dashpot in parallel with each spring of a closed "
-                    "contact (the normal one, and the shear one while it is "
-                    "locked), as a ratio of critical, >= 0 (0: none): "
-                    "c = 2 ratio sqrt(k m), k the spring (N/m), m the "
-                    "lighter free block's mass (kg). A single contact "
-                    "rebounds with the restitution coefficient exp(-ratio "
-                    "pi / sqrt(1 - ratio^2)) (ratio < 1); the energy it "
-                    "dissipates is booked in the energy ledger (damping). "
-                    "Only in dynamic steps; the contact states and friction "
-                    "use the spring forces alone "
-                    "(doc/theory/dda3d.md, Contact damping).");
-        io::declare(prm,
-                    "Contact step damping",
-                    "0",
-                    Double(0.),
-                    "-",
-                    "Numerical dashpot beta k dt / 2 (N s/m) in parallel "
-                    "with each spring k (N/m) of a closed contact as the "
-                    "above, >= 0 (0: none), dt the step (s): a contact mode "
-                    "the step resolves (omega dt << 1) is damped at the "
-                    "ratio beta omega dt / 4 (vanishing with dt, as the "
-                    "scheme's own numerical damping), a stiff one (omega dt "
-                    ">> 1, where Shi's velocity update has amplification "
-                    "-1) gets the amplification -1 / (1 + beta) per step; "
-                    "1 removes it in one step, above 1 the contact creeps. "
-                    "Booked with the above.");
-        io::declare(prm,
                     "Stiff mode velocity",
                     "false",
                     Bool(),
@@ -182,18 +151,18 @@ namespace rockdda::dda3d
         prm.enter_subsection(dda::AnalysisParameters<3>::section());
         dda::AnalysisParameters<3> shared;
         shared.parse_parameters(prm, prm_file);
-        c.min_dt_ratio         = prm.get_double("Minimum time step ratio");
-        c.law.normal_penalty   = prm.get_double("Contact penalty");
-        c.contact_damping      = prm.get_double("Contact damping ratio");
-        c.contact_step_damping = prm.get_double("Contact step damping");
-        c.stiff_velocity       = prm.get_bool("Stiff mode velocity");
-        settings               = dda::run_settings(shared, prm);
+        c.min_dt_ratio       = prm.get_double("Minimum time step ratio");
+        c.law.normal_penalty = prm.get_double("Contact penalty");
+        c.stiff_velocity     = prm.get_bool("Stiff mode velocity");
+        settings             = dda::run_settings(shared, prm);
         const std::string seismic_mode = prm.get("Seismic input");
         c.solver = dda::SolverParameters<3>::parse_parameters(prm, prm_file);
         prm.leave_subsection();
         c.dt                      = shared.time_step;
         c.dynamic                 = shared.dynamic;
         c.strain_damping          = shared.strain_damping;
+        c.contact_damping         = shared.contact_damping;
+        c.contact_step_damping    = shared.contact_step_damping;
         c.max_open_close          = shared.max_open_close;
         c.max_displacement_ratio  = shared.max_displacement_ratio;
         c.law.shear_ratio         = shared.shear_ratio;
@@ -211,17 +180,6 @@ namespace rockdda::dda3d
                     s + "Contact penalty",
                     c.law.normal_penalty,
                     "> 0 N/m");
-        io::require(c.contact_damping >= 0. && std::isfinite(c.contact_damping),
-                    prm_file,
-                    s + "Contact damping ratio",
-                    c.contact_damping,
-                    ">= 0");
-        io::require(c.contact_step_damping >= 0.
-                      && std::isfinite(c.contact_step_damping),
-                    prm_file,
-                    s + "Contact step damping",
-                    c.contact_step_damping,
-                    ">= 0");
         const std::string &path  = shared.block_file;
         BlockSystem        scene = read_block_file(path);
         scene.gravity            = Point(0., 0., -gravity);

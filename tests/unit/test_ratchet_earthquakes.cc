@@ -187,6 +187,12 @@ TEST(RatchetEarthquakes, BadInputNamesTheKey)
                         "Ratchet earthquakes/Rest time");
   }
   {
+    EpisodeControls ec;
+    ec.contact_damping = -0.05;
+    expect_error_naming([&]() { run.run_episode(a, ec); },
+                        "Ratchet earthquakes/Contact damping ratio");
+  }
+  {
     RatchetEarthquakeOptions o;
     o.catalogues    = 1;
     o.gr.recurrence = -1.;

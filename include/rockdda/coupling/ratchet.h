@@ -56,9 +56,15 @@ namespace rockdda::coupling
     double rest_time = 2.;
     /// Gravitational acceleration converting the record's g to m/s^2.
     double g = 9.80665;
+    /// Ratio of critical (-, >= 0) of the dashpots in parallel with the
+    /// closed contacts' springs in the dynamic steps (dda::ContactDamping;
+    /// the bedding joint's physical damping); 0: none.
+    double contact_damping = 0.;
     /// Key names in the errors.
     std::string time_step_key = "Ratchet earthquakes/Time step";
     std::string rest_time_key = "Ratchet earthquakes/Rest time";
+    std::string contact_damping_key
+      = "Ratchet earthquakes/Contact damping ratio";
   };
 
   /// What one earthquake did to a ratchet run (SI; along the bedding

@@ -21,13 +21,13 @@ namespace rockdda::dda
    * section of the analysis of dimension @p dim ("DDA" for 2, "DDA 3d" for
    * 3): the block file, the end time, the time step, the dynamic control,
    * the iteration and displacement limits of a step, the shear and fixed
-   * point penalties, the settling steps, gravity and the output spacings.
-   * Each analysis declares and reads its own keys (contact penalty, minimum
-   * time step, seismic input, solver, ...) in the same section, between
-   * declare_parameters() / parse_parameters() calls of this class. Where
-   * the engines differ (the size a displacement ratio refers to, the
-   * direction of gravity, the snapshot files), the help text says so for
-   * each dimension.
+   * point penalties, the strain and contact damping, the settling steps,
+   * gravity and the output spacings. Each analysis declares and reads its own
+   * keys (contact penalty, minimum time step, seismic input, solver, ...) in
+   * the same section, between declare_parameters() / parse_parameters() calls
+   * of this class. Where the engines differ (the size a displacement ratio
+   * refers to, the direction of gravity, the snapshot files), the help text
+   * says so for each dimension.
    */
   template <int dim>
   struct AnalysisParameters
@@ -45,6 +45,9 @@ namespace rockdda::dda
     /// Kelvin-Voigt viscous time of the blocks' strain (s), >= 0
     /// (dda::StrainDamping).
     double strain_damping = 0.;
+    /// Dashpots of the closed contacts (dda::ContactDamping): ratio of
+    /// critical (-) and numerical step damping (-), both >= 0.
+    double contact_damping = 0., contact_step_damping = 0.;
     /// State-changing open-close iterations before a cut, in [1, 100].
     unsigned int max_open_close = 12;
     /// Largest vertex displacement per step / size (-), in (0, 1].

@@ -28,6 +28,9 @@ namespace rockdda::dda
     double dynamic = 1.;
     /// Kelvin-Voigt viscous time of the blocks' strain (s; StrainDamping).
     double strain_damping = 0.;
+    /// Contact dashpots (ContactDamping): ratio of critical zeta (-) and
+    /// step damping beta (-) of the closed contacts' springs.
+    double contact_damping = 0., contact_step_damping = 0.;
     /// Body acceleration during the step (m/s^2): gravity and seismic
     /// inertial load.
     geometry::Point body_acceleration = geometry::Point::Zero();
@@ -194,6 +197,20 @@ namespace rockdda::dda
     /// series with the penalty springs.
     void
     set_springs(const int c, const Contact &contact);
+    /// Contact @p c's dashpots for its springs (ContactDamping; the
+    /// lighter free block's mass, a clamped block's infinite) and its gap
+    /// and shear rates at the start of the step from the velocities of
+    /// @p system's blocks.
+    void
+    set_dashpots(const BlockSystem &system, const int c);
+    /// Whether the step has contact dashpots.
+    bool
+    damped() const
+    {
+      return params.dynamic > 0.
+             && (params.contact_damping > 0.
+                 || params.contact_step_damping > 0.);
+    }
 
     StepParameters            params;
     std::vector<Matrix6>      base_matrix, mass;

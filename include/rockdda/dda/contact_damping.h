@@ -57,12 +57,15 @@ namespace rockdda::dda
     }
 
     /// The dashpot (N s/m) of a spring @p k (N/m) between blocks of masses
-    /// @p m_i, @p m_j (kg; a clamped block's as infinite).
+    /// @p m_i, @p m_j (kg; a clamped block's as infinite). Between two
+    /// clamped blocks (no free block: both masses infinite) the ratio's
+    /// part is 0, as the contact moves no free block.
     double
     dashpot(const double k, const double m_i, const double m_j) const
     {
-      return (ratio_ > 0. ? 2. * ratio_ * std::sqrt(k * std::min(m_i, m_j))
-                          : 0.)
+      const double m = std::min(m_i, m_j);
+      return (ratio_ > 0. && std::isfinite(m) ? 2. * ratio_ * std::sqrt(k * m)
+                                              : 0.)
              + 0.5 * step_ratio_ * k * h_;
     }
 

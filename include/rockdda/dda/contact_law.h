@@ -73,6 +73,13 @@ namespace rockdda::dda
     /// slides only when its shear force exceeds the strength by more than
     /// this (N/m; 0: force_tolerance). Neither rule can create energy.
     double hold_tolerance = 0.;
+    /// Dashpots in parallel with the normal and the shear spring (N s/m;
+    /// ContactDamping; 0 without contact damping or in static steps).
+    double normal_dashpot = 0., shear_dashpot = 0.;
+    /// Gap rate and shear rate at the start of the step (m/s), e_n . v_i +
+    /// h_n . v_j and e_s . v_i + h_s . v_j of the blocks' velocities times
+    /// the dynamic control (set only with dashpots).
+    double normal_rate = 0., shear_rate = 0.;
   };
 
   /**

@@ -36,6 +36,11 @@ namespace rockdda::dda
     /// Kelvin-Voigt viscous time of the blocks' strain (s, >= 0;
     /// StrainDamping); 0: none.
     double strain_damping = 0.;
+    /// Dashpots of the closed contacts (ContactDamping): ratio of critical
+    /// zeta (-, >= 0) of each spring with the lighter free block's mass,
+    /// and the numerical step damping beta (-, >= 0); 0: none. Only in
+    /// dynamic steps; their work is booked as EnergyLedger::damping.
+    double contact_damping = 0., contact_step_damping = 0.;
     /// Open-close iterations that change contact states before the step
     /// is cut; iterations that only update friction forces may add as many
     /// again (the states and the friction forces must both converge).
@@ -142,7 +147,8 @@ namespace rockdda::dda
     /// Springs of the fixed points of blocks that are not clamped.
     double fixed    = 0.;
     double friction = 0., load_work = 0.;
-    /// Dissipated by the strain damping (StrainDamping).
+    /// Dissipated by the strain damping (StrainDamping) and the contact
+    /// dashpots (ContactDamping).
     double damping = 0.;
     /// kinetic + strain + contact + potential + fixed + friction + damping
     /// - load_work.
@@ -307,6 +313,16 @@ namespace rockdda::dda
      */
     void
     set_dynamic(const double dynamic);
+
+    /**
+     * Change the contact dashpots from the next step on
+     * (Controls::contact_damping, Controls::contact_step_damping): the
+     * ratio of critical @p ratio and the step damping @p step_ratio (both
+     * >= 0, InputError otherwise), e.g. a joint's damping during a seismic
+     * episode. They act only in dynamic steps.
+     */
+    void
+    set_contact_damping(const double ratio, const double step_ratio = 0.);
 
     /**
      * Replace the seismic input from the next step on; its records start
@@ -536,7 +552,8 @@ namespace rockdda::dda
     /// Energy flows since t = 0 (J/m): dissipated by friction, work of
     /// the loads.
     double friction_work = 0., load_work = 0.;
-    /// Energy dissipated by the strain damping (J/m).
+    /// Energy dissipated by the strain damping and the contact dashpots
+    /// (J/m).
     double damping_work = 0.;
     /// Fastest motion the scene can produce apart from gravity (m/s): the
     /// initial block speeds and the largest ground velocity of the record.
