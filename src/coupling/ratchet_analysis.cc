@@ -38,6 +38,7 @@ namespace rockdda::coupling
     using dealii::Patterns::Bool;
     using dealii::Patterns::Double;
     using dealii::Patterns::Integer;
+    using dealii::Patterns::Selection;
     using io::DoubleInterval;
 
     constexpr double pi = 3.14159265358979323846;
@@ -402,7 +403,22 @@ namespace rockdda::coupling
                     Integer(4, 1000000),
                     "-",
                     "Block mean temperatures recorded per period; later "
-                    "cycles reuse them (the field is periodic).");
+                    "cycles reuse them (the field is periodic). Only with "
+                    "'Periodic solution = time stepping'.");
+        io::declare(prm,
+                    "Periodic solution",
+                    "harmonic",
+                    Selection("harmonic|time stepping"),
+                    "-",
+                    "How the periodic temperature field is found. "
+                    "'harmonic': one complex direct solve per frequency of "
+                    "the air temperature (the annual and the daily "
+                    "sinusoid) gives the periodic field exactly at any time: "
+                    "no spin-up, time step or samples (serial heat solver; "
+                    "doc/theory/coupling.md). 'time stepping': Crank-"
+                    "Nicolson over 'Spin-up cycles' periods, then a table of "
+                    "'Samples per cycle' samples of the next, linear in "
+                    "time between them.");
         prm.leave_subsection();
 
         prm.enter_subsection("Ratchet earthquakes");
@@ -558,6 +574,7 @@ namespace rockdda::coupling
         heat.time_step              = prm.get_double("Time step");
         heat.spin_up_cycles         = prm.get_integer("Spin-up cycles");
         heat.samples_per_cycle      = prm.get_integer("Samples per cycle");
+        heat.harmonic = prm.get("Periodic solution") == "harmonic";
         prm.leave_subsection();
 
         prm.enter_subsection("Ratchet");
@@ -673,10 +690,17 @@ namespace rockdda::coupling
         const auto                     t1 = std::chrono::steady_clock::now();
         const double                   heat_seconds
           = std::chrono::duration<double>(t1 - t0).count();
-        log.line("heat: " + std::to_string(heat.spin_up_cycles)
-                 + " spin-up periods and one recorded ("
-                 + std::to_string(temperature.n_steps) + " steps) in "
-                 + io::format_number(heat_seconds, 3) + " s");
+        log.line(
+          "heat: "
+          + (temperature.harmonic()
+               ? std::string("periodic field by harmonic solves ")
+                   + (forcing.daily_amplitude != 0. ? "(annual and daily)"
+                                                    : "(annual)")
+               : std::to_string(heat.spin_up_cycles)
+                   + " spin-up periods and one recorded ("
+                   + std::to_string(temperature.n_steps) + " steps)")
+          + " on " + std::to_string(temperature.n_cells) + " cells in "
+          + io::format_number(heat_seconds, 3) + " s");
 
         RatchetRun run_(scene, temperature, forcing, alpha, controls);
         for (const auto &w : run_.dda().warnings())

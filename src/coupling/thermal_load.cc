@@ -65,14 +65,44 @@ namespace rockdda::coupling
     p.boundary_conditions.push_back(none);
 
     thermal::HeatSolver heat(p);
-    const auto          moments = thermal::sample_block_moments(
+    n_cells = heat.statistics().n_cells;
+    // Harmonic where the heat solver can (a serial run; under MPI with
+    // several ranks it is distributed and steps in time instead).
+    if (controls.harmonic)
+      try
+        {
+          const double omega = two_pi / forcing.period;
+          annual             = heat.harmonic_block_means(omega);
+          daily              = forcing.daily_amplitude != 0.
+                                 ? heat.harmonic_block_means(omega * forcing.daily_cycles)
+                                 : std::vector<std::complex<double>>(annual.size(), 0.);
+          const auto moments = heat.block_moments();
+          areas.resize(blocks.size());
+          for (std::size_t b = 0; b < blocks.size(); ++b)
+            {
+              areas[b] = moments[b].area;
+              if (!std::isfinite(std::abs(annual[b]))
+                  || !std::isfinite(std::abs(daily[b])))
+                throw InputError(
+                  "the harmonic heat solution of block " + std::to_string(b + 1)
+                  + " is not finite: check its polygon and the heat controls "
+                    "(Thermal forcing/Cell size)");
+            }
+          return;
+        }
+      catch (const std::logic_error &)
+        {
+          annual.clear();
+          daily.clear();
+        }
+    const auto moments = thermal::sample_block_moments(
       heat,
       p,
       controls.spin_up_cycles * forcing.period,
       dt_sample,
       samples,
       "check its polygon and the heat controls (Thermal forcing/Cell size, "
-               "Time step)");
+      "Time step)");
     table.assign(samples, std::vector<double>(blocks.size()));
     areas.resize(blocks.size());
     for (unsigned int k = 0; k < samples; ++k)
@@ -82,7 +112,6 @@ namespace rockdda::coupling
           areas[b]    = moments[k][b].area;
         }
     n_steps = heat.statistics().n_steps;
-    n_cells = heat.statistics().n_cells;
   }
 
 
@@ -90,6 +119,18 @@ namespace rockdda::coupling
   double
   PeriodicBlockTemperature::mean(const unsigned int b, const double time) const
   {
+    if (!annual.empty())
+      {
+        // The air's sinusoids a sin(w t) = Re(-i a e^{i w t}).
+        const double               w = two_pi * time / forcing.period;
+        const std::complex<double> minus_i(0., -1.);
+        return forcing.mean
+               + forcing.annual_amplitude
+                   * std::real(minus_i * annual[b] * std::polar(1., w))
+               + forcing.daily_amplitude
+                   * std::real(minus_i * daily[b]
+                               * std::polar(1., w * forcing.daily_cycles));
+      }
     double phase = std::fmod(time / forcing.period, 1.);
     if (phase < 0.)
       phase += 1.;

@@ -64,6 +64,12 @@ namespace rockdda::thermal
     return impl->block_moments();
   }
 
+  std::vector<std::complex<double>>
+  HeatSolver::harmonic_block_means(const double omega) const
+  {
+    return impl->harmonic_block_means(omega);
+  }
+
   double
   HeatSolver::stored_heat() const
   {

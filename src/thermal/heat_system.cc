@@ -18,6 +18,9 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+
 #include "heat_output.h"
 #include <algorithm>
 #include <map>
@@ -361,6 +364,61 @@ namespace rockdda::thermal::internal
     return s + "; linear solver "
            + (prm.direct_solver ? "sparse Cholesky (Eigen LDLT, direct)"
                                 : "CG + SSOR");
+  }
+
+  template <typename LA>
+  std::vector<std::complex<double>>
+  HeatSystem<LA>::harmonic_block_means(const double omega) const
+  {
+    if constexpr (LA::distributed)
+      throw std::logic_error("HeatSolver::harmonic_block_means: serial runs "
+                             "only");
+    else
+      {
+        if (any_dirichlet || fixed.nonuniform)
+          throw std::logic_error(
+            "HeatSolver::harmonic_block_means: not with Dirichlet "
+            "conditions or spatially varying data");
+        using Complex = std::complex<double>;
+        // F_conv: the convective conditions' load vectors at 1 K.
+        Eigen::VectorXcd f = Eigen::VectorXcd::Zero(dof_handler.n_dofs());
+        for (std::size_t k = 0; k < fixed.uniform_bc.size(); ++k)
+          if (prm.boundary_conditions[fixed.uniform_bc[k]].type
+              == BoundaryCondition::Type::convective)
+            for (unsigned int i = 0; i < f.size(); ++i)
+              f[i] += fixed.uniform_vectors[k][i];
+        // K + i omega M on the common pattern (hanging rows keep their
+        // diagonal entries, so they solve to 0 and are distributed below).
+        std::vector<Eigen::Triplet<Complex>> entries;
+        entries.reserve(stiffness.n_nonzero_elements());
+        for (auto it = stiffness.begin(); it != stiffness.end(); ++it)
+          entries.emplace_back(
+            it->row(),
+            it->column(),
+            Complex(it->value(), omega * mass.el(it->row(), it->column())));
+        Eigen::SparseMatrix<Complex> a(f.size(), f.size());
+        a.setFromTriplets(entries.begin(), entries.end());
+        Eigen::SparseLU<Eigen::SparseMatrix<Complex>> lu;
+        lu.compute(a);
+        if (lu.info() != Eigen::Success)
+          throw std::runtime_error("HeatSolver::harmonic_block_means: the "
+                                   "complex system is singular");
+        const Eigen::VectorXcd theta = lu.solve(f);
+        VectorType             re(solution), im(solution);
+        for (unsigned int i = 0; i < f.size(); ++i)
+          {
+            re[i] = theta[i].real();
+            im[i] = theta[i].imag();
+          }
+        hanging.distribute(re);
+        hanging.distribute(im);
+        const auto           mr = block_moments_of(fixed, re);
+        const auto           mi = block_moments_of(fixed, im);
+        std::vector<Complex> means(mr.size());
+        for (std::size_t b = 0; b < mr.size(); ++b)
+          means[b] = Complex(mr[b].mean, mi[b].mean);
+        return means;
+      }
   }
 
   template <typename LA>

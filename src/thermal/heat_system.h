@@ -59,6 +59,8 @@ namespace rockdda::thermal::internal
     block_moments() const = 0;
     virtual double
     stored_heat() const = 0;
+    virtual std::vector<std::complex<double>>
+    harmonic_block_means(const double omega) const = 0;
     virtual double
     l2_error(const SpaceTimeFunction &exact) const = 0;
     virtual std::vector<std::pair<std::string, std::string>>
@@ -102,6 +104,8 @@ namespace rockdda::thermal::internal
     block_moments() const override;
     double
     stored_heat() const override;
+    std::vector<std::complex<double>>
+    harmonic_block_means(const double omega) const override;
     double
     l2_error(const SpaceTimeFunction &exact) const override;
     std::vector<std::pair<std::string, std::string>>

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include <complex>
 #include <vector>
 
 namespace rockdda::coupling
@@ -44,14 +45,22 @@ namespace rockdda::coupling
     double       time_step         = 86400.;
     unsigned int spin_up_cycles    = 4;
     unsigned int samples_per_cycle = 24;
+    /// The periodic field from the heat solver's harmonic solves (exact
+    /// in time: no spin-up, time step or samples; serial runs), or by time
+    /// stepping (spin-up periods, then a table of samples).
+    bool harmonic = true;
   };
 
   /**
-   * One period of per-block mean temperatures, computed once: the heat
-   * solver runs @p spin_up_cycles periods from the mean temperature (the
-   * field is then periodic: after n periods the transient of the start has
-   * decayed by exp(-n pi^2 kappa T / L^2) in the slowest mode; with the
-   * skin depth well below the blocks' size a few periods suffice) and
+   * One period of per-block mean temperatures, computed once. Harmonic
+   * (HeatControls::harmonic, the default): the air temperature is a mean
+   * and sinusoids, the boundaries convective or adiabatic, so the periodic
+   * field is the mean plus one complex response per frequency
+   * (thermal::HeatSolver::harmonic_block_means), exact at any time.
+   * Otherwise the heat solver runs @p spin_up_cycles periods from the mean
+   * temperature (the field is then periodic: after n periods the transient of
+   * the start has decayed by exp(-n pi^2 kappa T / L^2) in the slowest mode;
+   * with the skin depth well below the blocks' size a few periods suffice) and
    * records @p samples_per_cycle samples of the next period. After that,
    * temperatures at any time come from the table (linear in time, periodic):
    * heat that is known is not solved again.
@@ -79,6 +88,12 @@ namespace rockdda::coupling
     {
       return areas[b];
     }
+    /// Whether the field came from harmonic solves (else time stepping).
+    bool
+    harmonic() const
+    {
+      return !annual.empty();
+    }
     /// Heat solver cells and time steps of the solution (cost).
     unsigned int  n_cells = 0;
     unsigned long n_steps = 0;
@@ -86,6 +101,9 @@ namespace rockdda::coupling
   private:
     SeasonalForcing forcing;
     unsigned int    samples = 0;
+    /// Harmonic: per block the complex mean response to the annual and
+    /// the daily sinusoid of 1 K (empty when time-stepped).
+    std::vector<std::complex<double>> annual, daily;
     /// table[k][b]: block b at phase k / samples of the period.
     std::vector<std::vector<double>> table;
     std::vector<double>              areas;

@@ -11,6 +11,7 @@
 #define ROCKDDA_THERMAL_HEAT_SOLVER_H
 
 #include <array>
+#include <complex>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -238,6 +239,23 @@ namespace rockdda::thermal
     /// Stored heat int rho c_p T dA (per unit thickness), J/m.
     double
     stored_heat() const;
+
+    /**
+     * The periodic response to an ambient temperature Re(e^{i omega t})
+     * (K) on every convective boundary, with the sources and the flux data
+     * off: T(x, t) = Re(Theta(x) e^{i omega t}) solves the complex system
+     * (K + i omega M) Theta = F_conv in one direct solve (M the heat
+     * capacity, K the conduction with the joints and the convective term,
+     * F_conv the convective load per kelvin of ambient temperature).
+     * Returns each block's mean of Theta (index as in the parameters). By
+     * linearity, an ambient temperature T_0 + sum_k a_k sin(omega_k t) on
+     * convective and adiabatic boundaries has the periodic block means
+     * T_0 + sum_k a_k Re(-i m_k e^{i omega_k t}): no spin-up and no time
+     * step. Serial runs without Dirichlet conditions or spatially varying
+     * data only (throws std::logic_error otherwise).
+     */
+    std::vector<std::complex<double>>
+    harmonic_block_means(const double omega) const;
 
     /**
      * Heat that entered through convective and flux boundaries since the
