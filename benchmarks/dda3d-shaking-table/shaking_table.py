@@ -11,6 +11,7 @@ usage: shaking_table.py ROCKDDA BLOCKS [--modes loading,displacement]
        the filter's padding)]
        [--contact-damping 0,1,...] [--step-damping 0,1,...]
        [--strain-damping 0,1e-4,...] [--stiff-velocity false,true]
+       [--shared-strength false,true]
        [--out shaking_table.csv] [--histories DIR]
 
 Columns: mode, dt_s, penalty_N_per_m, status (ok, or the run's failure),
@@ -21,7 +22,8 @@ analytical onset in the row 'analytical'; the input acceleration at the
 onset against the yield acceleration is checked by the unit test), wall_s, steps, cuts. --histories keeps each run's statistics.csv as
 DIR/MODE-DT-PENALTY[-cdZETA][-sbBETA][-sdETA][-sv].csv; contact_damping,
 contact_step_damping, strain_damping_s, stiff_velocity (key "Stiff mode
-velocity").
+velocity"), shared_strength (key "Face group shared strength", history
+names -ss).
 """
 import argparse
 import csv
@@ -42,7 +44,7 @@ from fig4_2_error import summary  # noqa: E402
 
 # Keys of the DDA 3d section that the template leaves at their defaults.
 OPTIONAL = ("Contact damping ratio", "Contact step damping", "Strain damping",
-            "Stiff mode velocity")
+            "Stiff mode velocity", "Face group shared strength")
 ONSET = 1e-4  # m: 1e3 x the elastic slip of the contact springs at 1e10 N/m
 
 
@@ -99,6 +101,9 @@ def main():
     p.add_argument("--stiff-velocity", default="false",
                    help="Stiff mode velocity values (false, true), "
                    "comma-separated")
+    p.add_argument("--shared-strength", default="false",
+                   help="Face group shared strength values (false, true), "
+                   "comma-separated")
     p.add_argument("--out", default="shaking_table.csv")
     p.add_argument("--histories")
     a = p.parse_args()
@@ -126,16 +131,16 @@ def main():
                    float("nan"))
     rows = [["analytical", "1e-4", "-", "ok",
              f"{sum(e * l for e, l in zip(end, line)):.6f}", "0", "0",
-             f"{onset_a:.3f}", "", "", "", "", "", "", ""]]
+             f"{onset_a:.3f}", "", "", "", "", "", "", "", ""]]
     print(*rows[-1], flush=True)
     if a.histories:
         os.makedirs(a.histories, exist_ok=True)
         shutil.copy(os.path.join(ref, "statistics.csv"),
                     os.path.join(a.histories, "analytical.csv"))
-    for mode, zeta, beta, eta, sv, dt, pen in itertools.product(
+    for mode, zeta, beta, eta, sv, ss, dt, pen in itertools.product(
             a.modes.split(","), a.contact_damping.split(","),
             a.step_damping.split(","), a.strain_damping.split(","),
-            a.stiff_velocity.split(","),
+            a.stiff_velocity.split(","), a.shared_strength.split(","),
             a.dt.split(","),
             a.penalty.split(",")):
         name = f"{mode}-{dt}-{pen}"
@@ -156,13 +161,16 @@ def main():
         if sv != "false":
             replace["Stiff mode velocity"] = sv
             name += "-sv"
+        if ss != "false":
+            replace["Face group shared strength"] = ss
+            name += "-ss"
         out, status, wall = run(
             a.rockdda, os.path.join(PRM, "dda3d-shaking-table.prm"),
             replace, work, name, a.blocks)
         stats = os.path.join(out, "statistics.csv")
         if not os.path.exists(stats):
             rows.append([mode, dt, pen, status] + [""] * 7
-                        + [zeta, beta, eta, sv])
+                        + [zeta, beta, eta, sv, ss])
             print(*rows[-1], flush=True)
             continue
         hist = table(stats)
@@ -180,7 +188,8 @@ def main():
                      f"{err_f:.3e}", f"{err_h:.3e}", f"{onset:.3f}",
                      f"{wall:.2f}",
                      int(s.get("steps", 0)),
-                     int(s.get("time_step_cuts", 0)), zeta, beta, eta, sv])
+                     int(s.get("time_step_cuts", 0)), zeta, beta, eta, sv,
+                     ss])
         print(*rows[-1], flush=True)
         if a.histories:
             shutil.copy(stats, os.path.join(a.histories,
@@ -190,7 +199,7 @@ def main():
         w.writerow(["mode", "dt_s", "penalty_N_per_m", "status", "slide_m",
                     "error_final", "error_history", "onset_s", "wall_s", "steps", "cuts",
                     "contact_damping", "contact_step_damping",
-                    "strain_damping_s", "stiff_velocity"])
+                    "strain_damping_s", "stiff_velocity", "shared_strength"])
         w.writerows(rows)
     shutil.rmtree(work)
 

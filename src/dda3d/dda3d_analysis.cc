@@ -93,6 +93,21 @@ namespace rockdda::dda3d
                     "kinetic energy removed is booked as damping "
                     "(doc/theory/dda3d.md, Velocity of the stiff modes).");
         io::declare(prm,
+                    "Face group shared strength",
+                    "false",
+                    Bool(),
+                    "-",
+                    "false: every contact starts to slide when its shear "
+                    "spring force (N) exceeds its own Mohr-Coulomb strength "
+                    "(N). true: the closed contacts between two faces that "
+                    "face each other (a face group: one statically "
+                    "indeterminate interface) share their strength: none of "
+                    "its locked members starts to slide while the sum of "
+                    "their shear spring forces (N) is within the sum of their "
+                    "strengths (N); opening (tension) and relocking stay each "
+                    "contact's own (doc/theory/dda3d.md, Face groups: shared "
+                    "strength).");
+        io::declare(prm,
                     "Seismic input",
                     "none",
                     Selection("none|loading|displacement"),
@@ -151,10 +166,11 @@ namespace rockdda::dda3d
         prm.enter_subsection(dda::AnalysisParameters<3>::section());
         dda::AnalysisParameters<3> shared;
         shared.parse_parameters(prm, prm_file);
-        c.min_dt_ratio       = prm.get_double("Minimum time step ratio");
-        c.law.normal_penalty = prm.get_double("Contact penalty");
-        c.stiff_velocity     = prm.get_bool("Stiff mode velocity");
-        settings             = dda::run_settings(shared, prm);
+        c.min_dt_ratio        = prm.get_double("Minimum time step ratio");
+        c.law.normal_penalty  = prm.get_double("Contact penalty");
+        c.stiff_velocity      = prm.get_bool("Stiff mode velocity");
+        c.face_group_friction = prm.get_bool("Face group shared strength");
+        settings              = dda::run_settings(shared, prm);
         const std::string seismic_mode = prm.get("Seismic input");
         c.solver = dda::SolverParameters<3>::parse_parameters(prm, prm_file);
         prm.leave_subsection();

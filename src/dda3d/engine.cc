@@ -522,6 +522,8 @@ namespace rockdda::dda3d
     // shared among the contacts between them (a face group).
     std::vector<int> group(contacts.size(), -1);
     int              n_groups = 0;
+    // The contacts of each face group, in contact order.
+    std::vector<std::vector<std::size_t>> group_members;
     {
       // Every candidate's blocks are in a pair of the broad phase:
       // detection computed their edges.
@@ -559,6 +561,7 @@ namespace rockdda::dda3d
               contacts[k].area = area / double(members.size());
               group[k]         = n_groups;
             }
+          group_members.push_back(members);
           ++n_groups;
         }
     }
@@ -850,6 +853,64 @@ namespace rockdda::dda3d
           const Eigen::Vector2d d(kin[k].t1.dot(r), kin[k].t2.dot(r));
           return d.norm() > 0. ? Eigen::Vector2d(d.normalized()) : fallback;
         };
+    // The state check of the latest solve: each contact's own
+    // (check_state()), with the force tolerance it used (N).
+    std::vector<StateCheck> checks(contacts.size());
+    std::vector<double>     check_tolerance(contacts.size(), 0.);
+    // Face group gk shares its strength (EngineControls::face_group_friction,
+    // doc/theory/dda3d.md "face groups: shared strength"): the corner and
+    // edge springs of two faces in contact are one statically indeterminate
+    // interface, whose distribution of shear among its members is the
+    // penalty's choice, not the physics'. Its members that stay closed and
+    // are not sliding (locked, or closing now) share their strength: none
+    // of them starts to slide while the sum of their shear spring forces
+    // |k_s s| is within the sum of their Mohr-Coulomb strengths (as locked)
+    // plus the sum of their tolerances, even if one of them exceeds its
+    // own (the members that slide carry exactly their strength and add the
+    // same to both sums). Otherwise, and for the members' tension and a
+    // sliding member's relock, each member's own check decides. Then the
+    // group's resultant satisfies Mohr-Coulomb, |sum F_k| <= sum |F_k| <=
+    // sum S_k (+ tolerances), no member carries tension beyond its own
+    // tolerance, and the rule only removes slides that the members' own
+    // checks would start.
+    std::vector<std::size_t> sharing;
+    auto                     decide_group = [&](const int gk) {
+      sharing.clear();
+      double tolerance = 0., demand = 0., strength = 0.;
+      bool   any_slides = false;
+      for (const std::size_t k : group_members[gk])
+        {
+          const auto &c = contacts[k];
+          if (checks[k].state == ContactState::open
+              || c.state == ContactState::sliding)
+            continue;
+          const auto &joint = system.joints[c.joint];
+          if (dda::frictionless(c, joint))
+            return;
+          Contact locked = c;
+          locked.state   = ContactState::locked;
+          sharing.push_back(k);
+          demand += kin[k].shear_stiffness * shear_after(k).norm();
+          strength += dda::shear_strength(locked,
+                                          checks[k].normal_force,
+                                          locked.area,
+                                          joint);
+          tolerance += check_tolerance[k];
+          any_slides = any_slides || checks[k].state == ContactState::sliding;
+        }
+      if (sharing.size() < 2 || !any_slides || demand > strength + tolerance)
+        return;
+      for (const std::size_t k : sharing)
+        {
+          auto &r = checks[k];
+          if (r.state != ContactState::sliding)
+            continue;
+          r.state     = ContactState::locked;
+          r.direction = dir[k];
+          r.shear_force = -kin[k].shear_stiffness * shear_after(k);
+          r.changed = r.state != contacts[k].state;
+        }
+    };
     while (!converged)
       {
         ++iterations;
@@ -996,9 +1057,42 @@ namespace rockdda::dda3d
             }
         // Each contact's check writes only its own contact, direction,
         // kinematics and change count; the chunks' flags are joined after.
+        // First every contact against its own strength (in chunks), then
+        // the face groups' shared strength (serial, in group order), then
+        // the new states are applied (in chunks).
         const std::size_t                grain = 128;
         std::vector<std::array<char, 2>> flags((contacts.size() + grain - 1)
                                                / grain);
+        dda::for_each_chunk(chunks,
+                            contacts.size(),
+                            grain,
+                            [&](const std::size_t lo, const std::size_t hi) {
+                              for (std::size_t k = lo; k < hi; ++k)
+                                {
+                                  const auto &c = contacts[k];
+                                  const auto &K = kin[k];
+                                  // Chatter: 10 x and 100 x the weight part
+                                  // after two and three changes; the round-off
+                                  // part stays a floor.
+                                  check_tolerance[k] = dda::escalated_tolerance(
+                                    K.weight_tolerance,
+                                    K.force_tolerance,
+                                    changes[k] >= 3   ? 100.
+                                    : changes[k] >= 2 ? 10.
+                                                      : 1.);
+                                  checks[k]
+                                    = check_state(c,
+                                                  K,
+                                                  dir[k],
+                                                  gap_after(k),
+                                                  shear_after(k),
+                                                  check_tolerance[k],
+                                                  system.joints[c.joint]);
+                                }
+                            });
+        if (ctrl.face_group_friction)
+          for (int gk = 0; gk < n_groups; ++gk)
+            decide_group(gk);
         dda::for_each_chunk(
           chunks,
           contacts.size(),
@@ -1009,18 +1103,9 @@ namespace rockdda::dda3d
               {
                 auto                 &c = contacts[k];
                 const auto           &K = kin[k];
-                const double          g = gap_after(k);
                 const Eigen::Vector2d s = shear_after(k);
-                // Chatter: 10 x and 100 x the weight part after two and three
-                // changes; the round-off part stays a floor.
-                const double f
-                  = dda::escalated_tolerance(K.weight_tolerance,
-                                             K.force_tolerance,
-                                             changes[k] >= 3   ? 100.
-                                             : changes[k] >= 2 ? 10.
-                                                               : 1.);
-                auto r
-                  = check_state(c, K, dir[k], g, s, f, system.joints[c.joint]);
+                const double          f = check_tolerance[k];
+                auto                  r = checks[k];
                 if (r.changed && r.state == ContactState::sliding)
                   r.direction = group_direction(k, r.direction);
                 if (r.changed)

@@ -1488,6 +1488,114 @@ TEST(Dda3dContacts, LightWedgeOnStiffContactsYieldsAtTheYieldAcceleration)
 
 
 
+TEST(Dda3dContacts, FaceGroupSticksAndSlidesAsARigidBlock)
+{
+  // A 1 m cube (rho 2700, W = 26.5 kN) on a clamped level base, friction 30
+  // deg, pushed by a horizontal load F at its centroid (0.5 m above the
+  // base) for 0.3 s: its 4 corner springs form one face group. The load's
+  // moment F / 2 shifts the normal forces to W / 4 +- F / 4 (front, rear)
+  // while the equal corner springs share the shear, F / 4 each: from F =
+  // mu W / (1 + mu) on, the rear corners carry more than their own
+  // strength mu (W - F) / 4, although the face as a whole (sum of the
+  // strengths mu W) holds the cube up to F = mu W; the cube tips only at F
+  // = W. A rigid block: at F = 0.95 mu W it sticks: it may move by the
+  // elastic F / (4 p_s) + ~F / (G A) x 1/2 = 1.8e-6 m (1e10 N/m), twice
+  // that under the suddenly applied load, and by the start-up transient of
+  // Shi's scheme in the stiff contact modes; bound 1e-4 m, 1 % of what a 5
+  // % overload slides in the same time. At F = 1.05 mu W it slides at a =
+  // (F - mu W) / m, x = a T^2 / 2 = 12.7 mm, within 1 % (the contacts'
+  // elastic slip and the start-up transient are below 1e-5 m). Physics at
+  // every accepted step: all 4 corners closed, none in tension beyond its
+  // force tolerance, the group's shear resultant within Mohr-Coulomb,
+  // |sum F_s| <= mu sum N + 4 tolerances. No flip-flop: no step is cut and
+  // none needs more than the state-change budget (12 open-close
+  // iterations). Each corner against its own strength alone (printed, not
+  // asserted), the cube at 1e13 N/m and 0.95 mu W slid 1.9 mm, its corners
+  // opened at some step and steps took up to 23 iterations.
+  const double mu = std::tan(30. * pi / 180.), g = 9.80665, T = 0.3;
+  const double m = 2700., W = m * g, tolerance = 1e-4 * W;
+  const auto   scene = test_scenes::incline_scene(0.,
+                                                30.,
+                                                Point(-3., -1.5, -1.),
+                                                Point(3., 1.5, 0.),
+                                                Point(-0.5, -0.5, 0.),
+                                                Point(0.5, 0.5, 1.));
+  for (const bool group : {true, false})
+    for (const double p : {1e10, 1e11, 1e12, 1e13})
+      for (const double ratio : {0.95, 1.05})
+        {
+          BlockSystem s = scene.system;
+          s.load_points.push_back(
+            {1, Point(0., 0., 0.5), Point(ratio * mu * W, 0., 0.)});
+          EngineControls c;
+          c.dt                  = 0.005;
+          c.law.normal_penalty  = p;
+          c.face_group_friction = group;
+          Engine engine(s, c);
+          int    max_iterations = 0, closed_min = 4;
+          double tension = 0., excess = -1e300;
+          bool   failed = false;
+          try
+            {
+              while (engine.time() < T - 1e-9)
+                {
+                  engine.advance_to(std::min(T, engine.time() + c.dt));
+                  max_iterations = std::max(max_iterations,
+                                            engine.statistics().iterations
+                                              + 100 * engine.statistics().cuts);
+                  Point  shear   = Point::Zero();
+                  double normal  = 0.;
+                  int    closed  = 0;
+                  for (const auto &ct : engine.contacts())
+                    if (ct.state != ContactState::open)
+                      {
+                        tension = std::max(tension, -ct.normal_force);
+                        shear += ct.shear_force;
+                        normal += ct.normal_force;
+                        ++closed;
+                      }
+                  closed_min = std::min(closed_min, closed);
+                  excess     = std::max(excess, shear.norm() - mu * normal);
+                }
+            }
+          catch (const dda::DdaFailure &e)
+            {
+              failed = true;
+              std::printf("  failed: %s\n", e.what());
+            }
+          const double x = engine.displacement(1).x();
+          const double rigid
+            = ratio > 1. ? 0.5 * (ratio - 1.) * mu * g * T * T : 0.;
+          std::printf("face group, %s, penalty %.0e N/m, F = %.2f mu W: slide "
+                      "%.6e m (rigid block %.6e m), at most %d open-close "
+                      "iterations per step (+100 per cut), %d closed corners "
+                      "at least, tension %.1e W, |sum F_s| - mu sum N = %.1e "
+                      "W\n",
+                      group ? "shared strength" : "per corner",
+                      p,
+                      ratio,
+                      x,
+                      rigid,
+                      max_iterations,
+                      closed_min,
+                      tension / W,
+                      excess / W);
+          if (!group)
+            continue; // the per-corner rule: printed for comparison
+          ASSERT_FALSE(failed) << p;
+          if (ratio < 1.)
+            EXPECT_LT(engine.displacement(1).norm(), 1e-4) << p;
+          else
+            EXPECT_NEAR(x, rigid, 0.01 * rigid) << p;
+          EXPECT_EQ(closed_min, 4) << p;
+          EXPECT_LE(tension, tolerance) << p;
+          EXPECT_LE(excess, 4. * tolerance) << p;
+          EXPECT_LE(max_iterations, c.max_open_close) << p;
+        }
+}
+
+
+
 TEST(Dda3dOutput, ContactsVtuMatchesTheEngine)
 {
   // The 30/20 incline after 1 s (200 steps): one line cell per contact of the

@@ -177,6 +177,19 @@ namespace rockdda::dda3d
      * velocity. The kinetic energy it removes is booked as damping.
      */
     bool stiff_velocity = false;
+    /**
+     * Strength shared within a face group (the closed contacts between two
+     * faces that face each other: 3-6 corner and edge springs of one
+     * statically indeterminate interface, doc/theory/dda3d.md "Face groups:
+     * shared strength"): true, a group's members that are not sliding
+     * start to slide only when the sum of their shear spring forces exceeds
+     * the sum of their strengths (a member beyond its own strength stays
+     * locked while the others have the reserve), otherwise each member's
+     * own check; opening and relocking are each member's own. false
+     * (default): every contact against its own strength alone (the 2D
+     * engine's rule).
+     */
+    bool face_group_friction = false;
     /// Normal penalty and shear ratio (dda::ContactLaw).
     ContactLaw law;
     /// Penalty of fixed points (N/m); 0: 10 x the normal penalty. Blocks
