@@ -842,6 +842,69 @@ TEST(DdaCheckpoint, ResumedRunIsIdentical)
   EXPECT_EQ(same.n_steps, 0u);
 }
 
+namespace
+{
+  /// A block matrix on an m x m grid of blocks of @p dofs unknowns: a
+  /// random SPD diagonal block each (0.1 R R^T + 0.01 I, scaled by
+  /// 10^(decades b / n) over the blocks), each block coupled to its right
+  /// and upper neighbours (and, with @p diagonals, its upper-right one) by
+  /// @p springs random springs k (e - h)(e - h)^T, and a random load.
+  template <int dofs>
+  std::pair<BlockSparseMatrixOf<dofs>, Eigen::VectorXd>
+  random_grid(const int          m,
+              const unsigned int seed,
+              const bool         diagonals,
+              const double       decades,
+              const int          springs)
+  {
+    using Dense                        = Eigen::Matrix<double, dofs, dofs>;
+    using Vec                          = Eigen::Matrix<double, dofs, 1>;
+    const int                        n = m * m;
+    std::mt19937                     rng(seed);
+    std::normal_distribution<double> normal;
+    auto                             random_vector = [&]() {
+      Vec v;
+      for (int c = 0; c < dofs; ++c)
+        v[c] = normal(rng);
+      return v;
+    };
+    std::vector<std::pair<int, int>> pairs;
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j)
+        {
+          if (j + 1 < m)
+            pairs.emplace_back(i * m + j, i * m + j + 1);
+          if (i + 1 < m)
+            pairs.emplace_back(i * m + j, (i + 1) * m + j);
+          if (diagonals && i + 1 < m && j + 1 < m)
+            pairs.emplace_back(i * m + j, (i + 1) * m + j + 1);
+        }
+    std::sort(pairs.begin(), pairs.end());
+    BlockSparseMatrixOf<dofs> K;
+    K.reinit(n, pairs);
+    for (int b = 0; b < n; ++b)
+      {
+        Dense R;
+        for (int c = 0; c < dofs; ++c)
+          R.col(c) = random_vector();
+        K.diag[b] = std::pow(10., decades * b / n)
+                    * (0.1 * R * R.transpose() + 0.01 * Dense::Identity());
+      }
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+      for (int spring = 0; spring < springs; ++spring)
+        {
+          const Vec e = random_vector(), h = random_vector();
+          K.diag[pairs[k].first] += e * e.transpose();
+          K.diag[pairs[k].second] += h * h.transpose();
+          K.off[k] -= e * h.transpose();
+        }
+    Eigen::VectorXd f(dofs * n);
+    for (int b = 0; b < n; ++b)
+      f.template segment<dofs>(dofs * b) = random_vector();
+    return {K, f};
+  }
+} // namespace
+
 TEST(DdaSolvers, SubdomainOrderingIsExactAndThreadIndependent)
 {
   // A 24 x 24 grid of blocks, each coupled to its four neighbours by a
@@ -850,46 +913,8 @@ TEST(DdaSolvers, SubdomainOrderingIsExactAndThreadIndependent)
   // and on two threads solves K x = f to its tolerance (checked against
   // the direct solver); one and two threads give bit-identical results;
   // the separator is one BFS level (at most one grid diagonal, 47 blocks).
-  const int                        m = 24, n = m * m;
-  std::mt19937                     rng(7);
-  std::normal_distribution<double> normal;
-  auto                             random_vector = [&]() {
-    Vector6 v;
-    for (int c = 0; c < 6; ++c)
-      v[c] = normal(rng);
-    return v;
-  };
-  std::vector<std::pair<int, int>> pairs;
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j)
-      {
-        if (j + 1 < m)
-          pairs.emplace_back(i * m + j, i * m + j + 1);
-        if (i + 1 < m)
-          pairs.emplace_back(i * m + j, (i + 1) * m + j);
-      }
-  std::sort(pairs.begin(), pairs.end());
-  BlockSparseMatrix K;
-  K.reinit(n, pairs);
-  for (int b = 0; b < n; ++b)
-    {
-      Matrix6 R;
-      for (int c = 0; c < 6; ++c)
-        R.col(c) = random_vector();
-      K.diag[b] = 0.1 * R * R.transpose() + 0.01 * Matrix6::Identity();
-    }
-  // Springs k (e_i - h_j)(e_i - h_j)^T: SPD contributions.
-  for (std::size_t k = 0; k < pairs.size(); ++k)
-    for (int spring = 0; spring < 2; ++spring)
-      {
-        const Vector6 e = random_vector(), h = random_vector();
-        K.diag[pairs[k].first] += e * e.transpose();
-        K.diag[pairs[k].second] += h * h.transpose();
-        K.off[k] -= e * h.transpose();
-      }
-  Eigen::VectorXd f(6 * n);
-  for (int b = 0; b < n; ++b)
-    f.segment<6>(6 * b) = random_vector();
+  const int m = 24, n = m * m;
+  const auto [K, f] = random_grid<6>(m, 7, false, 0., 2);
 
   SolverOptions direct_options;
   direct_options.type = SolverType::direct;
@@ -951,51 +976,8 @@ namespace
   std::pair<double, bool>
   direct_solver_on_random_grid(const int m)
   {
-    using Dense                        = Eigen::Matrix<double, dofs, dofs>;
-    using Vec                          = Eigen::Matrix<double, dofs, 1>;
-    const int                        n = m * m;
-    std::mt19937                     rng(11);
-    std::normal_distribution<double> normal;
-    auto                             random_vector = [&]() {
-      Vec v;
-      for (int c = 0; c < dofs; ++c)
-        v[c] = normal(rng);
-      return v;
-    };
-    std::vector<std::pair<int, int>> pairs;
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j)
-        {
-          if (j + 1 < m)
-            pairs.emplace_back(i * m + j, i * m + j + 1);
-          if (i + 1 < m)
-            pairs.emplace_back(i * m + j, (i + 1) * m + j);
-          if (i + 1 < m && j + 1 < m)
-            pairs.emplace_back(i * m + j, (i + 1) * m + j + 1);
-        }
-    std::sort(pairs.begin(), pairs.end());
-    BlockSparseMatrixOf<dofs> K;
-    K.reinit(n, pairs);
-    for (int b = 0; b < n; ++b)
-      {
-        Dense R;
-        for (int c = 0; c < dofs; ++c)
-          R.col(c) = random_vector();
-        // Diagonal scales over six decades, as block masses and contact
-        // penalties make them.
-        K.diag[b] = std::pow(10., 6. * b / n)
-                    * (0.1 * R * R.transpose() + 0.01 * Dense::Identity());
-      }
-    for (std::size_t k = 0; k < pairs.size(); ++k)
-      {
-        const Vec e = random_vector(), h = random_vector();
-        K.diag[pairs[k].first] += e * e.transpose();
-        K.diag[pairs[k].second] += h * h.transpose();
-        K.off[k] -= e * h.transpose();
-      }
-    Eigen::VectorXd f(dofs * n);
-    for (int b = 0; b < n; ++b)
-      f.template segment<dofs>(dofs * b) = random_vector();
+    const int n = m * m;
+    auto [K, f] = random_grid<dofs>(m, 11, true, 6., 1);
     SolverOptions o;
     o.type = SolverType::direct;
     LinearSolverOf<dofs> direct(o);
