@@ -68,33 +68,27 @@ namespace rockdda::coupling
     n_cells = heat.statistics().n_cells;
     // Harmonic where the heat solver can (a serial run; under MPI with
     // several ranks it is distributed and steps in time instead).
-    if (controls.harmonic)
-      try
-        {
-          const double omega = two_pi / forcing.period;
-          annual             = heat.harmonic_block_means(omega);
-          daily              = forcing.daily_amplitude != 0.
-                                 ? heat.harmonic_block_means(omega * forcing.daily_cycles)
-                                 : std::vector<std::complex<double>>(annual.size(), 0.);
-          const auto moments = heat.block_moments();
-          areas.resize(blocks.size());
-          for (std::size_t b = 0; b < blocks.size(); ++b)
-            {
-              areas[b] = moments[b].area;
-              if (!std::isfinite(std::abs(annual[b]))
-                  || !std::isfinite(std::abs(daily[b])))
-                throw InputError(
-                  "the harmonic heat solution of block " + std::to_string(b + 1)
-                  + " is not finite: check its polygon and the heat controls "
-                    "(Thermal forcing/Cell size)");
-            }
-          return;
-        }
-      catch (const std::logic_error &)
-        {
-          annual.clear();
-          daily.clear();
-        }
+    if (controls.harmonic && heat.harmonic_available())
+      {
+        const double omega = two_pi / forcing.period;
+        annual             = heat.harmonic_block_means(omega);
+        daily              = forcing.daily_amplitude != 0.
+                               ? heat.harmonic_block_means(omega * forcing.daily_cycles)
+                               : std::vector<std::complex<double>>(annual.size(), 0.);
+        const auto moments = heat.block_moments();
+        areas.resize(blocks.size());
+        for (std::size_t b = 0; b < blocks.size(); ++b)
+          {
+            areas[b] = moments[b].area;
+            if (!std::isfinite(std::abs(annual[b]))
+                || !std::isfinite(std::abs(daily[b])))
+              throw InputError(
+                "the harmonic heat solution of block " + std::to_string(b + 1)
+                + " is not finite: check its polygon and the heat controls "
+                  "(Thermal forcing/Cell size)");
+          }
+        return;
+      }
     const auto moments = thermal::sample_block_moments(
       heat,
       p,

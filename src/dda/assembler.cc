@@ -3,7 +3,6 @@
  * Assembly of the 2D DDA equations (Shi 1988, ch. 2-4; Shi 1993).
  */
 #include <rockdda/dda/assembler.h>
-#include <rockdda/dda/contact_damping.h>
 #include <rockdda/dda/strain_damping.h>
 
 #include <Eigen/Cholesky>

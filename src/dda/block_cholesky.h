@@ -50,13 +50,6 @@ namespace rockdda::dda::internal
     void
     solve(const Eigen::VectorXd &f, Eigen::VectorXd &x) const;
 
-    /// Blocks stored in L (diagonal and below): the fill-in's measure.
-    std::size_t
-    n_factor_blocks() const
-    {
-      return factor.size();
-    }
-
   private:
     int n = -1;
     /// The pattern analysed last.

@@ -845,8 +845,7 @@ namespace rockdda::dda
             Eigen::Vector3d(x.segment<3>(6 * b + 3)));
     // The contact dashpots' work c v' d over the step (d the gap or shear
     // increment, v' = 2 d / h - v its end-of-step rate): dissipated.
-    if (ctrl.dynamic > 0.
-        && (ctrl.contact_damping > 0. || ctrl.contact_step_damping > 0.))
+    if (assembler.damped())
       for (std::size_t c = 0; c < contacts.size(); ++c)
         {
           const Contact &ct = contacts[c];

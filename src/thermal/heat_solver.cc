@@ -70,6 +70,12 @@ namespace rockdda::thermal
     return impl->harmonic_block_means(omega);
   }
 
+  bool
+  HeatSolver::harmonic_available() const
+  {
+    return impl->harmonic_available();
+  }
+
   double
   HeatSolver::stored_heat() const
   {

@@ -367,18 +367,22 @@ namespace rockdda::thermal::internal
   }
 
   template <typename LA>
+  bool
+  HeatSystem<LA>::harmonic_available() const
+  {
+    return !LA::distributed && !any_dirichlet && !fixed.nonuniform;
+  }
+
+  template <typename LA>
   std::vector<std::complex<double>>
   HeatSystem<LA>::harmonic_block_means(const double omega) const
   {
-    if constexpr (LA::distributed)
+    if (!harmonic_available())
       throw std::logic_error("HeatSolver::harmonic_block_means: serial runs "
-                             "only");
-    else
+                             "without Dirichlet conditions or spatially "
+                             "varying data only");
+    if constexpr (!LA::distributed)
       {
-        if (any_dirichlet || fixed.nonuniform)
-          throw std::logic_error(
-            "HeatSolver::harmonic_block_means: not with Dirichlet "
-            "conditions or spatially varying data");
         using Complex = std::complex<double>;
         // F_conv: the convective conditions' load vectors at 1 K.
         Eigen::VectorXcd f = Eigen::VectorXcd::Zero(dof_handler.n_dofs());
@@ -391,11 +395,14 @@ namespace rockdda::thermal::internal
         // diagonal entries, so they solve to 0 and are distributed below).
         std::vector<Eigen::Triplet<Complex>> entries;
         entries.reserve(stiffness.n_nonzero_elements());
-        for (auto it = stiffness.begin(); it != stiffness.end(); ++it)
-          entries.emplace_back(
-            it->row(),
-            it->column(),
-            Complex(it->value(), omega * mass.el(it->row(), it->column())));
+        // Both matrices live on the one sparsity pattern: walk them
+        // together.
+        for (auto it = stiffness.begin(), m = mass.begin();
+             it != stiffness.end();
+             ++it, ++m)
+          entries.emplace_back(it->row(),
+                               it->column(),
+                               Complex(it->value(), omega * m->value()));
         Eigen::SparseMatrix<Complex> a(f.size(), f.size());
         a.setFromTriplets(entries.begin(), entries.end());
         Eigen::SparseLU<Eigen::SparseMatrix<Complex>> lu;
@@ -419,6 +426,7 @@ namespace rockdda::thermal::internal
           means[b] = Complex(mr[b].mean, mi[b].mean);
         return means;
       }
+    return {};
   }
 
   template <typename LA>

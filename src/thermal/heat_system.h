@@ -61,6 +61,8 @@ namespace rockdda::thermal::internal
     stored_heat() const = 0;
     virtual std::vector<std::complex<double>>
     harmonic_block_means(const double omega) const = 0;
+    virtual bool
+    harmonic_available() const = 0;
     virtual double
     l2_error(const SpaceTimeFunction &exact) const = 0;
     virtual std::vector<std::pair<std::string, std::string>>
@@ -106,6 +108,8 @@ namespace rockdda::thermal::internal
     stored_heat() const override;
     std::vector<std::complex<double>>
     harmonic_block_means(const double omega) const override;
+    bool
+    harmonic_available() const override;
     double
     l2_error(const SpaceTimeFunction &exact) const override;
     std::vector<std::pair<std::string, std::string>>

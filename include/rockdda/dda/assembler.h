@@ -10,6 +10,7 @@
 
 #include <rockdda/dda/block_matrices.h>
 #include <rockdda/dda/block_system.h>
+#include <rockdda/dda/contact_damping.h>
 #include <rockdda/dda/contact_law.h>
 #include <rockdda/dda/contact_set.h>
 #include <rockdda/dda/linear_solver.h>
@@ -101,6 +102,18 @@ namespace rockdda::dda
     kinematics() const
     {
       return contact_kinematics;
+    }
+
+    /// Whether the step being assembled has contact dashpots
+    /// (ContactDamping::active() for its parameters).
+    bool
+    damped() const
+    {
+      return ContactDamping(params.contact_damping,
+                            params.contact_step_damping,
+                            params.dt,
+                            params.dynamic)
+        .active();
     }
 
     /**
@@ -202,19 +215,10 @@ namespace rockdda::dda
     /// and shear rates at the start of the step from the velocities of
     /// @p system's blocks.
     void
-    set_dashpots(const BlockSystem &system, const int c);
-    /// Whether the step has contact dashpots.
-    bool
-    damped() const
-    {
-      return params.dynamic > 0.
-             && (params.contact_damping > 0.
-                 || params.contact_step_damping > 0.);
-    }
-
-    StepParameters            params;
-    std::vector<Matrix6>      base_matrix, mass;
-    std::vector<Vector6>      base_rhs;
+                         set_dashpots(const BlockSystem &system, const int c);
+    StepParameters       params;
+    std::vector<Matrix6> base_matrix, mass;
+    std::vector<Vector6> base_rhs;
     std::vector<BlockMoments> block_moments_;
     /// Size (larger side of the bounding box, m) of each block.
     std::vector<double> block_size;

@@ -251,11 +251,16 @@ namespace rockdda::thermal
      * linearity, an ambient temperature T_0 + sum_k a_k sin(omega_k t) on
      * convective and adiabatic boundaries has the periodic block means
      * T_0 + sum_k a_k Re(-i m_k e^{i omega_k t}): no spin-up and no time
-     * step. Serial runs without Dirichlet conditions or spatially varying
-     * data only (throws std::logic_error otherwise).
+     * step. Only where harmonic_available() (throws std::logic_error
+     * otherwise).
      */
     std::vector<std::complex<double>>
     harmonic_block_means(const double omega) const;
+
+    /// Whether harmonic_block_means() can run: a serial run without
+    /// Dirichlet conditions or spatially varying data.
+    bool
+    harmonic_available() const;
 
     /**
      * Heat that entered through convective and flux boundaries since the
