@@ -46,14 +46,15 @@ namespace rockdda::coupling
       = ctrl.penalty > 0.
           ? ctrl.penalty
           : dda::automatic_penalty(scene.blocks, scene.blocks.gravity.norm());
-    pseudo_time_step = ctrl.pseudo_time_step > 0.
-                         ? ctrl.pseudo_time_step
-                         : quasi_static_time_step(scene, c.law.normal_penalty);
-    c.time_step      = pseudo_time_step;
-    c.solver.threads = ctrl.threads;
-    engine           = std::make_unique<dda::DdaSystem>(scene.blocks, c);
-    heat_map         = scene.heat_map;
-    double height    = 0.;
+    pseudo_time_step   = ctrl.pseudo_time_step > 0.
+                           ? ctrl.pseudo_time_step
+                           : quasi_static_time_step(scene, c.law.normal_penalty);
+    c.time_step        = pseudo_time_step;
+    c.solver.threads   = ctrl.threads;
+    c.cut_exact_cycles = ctrl.cut_exact_cycles;
+    engine             = std::make_unique<dda::DdaSystem>(scene.blocks, c);
+    heat_map           = scene.heat_map;
+    double height      = 0.;
     for (const int b : scene.block_slices)
       {
         const auto &p = engine->system().blocks[b].polygon;

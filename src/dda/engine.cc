@@ -16,7 +16,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <set>
 
 namespace rockdda::dda
 {
@@ -27,6 +30,43 @@ namespace rockdda::dda
     {
       return io::format_number(x, digits);
     }
+
+    /**
+     * A 128-bit fingerprint of a sequence of words (two independent 64-bit
+     * mixes): the open-close iteration's exact state, to recognise an
+     * iteration that has returned to an earlier iterate.
+     */
+    class Fingerprint
+    {
+    public:
+      void
+      add(const std::uint64_t w)
+      {
+        // Two multiply-xorshift mixes of the word (one multiplication
+        // each: the fingerprint costs under 2 % of an iteration of a
+        // 17-block static step).
+        a = (a ^ w) * 0x9e3779b97f4a7c15ull;
+        a ^= a >> 32;
+        b = (b + w) * 0xc2b2ae3d27d4eb4full;
+        b ^= b >> 29;
+      }
+      void
+      add(const double x)
+      {
+        std::uint64_t w;
+        std::memcpy(&w, &x, sizeof w);
+        add(w);
+      }
+      std::pair<std::uint64_t, std::uint64_t>
+      value() const
+      {
+        return {a, b};
+      }
+
+    private:
+      std::uint64_t a = 0xcbf29ce484222325ull;
+      std::uint64_t b = 0x94d049bb133111ebull;
+    };
   } // namespace
 
 
@@ -614,9 +654,61 @@ namespace rockdda::dda
         }
       relax_friction();
     };
+    // The iteration is a deterministic map of its state: the increments,
+    // each contact's state, slide direction, shear reference and forces,
+    // the chatter and hold tolerances (functions of a contact's changes,
+    // constant from flip_cap on) and the friction relaxation. If that state
+    // repeats exactly, the iteration cycles for good and the step would be
+    // cut at cycle_limit or max_iterations anyway: cut it now. The accepted
+    // steps are bit for bit those of running the cycle out.
+    const int flip_cap = std::max(static_cast<int>(ctrl.hold_after),
+                                  2
+                                    + static_cast<int>(std::ceil(std::log10(
+                                      std::max(max_tolerance_factor(), 1.)))));
+    std::set<std::pair<std::uint64_t, std::uint64_t>> visited;
+    const auto                                        fingerprint = [&]() {
+      Fingerprint f;
+      for (Eigen::Index i = 0; i < x.size(); ++i)
+        f.add(x[i]);
+      for (std::size_t c = 0; c < contacts.size(); ++c)
+        {
+          const Contact &ct = contacts[c];
+          f.add(static_cast<std::uint64_t>(ct.state)
+                | static_cast<std::uint64_t>(ct.slide_direction + 1) << 8
+                | static_cast<std::uint64_t>(ct.held) << 16
+                | static_cast<std::uint64_t>(std::min(flips[c], flip_cap))
+                    << 24);
+          f.add(ct.xi_ref);
+          f.add(ct.normal_force);
+          f.add(ct.shear_force);
+          f.add(previous_residual[c]);
+        }
+      f.add(omega);
+      f.add(static_cast<std::uint64_t>(have_residual)
+            | static_cast<std::uint64_t>(damped_last) << 1
+            | static_cast<std::uint64_t>(confirming) << 2
+            | static_cast<std::uint64_t>(changes == 0) << 3
+            | static_cast<std::uint64_t>(friction_changes == 0) << 4);
+      return f.value();
+    };
     while (state_iterations < ctrl.max_iterations
            && it < 2 * ctrl.max_iterations)
       {
+        // (From the fourth iteration on: most steps converge before, and a
+        // cycle that began earlier repeats an iterate recorded after it.)
+        if (ctrl.cut_exact_cycles && it >= 3
+            && !visited.insert(fingerprint()).second)
+          {
+            const auto  most = std::max_element(flips.begin(), flips.end());
+            const auto &g    = contacts[most - flips.begin()].geometry;
+            why              = "the open-close iteration cycles (iteration "
+                  + std::to_string(it)
+                  + " returned to an earlier iterate; the contact of block "
+                  + std::to_string(scene.blocks[g.block_i].id) + " on block "
+                  + std::to_string(scene.blocks[g.block_j].id)
+                  + " changed state " + std::to_string(*most) + " times)";
+            return false;
+          }
         ++it;
         assembler.assemble(contacts, matrix, F);
         if (!F.allFinite())

@@ -42,6 +42,9 @@ namespace rockdda::coupling
     /// Threads of the DDA's linear solver (dda::SolverOptions::threads;
     /// 0: the default). Concurrent runs use 1.
     int threads = 0;
+    /// dda::Controls::cut_exact_cycles (off only to test that it changes no
+    /// accepted step).
+    bool cut_exact_cycles = true;
   };
 
   /// How RatchetRun::run_episode() runs an earthquake (SI).

@@ -58,6 +58,12 @@ namespace rockdda::dda
     /// Globalise the open-close iteration with an exact line search on the
     /// convex energy of the step (engine_line_search.cc).
     bool line_search = true;
+    /// Cut an attempt as soon as the open-close iteration returns bit for
+    /// bit to an earlier iterate (it would cycle until the cycle limit or
+    /// the iteration limit cuts it anyway): saves the solves of the
+    /// attempt and changes no accepted step (doc/theory/dda.md, "Exact
+    /// cycles"). Off only to test that.
+    bool cut_exact_cycles = true;
     /// A contact that has changed state this many times in one attempt
     /// cycles and is held: an open one stays open, a locked one locked,
     /// while the force it would take to change (compression, tension, or
