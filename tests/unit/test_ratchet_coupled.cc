@@ -25,6 +25,20 @@ using namespace rockdda::coupling;
 using test_helpers::cheap_heat;
 using test_helpers::expect_error_naming;
 
+namespace
+{
+  /// The tests' default scene: RatchetGeometry and RatchetMaterials as
+  /// constructed, the default forcing, and its cheap periodic temperatures.
+  struct DefaultScene
+  {
+    RatchetGeometry          g;
+    RatchetMaterials         m;
+    SeasonalForcing          f;
+    RatchetScene             scene = make_ratchet_scene(g, m);
+    PeriodicBlockTemperature T{scene.heat_blocks, f, cheap_heat()};
+  };
+} // namespace
+
 TEST(RatchetCoupled, BadInputNamesTheKey)
 {
   RatchetMaterials m;
@@ -154,12 +168,11 @@ TEST(RatchetCoupled, CleanCrackCreepsOnlyAboveAJointStiffness)
 // bit for bit where an uninterrupted run of 4 cycles ends.
 TEST(RatchetCoupled, RestartIsIdentical)
 {
-  RatchetGeometry          g;
-  RatchetMaterials         m;
-  SeasonalForcing          f;
-  const RatchetScene       scene = make_ratchet_scene(g, m);
-  PeriodicBlockTemperature T(scene.heat_blocks, f, cheap_heat());
-  RatchetRun               straight(scene, T, f, 8e-6, RatchetControls());
+  const DefaultScene  d;
+  const RatchetScene &scene = d.scene;
+  const auto         &T     = d.T;
+  const auto         &f     = d.f;
+  RatchetRun          straight(scene, T, f, 8e-6, RatchetControls());
   for (int k = 0; k < 4; ++k)
     straight.run_cycle();
   RatchetRun first(scene, T, f, 8e-6, RatchetControls());
@@ -291,12 +304,11 @@ TEST(RatchetCoupled, AutomaticPseudoTimeStepIsQuasiStatic)
 // weight) let the wedge push the block 2.1e-4 m here.
 TEST(RatchetCoupled, NoThermalLoadNoSlip)
 {
-  RatchetMaterials         m;
-  SeasonalForcing          f;
-  RatchetGeometry          g;
-  const RatchetScene       scene = make_ratchet_scene(g, m);
-  PeriodicBlockTemperature T(scene.heat_blocks, f, cheap_heat());
-  RatchetRun               run(scene, T, f, 0., RatchetControls());
+  const DefaultScene  d;
+  const RatchetScene &scene = d.scene;
+  const auto         &T     = d.T;
+  const auto         &f     = d.f;
+  RatchetRun          run(scene, T, f, 0., RatchetControls());
   run.run_cycle();
   EXPECT_LT(std::abs(run.displacement()), 1e-5);
   // No contact beyond its strength at any accepted step: the engine's audit
@@ -313,13 +325,12 @@ TEST(RatchetCoupled, NoThermalLoadNoSlip)
 
 TEST(RatchetCoupled, InfillFallsWhenTheCrackOpens)
 {
-  RatchetMaterials         m;
-  SeasonalForcing          f;
-  RatchetGeometry          g;
-  const RatchetScene       scene = make_ratchet_scene(g, m);
-  PeriodicBlockTemperature T(scene.heat_blocks, f, cheap_heat());
-  RatchetRun               run(scene, T, f, 8e-6, RatchetControls());
-  double                   descent = 0.;
+  const DefaultScene  d;
+  const RatchetScene &scene = d.scene;
+  const auto         &T     = d.T;
+  const auto         &f     = d.f;
+  RatchetRun          run(scene, T, f, 8e-6, RatchetControls());
+  double              descent = 0.;
   for (int k = 0; k < 4; ++k)
     descent = run.run_cycle().infill_descent;
   // Measured: 0.30 m; with the uncapped hold 0.003 m.
@@ -429,12 +440,11 @@ TEST(RatchetCoupled, PenaltyTooStiffForTheInfillIsReported)
 // same bits with and without it; only the cut attempts' solves are saved.
 TEST(RatchetCoupled, CuttingExactCyclesChangesNoAcceptedStep)
 {
-  RatchetGeometry          g;
-  RatchetMaterials         m;
-  SeasonalForcing          f;
-  const RatchetScene       scene = make_ratchet_scene(g, m);
-  PeriodicBlockTemperature T(scene.heat_blocks, f, cheap_heat());
-  RatchetControls          on, off;
+  const DefaultScene  d;
+  const RatchetScene &scene = d.scene;
+  const auto         &T     = d.T;
+  const auto         &f     = d.f;
+  RatchetControls     on, off;
   on.steps_per_cycle = off.steps_per_cycle = 96;
   off.cut_exact_cycles                     = false;
   RatchetRun with(scene, T, f, 8e-6, on), without(scene, T, f, 8e-6, off);
