@@ -42,9 +42,7 @@ namespace rockdda::dda
       void
       add(const std::uint64_t w)
       {
-        // Two multiply-xorshift mixes of the word (one multiplication
-        // each: the fingerprint costs under 2 % of an iteration of a
-        // 17-block static step).
+        // Two multiply-xorshift mixes of the word, one multiplication each.
         a = (a ^ w) * 0x9e3779b97f4a7c15ull;
         a ^= a >> 32;
         b = (b + w) * 0xc2b2ae3d27d4eb4full;
@@ -691,22 +689,27 @@ namespace rockdda::dda
             | static_cast<std::uint64_t>(friction_changes == 0) << 4);
       return f.value();
     };
+    // The contact that changed state most often in this attempt, for the
+    // diagnosis of an iteration that cycles.
+    const auto most_changed = [&]() {
+      const auto  most = std::max_element(flips.begin(), flips.end());
+      const auto &g    = contacts[most - flips.begin()].geometry;
+      return "the contact of block "
+             + std::to_string(scene.blocks[g.block_i].id) + " on block "
+             + std::to_string(scene.blocks[g.block_j].id) + " changed state "
+             + std::to_string(*most) + " times";
+    };
     while (state_iterations < ctrl.max_iterations
            && it < 2 * ctrl.max_iterations)
       {
         // (From the fourth iteration on: most steps converge before, and a
         // cycle that began earlier repeats an iterate recorded after it.)
-        if (ctrl.cut_exact_cycles && it >= 3
+        if (ctrl.cut_exact_cycles && it >= 3 && !contacts.empty()
             && !visited.insert(fingerprint()).second)
           {
-            const auto  most = std::max_element(flips.begin(), flips.end());
-            const auto &g    = contacts[most - flips.begin()].geometry;
-            why              = "the open-close iteration cycles (iteration "
-                  + std::to_string(it)
-                  + " returned to an earlier iterate; the contact of block "
-                  + std::to_string(scene.blocks[g.block_i].id) + " on block "
-                  + std::to_string(scene.blocks[g.block_j].id)
-                  + " changed state " + std::to_string(*most) + " times)";
+            why = "the open-close iteration cycles (iteration "
+                  + std::to_string(it) + " returned to an earlier iterate; "
+                  + most_changed() + ")";
             return false;
           }
         ++it;
@@ -789,11 +792,7 @@ namespace rockdda::dda
         const auto most = std::max_element(flips.begin(), flips.end());
         if (most != flips.end() && *most >= static_cast<int>(ctrl.cycle_limit))
           {
-            const auto &g = contacts[most - flips.begin()].geometry;
-            why = "the open-close iteration cycles (the contact of block "
-                  + std::to_string(scene.blocks[g.block_i].id) + " on block "
-                  + std::to_string(scene.blocks[g.block_j].id)
-                  + " changed state " + std::to_string(*most) + " times)";
+            why = "the open-close iteration cycles (" + most_changed() + ")";
             return false;
           }
       }
