@@ -30,6 +30,15 @@ def main():
     fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
     a.plot([0.0] + years, [0.0] + disp, "-", color="C0",
            label="block, down the bedding plane")
+    # Cycle jumps (Ratchet/Cycle jump): the simulated cycles as dots.
+    if any(name.startswith("extrapolated") for name in h):
+        ext = column(h, d, "extrapolated")
+        sim = [i for i in range(len(ext)) if ext[i] == 0]
+        if len(sim) < len(ext):
+            a.plot([years[i] for i in sim], [disp[i] for i in sim], ".",
+                   color="C0", ms=4,
+                   label="simulated cycles (the rest extrapolated)")
+            a.legend(loc="upper left", fontsize=8)
     a.set_xlabel("time (years)")
     a.set_ylabel("cumulative displacement (mm)", color="C0")
     a.grid(True, alpha=0.3)

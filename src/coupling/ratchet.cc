@@ -52,9 +52,10 @@ namespace rockdda::coupling
     c.time_step        = pseudo_time_step;
     c.solver.threads   = ctrl.threads;
     c.cut_exact_cycles = ctrl.cut_exact_cycles;
-    engine             = std::make_unique<dda::DdaSystem>(scene.blocks, c);
-    heat_map           = scene.heat_map;
-    double height      = 0.;
+    next_jump     = std::max(1u, std::min(ctrl.jump_max, 2 * ctrl.jump_window));
+    engine        = std::make_unique<dda::DdaSystem>(scene.blocks, c);
+    heat_map      = scene.heat_map;
+    double height = 0.;
     for (const int b : scene.block_slices)
       {
         const auto &p = engine->system().blocks[b].polygon;
@@ -345,8 +346,22 @@ namespace rockdda::coupling
     r.aperture        = aperture();
     if (scene.infill >= 0)
       r.infill_descent = -engine->centroid_displacement(scene.infill)[1];
+    const std::size_t n_fragments = fragments.size();
     supply(n_cycles * forcing.period);
     r.fragments = static_cast<unsigned int>(fragments.size());
+    // The window of the next jump (a supplied fragment starts a new one).
+    if (fragments.size() != n_fragments)
+      history.clear();
+    else
+      {
+        std::vector<geometry::Point> c;
+        for (std::size_t b = 0; b < engine->system().blocks.size(); ++b)
+          c.push_back(
+            dda::block_moments(engine->system().blocks[b].polygon).centroid);
+        history.push_back(std::move(c));
+        if (history.size() > ctrl.jump_window + 1)
+          history.pop_front();
+      }
     const dda::EnergyLedger energy = engine->energy();
     r.stored_energy = energy.strain + energy.contact + energy.fixed;
     for (const auto &c : engine->contacts())
@@ -359,6 +374,141 @@ namespace rockdda::coupling
           ++r.n_locked;
       }
     return r;
+  }
+
+
+
+  JumpRecord
+  RatchetRun::jump(const unsigned int cycles)
+  {
+    JumpRecord j;
+    j.displacement_before = j.displacement_after = displacement();
+    j.aperture_before = j.aperture_after = aperture();
+    j.descent_before                     = j.descent_after
+      = scene.infill >= 0 ? -engine->centroid_displacement(scene.infill)[1]
+                          : 0.;
+    if (cycles == 0 || ctrl.jump_max == 0 || ctrl.jump_window == 0
+        || cycles_in_window() < ctrl.jump_window)
+      return j;
+    const auto       &system = engine->system();
+    const std::size_t n      = system.blocks.size();
+    const double      window = static_cast<double>(history.size() - 1);
+    // Mean motion of block b per cycle over the window.
+    const auto rate = [&](const std::size_t b) -> geometry::Point {
+      return (history.back()[b] - history.front()[b]) / window;
+    };
+    // The block's slip per cycle over the window: its slices' area-weighted
+    // mean motion down the bedding plane.
+    double slip = 0., area = 0.;
+    for (const int b : scene.block_slices)
+      {
+        const double a = system.blocks[b].polygon.area();
+        slip += a * rate(b).dot(scene.downslope);
+        area += a;
+      }
+    slip /= area;
+    // The jump's length: doubled while the slip per cycle of this window
+    // is within the jump tolerance of the window before the last jump
+    // (the extrapolation held), halved when not.
+    if (std::isfinite(last_jump_slip))
+      {
+        j.rate_change
+          = std::abs(slip - last_jump_slip)
+            / std::max({std::abs(last_jump_slip), std::abs(slip), tolerance});
+        next_jump = j.rate_change <= ctrl.jump_tolerance
+                      ? std::min(2 * next_jump, ctrl.jump_max)
+                      : std::max(1u, next_jump / 2);
+      }
+    last_jump_slip = slip;
+    unsigned int m = std::min(cycles, next_jump);
+    // With a supply rule, stop short of the newest fragment's supply.
+    if (scene.supply_distance > 0. && !fragments.empty())
+      {
+        const double descent = -rate(fragments.back())[1];
+        const double left
+          = scene.supply_distance
+            - (fragment_tops.back()
+               - system.blocks[fragments.back()].polygon.bounding_box()[3]);
+        if (descent > 0.)
+          m = static_cast<unsigned int>(
+            std::min<double>(m, std::max(0., std::floor(left / descent))));
+      }
+    if (m == 0)
+      return j;
+    // The block's slices together, along the bedding plane (their
+    // area-weighted mean motion's downslope component).
+    std::vector<geometry::Point> shift(n, geometry::Point::Zero());
+    for (const int b : scene.block_slices)
+      shift[b] = static_cast<double>(m) * slip * scene.downslope;
+    // Each fragment, oldest first, as far along its motion as it goes
+    // without a contact deeper than the deepest one it has once the block
+    // moved. Where its extrapolated path would press it into one face, a
+    // sideways offset (normal to the path, up to four times the excess
+    // depth: the estimate's error, not the motion) that maximises its
+    // smallest gap is added: it sits between the faces as it did.
+    for (const int f : fragments)
+      {
+        const geometry::Point full   = static_cast<double>(m) * rate(f);
+        const double          length = full.norm();
+        if (!(length > 0.))
+          continue;
+        const geometry::Point side(-full[1] / length, full[0] / length);
+        const auto            box = system.blocks[f].polygon.bounding_box();
+        const double size    = std::hypot(box[2] - box[0], box[3] - box[1]);
+        const double reach   = 1e-3 * size;
+        const double deepest = std::min(0., engine->min_gap(f, shift, reach));
+        const auto   gap     = [&](const double a, const double b) {
+          shift[f] = a * full + b * side;
+          return std::min(engine->min_gap(f, shift, reach), 1e300);
+        };
+        // The offset with the largest smallest gap at fraction a: the
+        // smallest gap is the lower of the two faces' (one rising, one
+        // falling with b), so a golden-section search finds it.
+        const auto best_offset = [&](const double a) {
+          if (gap(a, 0.) >= deepest)
+            return 0.;
+          // Up to four times the excess depth to each side: enough when one
+          // face is pressed, and within the crack.
+          constexpr double golden = 0.6180339887498949;
+          const double     range  = 4. * (deepest - gap(a, 0.));
+          double           lo = -range, hi = range;
+          for (int k = 0; k < 60; ++k)
+            {
+              const double b1 = hi - golden * (hi - lo);
+              const double b2 = lo + golden * (hi - lo);
+              if (gap(a, b1) < gap(a, b2))
+                lo = b1;
+              else
+                hi = b2;
+            }
+          return 0.5 * (lo + hi);
+        };
+        const auto fits
+          = [&](const double a) { return gap(a, best_offset(a)) >= deepest; };
+        double lo = 0., hi = 1.;
+        if (fits(1.))
+          lo = 1.;
+        else
+          for (int k = 0; k < 40; ++k)
+            {
+              const double mid      = 0.5 * (lo + hi);
+              (fits(mid) ? lo : hi) = mid;
+            }
+        const double b    = best_offset(lo);
+        shift[f]          = lo * full + b * side;
+        j.infill_fraction = std::min(j.infill_fraction, lo);
+        j.infill_offset   = std::max(j.infill_offset, std::abs(b) / length);
+      }
+    engine->translate_blocks(shift);
+    n_cycles += m;
+    j.cycles             = m;
+    j.displacement_after = displacement();
+    last_displacement    = j.displacement_after;
+    j.aperture_after     = aperture();
+    if (scene.infill >= 0)
+      j.descent_after = -engine->centroid_displacement(scene.infill)[1];
+    history.clear();
+    return j;
   }
 
 
@@ -381,6 +531,7 @@ namespace rockdda::coupling
                      ec.contact_damping,
                      ">= 0");
     EpisodeRecord r;
+    history.clear(); // a jump extrapolates thermal cycles only
     // The thermal time of the end of the last cycle: the eigenstrains stay
     // those set there (or at settling, before the first cycle).
     const double thermal_time = n_cycles * forcing.period;
@@ -485,7 +636,7 @@ namespace rockdda::coupling
   RatchetRun::checkpoint() const
   {
     io::BinaryWriter w;
-    w.put_string("rockdda ratchet");
+    w.put_string("rockdda ratchet 2");
     w.put<std::uint32_t>(n_cycles);
     w.put(aperture0);
     w.put(last_displacement);
@@ -498,6 +649,19 @@ namespace rockdda::coupling
         w.put(fragment_tops[k]);
       }
     w.put_string(engine->checkpoint());
+    // The cycle jumps' state (version 2).
+    w.put<std::uint32_t>(next_jump);
+    w.put(last_jump_slip);
+    w.put<std::uint32_t>(static_cast<std::uint32_t>(history.size()));
+    for (const auto &c : history)
+      {
+        w.put<std::uint32_t>(static_cast<std::uint32_t>(c.size()));
+        for (const auto &p : c)
+          {
+            w.put(p[0]);
+            w.put(p[1]);
+          }
+      }
     return w.bytes;
   }
 
@@ -506,8 +670,13 @@ namespace rockdda::coupling
   void
   RatchetRun::restore(const std::string &bytes, const std::string &source)
   {
-    io::BinaryReader r(bytes, source);
-    if (r.get_string() != "rockdda ratchet")
+    io::BinaryReader  r(bytes, source);
+    const std::string tag = r.get_string();
+    if (tag == "rockdda ratchet")
+      throw InputError(source
+                       + ": a ratchet checkpoint of an older rockdda (without "
+                         "the cycle-jump window); rerun without 'Resume'");
+    if (tag != "rockdda ratchet 2")
       throw InputError(source + ": not a rockdda ratchet checkpoint");
     const auto          cycles = r.get<std::uint32_t>();
     const double        a0     = r.get<double>();
@@ -523,7 +692,25 @@ namespace rockdda::coupling
         tops.push_back(r.get<double>());
       }
     engine->restore(r.get_string(), source);
-    const std::size_t n_blocks = engine->system().blocks.size();
+    const std::size_t n_blocks    = engine->system().blocks.size();
+    const auto        jump_length = r.get<std::uint32_t>();
+    const double      jump_slip   = r.get<double>();
+    std::deque<std::vector<geometry::Point>> window;
+    const auto                               n_window = r.get<std::uint32_t>();
+    for (std::uint32_t k = 0; k < n_window && k <= ctrl.jump_window; ++k)
+      {
+        const auto n_points = r.get<std::uint32_t>();
+        if (n_points != n_blocks)
+          throw InputError(source
+                           + ": the checkpoint is damaged (jump window)");
+        std::vector<geometry::Point> c;
+        for (std::uint32_t i = 0; i < n_points; ++i)
+          {
+            const double x = r.get<double>();
+            c.emplace_back(x, r.get<double>());
+          }
+        window.push_back(std::move(c));
+      }
     for (const int b : f)
       if (b < 0 || static_cast<std::size_t>(b) >= n_blocks)
         throw InputError(source + ": the checkpoint is damaged (fragment "
@@ -534,6 +721,9 @@ namespace rockdda::coupling
     heat_map.pieces.resize(n_blocks);
     fragments         = std::move(f);
     fragment_tops     = std::move(tops);
+    history           = std::move(window);
+    next_jump         = jump_length;
+    last_jump_slip    = jump_slip;
     n_cycles          = cycles;
     aperture0         = a0;
     last_displacement = last;

@@ -304,6 +304,49 @@ namespace rockdda::coupling
                     "-",
                     "Static steps under gravity before cycle 1.");
         io::declare(prm,
+                    "Cycle jump",
+                    "0",
+                    Integer(0, 1000000),
+                    "-",
+                    "Most cycles one cycle jump skips, 0 = no jumps (every "
+                    "cycle simulated). A jump moves every block by m times "
+                    "its mean motion per cycle over the last 'Jump window' "
+                    "simulated cycles (the block along the bedding plane, "
+                    "each infill fragment as far as it goes without pressing "
+                    "deeper into a face; stresses and contact springs kept), "
+                    "then 'Jump window' + 1 cycles are simulated before the "
+                    "next. m starts at 2 x 'Jump window' and doubles while "
+                    "the slip per cycle changes by at most 'Jump tolerance' "
+                    "between jumps (halves when more). For long runs of a "
+                    "periodic ratchet: benchmarks/ratchet/README.md, 'Cycle "
+                    "jumps', gives the error against the cost. The last "
+                    "cycle is always simulated; statistics.csv marks the "
+                    "skipped ones (extrapolated = 1).");
+        io::declare(prm,
+                    "Jump tolerance",
+                    "0.1",
+                    DoubleInterval::right_open(
+                      0., std::numeric_limits<double>::infinity()),
+                    "-",
+                    "Relative change of the slip per cycle between the "
+                    "windows of two cycle jumps up to which the next jump "
+                    "doubles (>= 0; 0: every jump after the first halves).");
+        io::declare(prm,
+                    "Jump window",
+                    "4",
+                    Integer(1, 1000),
+                    "-",
+                    "Simulated cycles whose mean motion a cycle jump "
+                    "extrapolates (>= 1; the cycle after a jump, which "
+                    "settles what the jump left, is not among them).");
+        io::declare(prm,
+                    "Jump start",
+                    "10",
+                    Integer(0, 1000000),
+                    "-",
+                    "Cycles simulated before the first cycle jump (the "
+                    "infill settles into its periodic motion).");
+        io::declare(prm,
                     "Checkpoint cycles",
                     "0",
                     Integer(0, 1000000),
@@ -613,6 +656,10 @@ namespace rockdda::coupling
         controls.pseudo_time_step     = prm.get_double("Pseudo time step");
         controls.penalty              = prm.get_double("Contact penalty");
         controls.settle_steps         = prm.get_integer("Settling steps");
+        controls.jump_max             = prm.get_integer("Cycle jump");
+        controls.jump_tolerance       = prm.get_double("Jump tolerance");
+        controls.jump_window          = prm.get_integer("Jump window");
+        jump_start                    = prm.get_integer("Jump start");
         checkpoint_cycles             = prm.get_integer("Checkpoint cycles");
         resume                        = prm.get_bool("Resume");
         prm.leave_subsection();
@@ -641,6 +688,14 @@ namespace rockdda::coupling
                     "Ratchet earthquakes/Maximum magnitude",
                     quakes.gr.max_magnitude,
                     "> 'Minimum magnitude' and <= 8.5");
+
+        io::require(controls.jump_max == 0 || quakes.catalogues == 0,
+                    prm_file,
+                    "Ratchet/Cycle jump",
+                    controls.jump_max,
+                    "0 with earthquake catalogues (a jump extrapolates "
+                    "thermal cycles only; 'Ratchet earthquakes/Catalogues' = "
+                      + std::to_string(quakes.catalogues) + ")");
 
         heat.material.density = materials.rock.density;
         skin
@@ -722,7 +777,8 @@ namespace rockdda::coupling
                {"stationary_samples", "-"},
                {"chatter", "m"},
                {"fragments", "-"},
-               {"stored_energy", "J/m"}})
+               {"stored_energy", "J/m"},
+               {"extrapolated", "-"}})
           table.add_column(name, unit);
         io::Table loop;
         for (const auto &[name, unit] :
@@ -759,6 +815,7 @@ namespace rockdda::coupling
                      + std::to_string(run_.cycles()));
           }
 
+        unsigned int              saved_at = run_.cycles();
         io::ProgressBar           progress("ratchet", cycles);
         std::vector<SampleRecord> samples;
         while (run_.cycles() < cycles)
@@ -781,7 +838,8 @@ namespace rockdda::coupling
                            static_cast<double>(r.stationary_samples),
                            r.chatter,
                            static_cast<double>(r.fragments),
-                           r.stored_energy});
+                           r.stored_energy,
+                           0.});
             if (record_loop)
               for (const auto &s : samples)
                 loop.add_row({static_cast<double>(r.cycle),
@@ -790,9 +848,54 @@ namespace rockdda::coupling
                               s.block_mean,
                               s.displacement,
                               s.aperture});
+            // A cycle jump (the last cycle is always simulated): one row
+            // per skipped cycle, the state interpolated linearly.
+            if (controls.jump_max > 0 && run_.cycles() >= jump_start
+                && run_.cycles() + 1 < cycles)
+              {
+                const JumpRecord    j = run_.jump(cycles - run_.cycles() - 1);
+                std::vector<double> last = table.row(table.n_rows() - 1);
+                for (unsigned int k = 1; k <= j.cycles; ++k)
+                  {
+                    const double f  = static_cast<double>(k) / j.cycles;
+                    const auto   at = [f](const double a, const double b) {
+                      return a + f * (b - a);
+                    };
+                    std::vector<double> row = last;
+                    row[0]                  = last[0] + k;
+                    row[1] = row[0] * forcing.period / 31557600.;
+                    row[2] = at(j.displacement_before, j.displacement_after);
+                    row[3] = (j.displacement_after - j.displacement_before)
+                             / j.cycles;
+                    row[4] = at(j.aperture_before, j.aperture_after);
+                    row[5] = at(j.descent_before, j.descent_after);
+                    for (const int c : {9, 10, 11, 12})
+                      row[c] = 0.;
+                    row[15] = 1.;
+                    table.add_row(row);
+                  }
+                if (j.cycles > 0)
+                  log.line("cycle jump after cycle "
+                           + io::format_number(last[0], 8) + ": "
+                           + std::to_string(j.cycles) + " cycles, slip "
+                           + io::format_number(j.displacement_after
+                                                 - j.displacement_before,
+                                               4)
+                           + " m (slip per cycle changed by "
+                           + io::format_number(100. * j.rate_change, 3)
+                           + " % since the last jump), infill moved "
+                           + io::format_number(j.infill_fraction, 4)
+                           + " of its extrapolated descent, offset "
+                           + io::format_number(j.infill_offset, 3));
+              }
             progress.update(run_.cycles(), run_.cycles());
-            if (checkpoint_cycles > 0 && run_.cycles() % checkpoint_cycles == 0)
-              save();
+            if (checkpoint_cycles > 0
+                && run_.cycles() / checkpoint_cycles
+                     > saved_at / checkpoint_cycles)
+              {
+                save();
+                saved_at = run_.cycles();
+              }
             if (io::interrupt_signal() != 0 && run_.cycles() < cycles)
               {
                 save();
@@ -825,6 +928,12 @@ namespace rockdda::coupling
                             n > 0 ? table.row(n - 1)[2] : 0.,
                             "m");
         context.summary.add("cycles", static_cast<double>(n), "-");
+        {
+          double simulated = 0.;
+          for (std::size_t k = 0; k < n; ++k)
+            simulated += table.row(k)[15] == 0. ? 1. : 0.;
+          context.summary.add("simulated_cycles", simulated, "-");
+        }
         context.summary.add("skin_depth", skin, "m");
         context.summary.add("dda_blocks",
                             static_cast<double>(scene.blocks.blocks.size()),
@@ -1131,7 +1240,11 @@ namespace rockdda::coupling
                                controls.equilibrium_tolerance,
                                controls.penalty,
                                materials.bedding_friction_deg,
-                               materials.bedding_shear_stiffness})
+                               materials.bedding_shear_stiffness,
+                               static_cast<double>(controls.jump_max),
+                               static_cast<double>(controls.jump_window),
+                               controls.jump_tolerance,
+                               static_cast<double>(jump_start)})
           f += io::format_number(v, 17) + ";";
         return f;
       }
@@ -1145,8 +1258,10 @@ namespace rockdda::coupling
       RatchetScene             scene;
       double                   alpha = 8e-6, refinement_factor = 1., skin = 0.;
       unsigned int             cycles = 10, checkpoint_cycles = 0;
-      bool                     resume = false;
-      std::string              file;
+      /// Cycles simulated before the first cycle jump.
+      unsigned int jump_start = 10;
+      bool         resume     = false;
+      std::string  file;
     };
   } // namespace
 

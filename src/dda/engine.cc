@@ -1253,6 +1253,94 @@ namespace rockdda::dda
 
 
 
+  void
+  DdaSystem::translate_blocks(const std::vector<geometry::Point> &shift)
+  {
+    if (shift.size() != scene.blocks.size())
+      throw InputError("translate_blocks: " + std::to_string(shift.size())
+                       + " shifts for " + std::to_string(scene.blocks.size())
+                       + " blocks");
+    for (const auto &f : scene.fixed_points)
+      if (shift[f.block].squaredNorm() > 0.)
+        throw InputError("translate_blocks: block "
+                         + std::to_string(scene.blocks[f.block].id)
+                         + " has a fixed point and cannot move");
+    // The shear references first, on the edges as they are (a translation
+    // does not change an edge's vector).
+    for (auto &c : current_contacts)
+      {
+        const auto           &g = c.geometry;
+        const auto           &v = scene.blocks[g.block_j].polygon.vertices;
+        const geometry::Point E = v[(g.edge + 1) % v.size()] - v[g.edge];
+        const double          dxi
+          = (shift[g.block_i] - shift[g.block_j]).dot(E) / E.squaredNorm();
+        c.xi_ref += dxi;
+        c.geometry.xi = std::clamp(c.geometry.xi + dxi, 0., 1.);
+        c.geometry.projection += dxi;
+      }
+    contact_set.store(current_contacts);
+    for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+      for (auto &p : scene.blocks[b].polygon.vertices)
+        p += shift[b];
+    for (auto &p : scene.load_points)
+      p.point += shift[p.block];
+    for (auto &p : scene.measurement_points)
+      p.point += shift[p.block];
+    accepted_balance = std::numeric_limits<double>::quiet_NaN();
+  }
+
+
+
+  double
+  DdaSystem::min_gap(const int                           block,
+                     const std::vector<geometry::Point> &shift,
+                     const double                        distance) const
+  {
+    const auto moved = [&](const std::size_t b) {
+      geometry::Polygon p = scene.blocks[b].polygon;
+      if (!shift.empty())
+        for (auto &v : p.vertices)
+          v += shift[b];
+      return p;
+    };
+    // Signed distance of point x from polygon q's boundary (negative
+    // inside): the depth of a vertex, whatever the detection's rules.
+    const auto signed_distance = [](const geometry::Point   &x,
+                                    const geometry::Polygon &q) {
+      double d = std::numeric_limits<double>::infinity();
+      for (std::size_t e = 0; e < q.vertices.size(); ++e)
+        {
+          const geometry::Point &a  = q.vertices[e];
+          const geometry::Point &b  = q.vertices[(e + 1) % q.vertices.size()];
+          const geometry::Point  ab = b - a;
+          const double           t
+            = std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0., 1.);
+          d = std::min(d, (x - a - t * ab).norm());
+        }
+      return q.contains(x) ? -d : d;
+    };
+    const geometry::Polygon self = moved(block);
+    const auto              box  = self.bounding_box();
+    double                  gap  = std::numeric_limits<double>::infinity();
+    for (std::size_t b = 0; b < scene.blocks.size(); ++b)
+      {
+        if (static_cast<int>(b) == block)
+          continue;
+        const geometry::Polygon other = moved(b);
+        const auto              ob    = other.bounding_box();
+        if (ob[0] > box[2] + distance || ob[2] < box[0] - distance
+            || ob[1] > box[3] + distance || ob[3] < box[1] - distance)
+          continue;
+        for (const auto &x : self.vertices)
+          gap = std::min(gap, signed_distance(x, other));
+        for (const auto &x : other.vertices)
+          gap = std::min(gap, signed_distance(x, self));
+      }
+    return gap <= distance ? gap : std::numeric_limits<double>::infinity();
+  }
+
+
+
   double
   DdaSystem::kinetic_energy() const
   {

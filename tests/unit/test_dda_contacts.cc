@@ -1495,3 +1495,53 @@ INSTANTIATE_TEST_SUITE_P(
         ch = '_';
     return n;
   });
+
+
+
+// A block resting on a 20 deg incline (friction 40 deg: it holds) is moved
+// 0.4 m down the slope between two static steps (a cycle jump,
+// DdaSystem::translate_blocks). Its locked contacts keep their shear
+// references relative to the block, so the next steps see the same springs:
+// every contact force and the block's motion in them equal those of an
+// unmoved copy to round-off of the block's weight and size. Without the
+// moved references the shear springs would be stretched by 0.4 m, 1e3
+// times the block's elastic shear displacement. A block with a fixed point
+// cannot be moved.
+TEST(DdaContacts, TranslatedBlockKeepsItsLockedSprings)
+{
+  const double alpha = 20. * deg;
+  Controls     c     = controls(1., 0., 1e10);
+  DdaSystem    moved(incline_scene(alpha, 40.), c);
+  DdaSystem    still(incline_scene(alpha, 40.), c);
+  moved.settle(10);
+  still.settle(10);
+  for (const auto &ct : moved.contacts())
+    ASSERT_EQ(ct.state, ContactState::locked);
+  const Point        down(std::cos(alpha), -std::sin(alpha));
+  std::vector<Point> shift(2, Point::Zero());
+  shift[1] = 0.4 * down;
+  moved.translate_blocks(shift);
+  const Point before_moved = moved.centroid_displacement(1);
+  const Point before_still = still.centroid_displacement(1);
+  EXPECT_LT((before_moved - before_still - shift[1]).norm(), 1e-12);
+  for (int k = 0; k < 5; ++k)
+    {
+      moved.step();
+      still.step();
+    }
+  const double weight = 2700. * 9.81 * 1.;
+  ASSERT_EQ(moved.contacts().size(), still.contacts().size());
+  for (std::size_t k = 0; k < moved.contacts().size(); ++k)
+    {
+      const Contact &a = moved.contacts()[k], &b = still.contacts()[k];
+      EXPECT_EQ(a.state, b.state);
+      EXPECT_NEAR(a.normal_force, b.normal_force, 1e-6 * weight);
+      EXPECT_NEAR(a.shear_force, b.shear_force, 1e-6 * weight);
+    }
+  const Point motion_moved = moved.centroid_displacement(1) - before_moved;
+  const Point motion_still = still.centroid_displacement(1) - before_still;
+  EXPECT_LT((motion_moved - motion_still).norm(), 1e-9);
+  // The base is fixed.
+  shift[0] = shift[1];
+  EXPECT_THROW(moved.translate_blocks(shift), InputError);
+}

@@ -467,3 +467,104 @@ TEST(RatchetCoupled, CuttingExactCyclesChangesNoAcceptedStep)
   // solves against 22,919), so the cut must save solves.
   EXPECT_LT(with.dda().n_solves, without.dda().n_solves);
 }
+
+
+
+// Cycle jumps (RatchetRun::jump()) on the tests' scene: 3 cycles simulated,
+// 4 extrapolated, 3 simulated (the first settles what the jump left, two
+// fill the window), 3 extrapolated and the last simulated, against 14
+// simulated cycles. The jump moves the block by its mean slip per cycle,
+// so its error is the scatter of the slip from cycle to cycle: the
+// cumulative slip must agree within 3 standard deviations of that error
+// model (sum over the jumps of m^2 s^2 / w, m the jump, w the window, s
+// the per-cycle standard deviation of the simulated run). The jump keeps
+// the contact springs: the elastic energy stored at the end of the cycles
+// after a jump stays within the range of the simulated run's.
+TEST(RatchetCoupled, CycleJumpFollowsTheSimulatedRatchet)
+{
+  const DefaultScene d;
+  RatchetControls    c;
+  c.jump_max    = 8;
+  c.jump_window = 2;
+  RatchetRun          full(d.scene, d.T, d.f, 8e-6, c);
+  std::vector<double> slip, energy;
+  for (int k = 0; k < 14; ++k)
+    {
+      const CycleRecord r = full.run_cycle();
+      slip.push_back(r.permanent);
+      energy.push_back(r.stored_energy);
+    }
+  RatchetRun jumped(d.scene, d.T, d.f, 8e-6, c);
+  for (int k = 0; k < 3; ++k)
+    jumped.run_cycle();
+  std::vector<unsigned int> jumps;
+  std::vector<double>       after;
+  for (int round = 0; round < 2; ++round)
+    {
+      const JumpRecord j = jumped.jump(14 - jumped.cycles() - 1);
+      ASSERT_GT(j.cycles, 0u);
+      jumps.push_back(j.cycles);
+      EXPECT_GT(j.infill_fraction, 0.9);
+      while (jumped.cycles() < 14 && jumped.cycles_in_window() < c.jump_window)
+        after.push_back(jumped.run_cycle().stored_energy);
+    }
+  EXPECT_EQ(jumped.cycles(), 14u);
+  double mean = 0., var = 0.;
+  for (std::size_t k = 2; k < slip.size(); ++k)
+    mean += slip[k] / (slip.size() - 2);
+  for (std::size_t k = 2; k < slip.size(); ++k)
+    var += std::pow(slip[k] - mean, 2) / (slip.size() - 3);
+  double model = 0.;
+  for (const unsigned int m : jumps)
+    model += m * m * var / c.jump_window;
+  const double error = jumped.displacement() - full.displacement();
+  std::printf("jumps %u + %u cycles: slip %.6g mm against %.6g simulated "
+              "(error %.3g mm, 3 sigma of the error model %.3g mm; per-cycle "
+              "slip %.4g +- %.3g mm)\n",
+              jumps[0],
+              jumps[1],
+              1e3 * jumped.displacement(),
+              1e3 * full.displacement(),
+              1e3 * error,
+              3e3 * std::sqrt(model),
+              1e3 * mean,
+              1e3 * std::sqrt(var));
+  EXPECT_LT(std::abs(error), 3. * std::sqrt(model) + 1e-3 * std::abs(mean));
+  const auto [lo, hi] = std::minmax_element(energy.begin() + 2, energy.end());
+  for (const double e : after)
+    {
+      EXPECT_GT(e, *lo - 0.1 * (*hi - *lo)) << "stored energy after a jump";
+      EXPECT_LT(e, *hi + 0.1 * (*hi - *lo)) << "stored energy after a jump";
+    }
+}
+
+
+
+// A run with cycle jumps checkpointed after its first jump and restored
+// into a fresh run ends bit for bit where the uninterrupted one ends (the
+// jump window and the jump length are part of the state).
+TEST(RatchetCoupled, RestartWithCycleJumpsIsIdentical)
+{
+  const DefaultScene d;
+  RatchetControls    c;
+  c.jump_max    = 4;
+  c.jump_window = 1;
+  RatchetRun straight(d.scene, d.T, d.f, 8e-6, c);
+  straight.run_cycle();
+  EXPECT_EQ(straight.jump(10).cycles, 0u); // the window is not full yet
+  straight.run_cycle();
+  ASSERT_EQ(straight.jump(10).cycles, 2u);
+  straight.run_cycle();
+  const std::string bytes = straight.checkpoint();
+  RatchetRun        resumed(d.scene, d.T, d.f, 8e-6, c);
+  resumed.restore(bytes, "test");
+  for (RatchetRun *r : {&straight, &resumed})
+    {
+      r->run_cycle();
+      EXPECT_GT(r->jump(10).cycles, 0u);
+      r->run_cycle();
+    }
+  EXPECT_EQ(resumed.cycles(), straight.cycles());
+  EXPECT_EQ(resumed.displacement(), straight.displacement());
+  EXPECT_EQ(resumed.aperture(), straight.aperture());
+}

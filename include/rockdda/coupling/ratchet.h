@@ -12,6 +12,8 @@
 #include <rockdda/dda/engine.h>
 #include <rockdda/seismic/record.h>
 
+#include <deque>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,6 +47,14 @@ namespace rockdda::coupling
     /// dda::Controls::cut_exact_cycles (off only to test that it changes no
     /// accepted step).
     bool cut_exact_cycles = true;
+    /// Cycle jumps (RatchetRun::jump()): the most cycles one jump skips (0:
+    /// none); the simulated cycles whose mean motion it extrapolates (>= 1;
+    /// the cycle after a jump is not among them); the relative change of
+    /// the slip per cycle between two jumps' windows up to which the next
+    /// jump doubles (beyond it, it halves; the first is 2 jump_window).
+    unsigned int jump_max       = 0;
+    unsigned int jump_window    = 4;
+    double       jump_tolerance = 0.1;
   };
 
   /// How RatchetRun::run_episode() runs an earthquake (SI).
@@ -125,6 +135,33 @@ namespace rockdda::coupling
     double stored_energy = 0.;
   };
 
+  /**
+   * What RatchetRun::jump() did: the cycles it skipped and the state before
+   * and after them (SI; displacement down the bedding plane, changes since
+   * the start as in CycleRecord).
+   */
+  struct JumpRecord
+  {
+    /// Cycles extrapolated (0: no jump was possible).
+    unsigned int cycles = 0;
+    /// Block displacement, crack aperture and infill descent before and
+    /// after the jump (m).
+    double displacement_before = 0., displacement_after = 0.;
+    double aperture_before = 0., aperture_after = 0.;
+    double descent_before = 0., descent_after = 0.;
+    /// Smallest fraction of its extrapolated motion that an infill fragment
+    /// was given (1: all; less where the full motion would have pressed it
+    /// deeper into a face than it was; it then drops the rest in the next
+    /// cycle).
+    double infill_fraction = 1.;
+    /// Largest sideways offset given to a fragment, as a fraction of its
+    /// extrapolated motion (RatchetRun::jump()).
+    double infill_offset = 0.;
+    /// Relative change of the slip per cycle since the window of the last
+    /// jump (0 for the first), which set this jump's length.
+    double rate_change = 0.;
+  };
+
   /// One temperature sample within a cycle (the loop of thesis Fig. 5-6).
   struct SampleRecord
   {
@@ -154,6 +191,41 @@ namespace rockdda::coupling
     /// Run the next cycle; @p samples (optional) receives its samples.
     CycleRecord
     run_cycle(std::vector<SampleRecord> *samples = nullptr);
+
+    /**
+     * A cycle jump (cycle-jump extrapolation of a periodic ratchet, as in
+     * the fatigue and ratcheting literature: Lemaitre & Chaboche 1990;
+     * Cojocaru & Karlsson 2006). Skips m cycles, at most @p cycles, by
+     * moving every block by m times its mean motion per cycle over the
+     * RatchetControls::jump_window cycles simulated since the last jump
+     * (the first cycle after a jump is not among them: it settles what the
+     * jump left).
+     * - m: RatchetControls::jump_window x 2 at first; then doubled while
+     *   the slip per cycle stays within RatchetControls::jump_tolerance of
+     *   the last jump's window, halved when not; at most
+     *   RatchetControls::jump_max; with a supply rule, short of the newest
+     *   fragment's supply.
+     * - The block's slices move together, along the bedding plane; the
+     *   cliff stays.
+     * - Each infill fragment, oldest first, moves as far along its own
+     *   mean motion as it can without pressing into a face deeper than its
+     *   deepest contact once the block moved, with a sideways offset that
+     *   keeps it between the faces (the rest it drops in the next cycle).
+     * - Stresses and contact springs are kept
+     *   (dda::DdaSystem::translate_blocks()).
+     *
+     * Returns cycles = 0 if jumps are off or the window is not full yet.
+     */
+    JumpRecord
+    jump(const unsigned int cycles);
+    /// Cycles simulated since the last jump (or the start) that jump() can
+    /// extrapolate from: its window is full at RatchetControls::jump_window.
+    unsigned int
+    cycles_in_window() const
+    {
+      return history.empty() ? 0
+                             : static_cast<unsigned int>(history.size()) - 1;
+    }
 
     /**
      * An earthquake between two cycles (after cycles() of them), on the
@@ -261,9 +333,18 @@ namespace rockdda::coupling
     /// first's at t = 0, before settling).
     std::vector<int>    fragments;
     std::vector<double> fragment_tops;
-    unsigned int        n_cycles  = 0;
-    double              aperture0 = 0., last_displacement = 0.;
-    double              tolerance = 0.;
+    /// Every block's centroid (engine coordinates) at the end of the
+    /// simulated cycles since the last jump, fragment supply or earthquake
+    /// (the first is the end of the cycle after it), at most
+    /// RatchetControls::jump_window + 1 of them.
+    std::deque<std::vector<geometry::Point>> history;
+    /// Length of the next jump before its limits (cycles), and the slip
+    /// per cycle of the last jump's window (m; NaN before the first).
+    unsigned int next_jump      = 1;
+    double       last_jump_slip = std::numeric_limits<double>::quiet_NaN();
+    unsigned int n_cycles       = 0;
+    double       aperture0 = 0., last_displacement = 0.;
+    double       tolerance = 0.;
     /// The pseudo time step in use (s): RatchetControls::pseudo_time_step
     /// or, if that is 0, quasi_static_time_step().
     double pseudo_time_step = 0.;

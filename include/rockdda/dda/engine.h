@@ -232,6 +232,34 @@ namespace rockdda::dda
     int
     add_block(Block block);
 
+    /**
+     * Move each block b rigidly by @p shift[b] (m) between two steps: the
+     * extrapolation of a cycle jump (coupling::RatchetRun::jump()), not a
+     * step of the equations of motion. Stresses, strains, velocities and
+     * contact states and forces are kept; the shear reference of every
+     * contact moves along its edge with the relative shift of the vertex's
+     * block and the edge's, so that a pair moved together keeps its
+     * springs exactly and a locked contact stays as stretched as it was.
+     * Load and measurement points move with their blocks; a block with a
+     * fixed point cannot move (InputError). The energy ledger restarts.
+     */
+    void
+    translate_blocks(const std::vector<geometry::Point> &shift);
+
+    /**
+     * The smallest signed distance (m, negative = inside) of a vertex of
+     * block @p block from another block's boundary or of another block's
+     * vertex from its boundary, with each block b moved by @p shift[b]
+     * (empty: as they are), over the blocks whose boxes come within
+     * @p distance of its box; +infinity if it is more than @p distance. A
+     * probe for translate_blocks(): the depth of a vertex whatever the
+     * contact detection would make of it.
+     */
+    double
+    min_gap(const int                           block,
+            const std::vector<geometry::Point> &shift,
+            const double                        distance) const;
+
     /// Advance until @p end_time (s); the last step is shortened to end
     /// there. Returns the report of the last step.
     StepReport
