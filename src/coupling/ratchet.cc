@@ -378,6 +378,23 @@ namespace rockdda::coupling
 
 
 
+  double
+  RatchetRun::window_slip() const
+  {
+    const auto &system = engine->system();
+    double      slip = 0., area = 0.;
+    for (const int b : scene.block_slices)
+      {
+        const double a = system.blocks[b].polygon.area();
+        slip
+          += a * (history.back()[b] - history.front()[b]).dot(scene.downslope);
+        area += a;
+      }
+    return slip / (area * static_cast<double>(history.size() - 1));
+  }
+
+
+
   JumpRecord
   RatchetRun::jump(const unsigned int cycles)
   {
@@ -397,30 +414,8 @@ namespace rockdda::coupling
     const auto rate = [&](const std::size_t b) -> geometry::Point {
       return (history.back()[b] - history.front()[b]) / window;
     };
-    // The block's slip per cycle over the window: its slices' area-weighted
-    // mean motion down the bedding plane.
-    double slip = 0., area = 0.;
-    for (const int b : scene.block_slices)
-      {
-        const double a = system.blocks[b].polygon.area();
-        slip += a * rate(b).dot(scene.downslope);
-        area += a;
-      }
-    slip /= area;
-    // The jump's length: doubled while the slip per cycle of this window
-    // is within the jump tolerance of the window before the last jump
-    // (the extrapolation held), halved when not.
-    if (std::isfinite(last_jump_slip))
-      {
-        j.rate_change
-          = std::abs(slip - last_jump_slip)
-            / std::max({std::abs(last_jump_slip), std::abs(slip), tolerance});
-        next_jump = j.rate_change <= ctrl.jump_tolerance
-                      ? std::min(2 * next_jump, ctrl.jump_max)
-                      : std::max(1u, next_jump / 2);
-      }
-    last_jump_slip = slip;
-    unsigned int m = std::min(cycles, next_jump);
+    const double slip = window_slip();
+    unsigned int m    = std::min(cycles, next_jump);
     // With a supply rule, stop short of the newest fragment's supply.
     if (scene.supply_distance > 0. && !fragments.empty())
       {
@@ -435,70 +430,89 @@ namespace rockdda::coupling
       }
     if (m == 0)
       return j;
-    // The block's slices together, along the bedding plane (their
-    // area-weighted mean motion's downslope component).
-    std::vector<geometry::Point> shift(n, geometry::Point::Zero());
-    for (const int b : scene.block_slices)
-      shift[b] = static_cast<double>(m) * slip * scene.downslope;
-    // Each fragment, oldest first, as far along its motion as it goes
-    // without a contact deeper than the deepest one it has once the block
-    // moved. Where its extrapolated path would press it into one face, a
-    // sideways offset (normal to the path, up to four times the excess
-    // depth: the estimate's error, not the motion) that maximises its
-    // smallest gap is added: it sits between the faces as it did.
-    for (const int f : fragments)
+
+    // The shifts of a jump of k cycles, and the smallest fraction of its
+    // drift that a fragment got and the largest sideways offset.
+    std::vector<geometry::Point> shift;
+    const auto                   place = [&](const unsigned int k) {
+      // The block's slices together, along the bedding plane.
+      shift.assign(n, geometry::Point::Zero());
+      for (const int b : scene.block_slices)
+        shift[b] = static_cast<double>(k) * slip * scene.downslope;
+      j.infill_fraction = 1.;
+      j.infill_offset   = 0.;
+      // Each fragment, oldest first, as far along its drift as it goes
+      // without a vertex deeper in a neighbour than the deepest one it has
+      // once the block moved. Where its path would press it into one face,
+      // a sideways offset (normal to the path, up to four times the excess
+      // depth: the estimate's error, not the motion) that maximises its
+      // smallest gap is added: it sits between the faces as it did.
+      for (const int f : fragments)
+        {
+          const geometry::Point full = static_cast<double>(k) * rate(f);
+          const double          length = full.norm();
+          if (!(length > 0.))
+            continue;
+          const geometry::Point side(-full[1] / length, full[0] / length);
+          const auto            box = system.blocks[f].polygon.bounding_box();
+          const double size = std::hypot(box[2] - box[0], box[3] - box[1]);
+          const double reach = 1e-3 * size;
+          const double deepest = std::min(0., engine->min_gap(f, shift, reach));
+          const auto   gap = [&](const double a, const double b) {
+            shift[f] = a * full + b * side;
+            return std::min(engine->min_gap(f, shift, reach), 1e300);
+          };
+          // The offset with the largest smallest gap at fraction a: the
+          // smallest gap is the lower of the two faces' (one rising, one
+          // falling with the offset), so a golden-section search finds it.
+          const auto best_offset = [&](const double a) {
+            if (gap(a, 0.) >= deepest)
+              return 0.;
+            constexpr double golden = 0.6180339887498949;
+            const double     range = 4. * (deepest - gap(a, 0.));
+            double           lo = -range, hi = range;
+            for (int it = 0; it < 60; ++it)
+              {
+                const double b1 = hi - golden * (hi - lo);
+                const double b2 = lo + golden * (hi - lo);
+                if (gap(a, b1) < gap(a, b2))
+                  lo = b1;
+                else
+                  hi = b2;
+              }
+            return 0.5 * (lo + hi);
+          };
+          const auto fits
+            = [&](const double a) { return gap(a, best_offset(a)) >= deepest; };
+          double lo = 0., hi = 1.;
+          if (fits(1.))
+            lo = 1.;
+          else
+            for (int it = 0; it < 40; ++it)
+              {
+                const double mid      = 0.5 * (lo + hi);
+                (fits(mid) ? lo : hi) = mid;
+              }
+          const double b    = best_offset(lo);
+          shift[f]          = lo * full + b * side;
+          j.infill_fraction = std::min(j.infill_fraction, lo);
+          j.infill_offset = std::max(j.infill_offset, std::abs(b) / length);
+        }
+    };
+    place(m);
+    // A fragment that cannot follow its drift (the wedge reaches the
+    // crack's bottom) ends the jump where it stops: the block's slip
+    // follows the wedge's descent, so the rest is simulated.
+    if (j.infill_fraction < 0.99 && m > 1)
       {
-        const geometry::Point full   = static_cast<double>(m) * rate(f);
-        const double          length = full.norm();
-        if (!(length > 0.))
-          continue;
-        const geometry::Point side(-full[1] / length, full[0] / length);
-        const auto            box = system.blocks[f].polygon.bounding_box();
-        const double size    = std::hypot(box[2] - box[0], box[3] - box[1]);
-        const double reach   = 1e-3 * size;
-        const double deepest = std::min(0., engine->min_gap(f, shift, reach));
-        const auto   gap     = [&](const double a, const double b) {
-          shift[f] = a * full + b * side;
-          return std::min(engine->min_gap(f, shift, reach), 1e300);
-        };
-        // The offset with the largest smallest gap at fraction a: the
-        // smallest gap is the lower of the two faces' (one rising, one
-        // falling with b), so a golden-section search finds it.
-        const auto best_offset = [&](const double a) {
-          if (gap(a, 0.) >= deepest)
-            return 0.;
-          // Up to four times the excess depth to each side: enough when one
-          // face is pressed, and within the crack.
-          constexpr double golden = 0.6180339887498949;
-          const double     range  = 4. * (deepest - gap(a, 0.));
-          double           lo = -range, hi = range;
-          for (int k = 0; k < 60; ++k)
-            {
-              const double b1 = hi - golden * (hi - lo);
-              const double b2 = lo + golden * (hi - lo);
-              if (gap(a, b1) < gap(a, b2))
-                lo = b1;
-              else
-                hi = b2;
-            }
-          return 0.5 * (lo + hi);
-        };
-        const auto fits
-          = [&](const double a) { return gap(a, best_offset(a)) >= deepest; };
-        double lo = 0., hi = 1.;
-        if (fits(1.))
-          lo = 1.;
-        else
-          for (int k = 0; k < 40; ++k)
-            {
-              const double mid      = 0.5 * (lo + hi);
-              (fits(mid) ? lo : hi) = mid;
-            }
-        const double b    = best_offset(lo);
-        shift[f]          = lo * full + b * side;
-        j.infill_fraction = std::min(j.infill_fraction, lo);
-        j.infill_offset   = std::max(j.infill_offset, std::abs(b) / length);
+        m = std::max(
+          1u, static_cast<unsigned int>(std::floor(j.infill_fraction * m)));
+        place(m);
       }
+    pending_state.clear();
+    pending_state  = checkpoint();
+    pending_cycles = m;
+    pending_slip   = slip;
     engine->translate_blocks(shift);
     n_cycles += m;
     j.cycles             = m;
@@ -509,6 +523,33 @@ namespace rockdda::coupling
       j.descent_after = -engine->centroid_displacement(scene.infill)[1];
     history.clear();
     return j;
+  }
+
+
+
+  bool
+  RatchetRun::review_jump(double *change)
+  {
+    if (pending_state.empty() || cycles_in_window() < ctrl.jump_window)
+      return false;
+    const double slip = window_slip();
+    const double c
+      = std::abs(slip - pending_slip)
+        / std::max({std::abs(pending_slip), std::abs(slip), tolerance});
+    if (change != nullptr)
+      *change = c;
+    const unsigned int m = pending_cycles;
+    if (c <= ctrl.jump_tolerance || m <= 1)
+      {
+        pending_state.clear();
+        next_jump = c <= ctrl.jump_tolerance ? std::min(2 * m, ctrl.jump_max)
+                                             : std::max(1u, m / 2);
+        return false;
+      }
+    const std::string state = std::move(pending_state);
+    restore(state, "cycle jump");
+    next_jump = std::max(1u, m / 2);
+    return true;
   }
 
 
@@ -531,7 +572,9 @@ namespace rockdda::coupling
                      ec.contact_damping,
                      ">= 0");
     EpisodeRecord r;
-    history.clear(); // a jump extrapolates thermal cycles only
+    // A jump extrapolates thermal cycles only.
+    history.clear();
+    pending_state.clear();
     // The thermal time of the end of the last cycle: the eigenstrains stay
     // those set there (or at settling, before the first cycle).
     const double thermal_time = n_cycles * forcing.period;
@@ -651,7 +694,9 @@ namespace rockdda::coupling
     w.put_string(engine->checkpoint());
     // The cycle jumps' state (version 2).
     w.put<std::uint32_t>(next_jump);
-    w.put(last_jump_slip);
+    w.put_string(pending_state);
+    w.put<std::uint32_t>(pending_cycles);
+    w.put(pending_slip);
     w.put<std::uint32_t>(static_cast<std::uint32_t>(history.size()));
     for (const auto &c : history)
       {
@@ -694,6 +739,8 @@ namespace rockdda::coupling
     engine->restore(r.get_string(), source);
     const std::size_t n_blocks    = engine->system().blocks.size();
     const auto        jump_length = r.get<std::uint32_t>();
+    const std::string jump_state  = r.get_string();
+    const auto        jump_cycles = r.get<std::uint32_t>();
     const double      jump_slip   = r.get<double>();
     std::deque<std::vector<geometry::Point>> window;
     const auto                               n_window = r.get<std::uint32_t>();
@@ -723,7 +770,9 @@ namespace rockdda::coupling
     fragment_tops     = std::move(tops);
     history           = std::move(window);
     next_jump         = jump_length;
-    last_jump_slip    = jump_slip;
+    pending_state     = jump_state;
+    pending_cycles    = jump_cycles;
+    pending_slip      = jump_slip;
     n_cycles          = cycles;
     aperture0         = a0;
     last_displacement = last;

@@ -315,9 +315,12 @@ namespace rockdda::coupling
                     "each infill fragment as far as it goes without pressing "
                     "deeper into a face; stresses and contact springs kept), "
                     "then 'Jump window' + 1 cycles are simulated before the "
-                    "next. m starts at 2 x 'Jump window' and doubles while "
-                    "the slip per cycle changes by at most 'Jump tolerance' "
-                    "between jumps (halves when more). For long runs of a "
+                    "next. m starts at 2 x 'Jump window'; a jump whose next "
+                    "window's slip per cycle differs from the extrapolated "
+                    "one by more than 'Jump tolerance' is undone and redone "
+                    "half as long, otherwise the next doubles. A jump ends "
+                    "where an infill fragment cannot follow its drift (the "
+                    "crack's bottom). For long runs of a "
                     "periodic ratchet: benchmarks/ratchet/README.md, 'Cycle "
                     "jumps', gives the error against the cost. The last "
                     "cycle is always simulated; statistics.csv marks the "
@@ -329,8 +332,10 @@ namespace rockdda::coupling
                       0., std::numeric_limits<double>::infinity()),
                     "-",
                     "Relative change of the slip per cycle between the "
-                    "windows of two cycle jumps up to which the next jump "
-                    "doubles (>= 0; 0: every jump after the first halves).");
+                    "window a cycle jump extrapolates and the window after "
+                    "it up to which the jump stands and the next doubles; "
+                    "beyond it the jump is undone and redone half as long "
+                    "(>= 0).");
         io::declare(prm,
                     "Jump window",
                     "4",
@@ -850,6 +855,26 @@ namespace rockdda::coupling
                               s.aperture});
             // A cycle jump (the last cycle is always simulated): one row
             // per skipped cycle, the state interpolated linearly.
+            // A jump whose next window changed its slip per cycle by more
+            // than the jump tolerance is undone (RatchetRun::review_jump).
+            double change = 0.;
+            if (controls.jump_max > 0 && run_.review_jump(&change))
+              {
+                const double back = run_.cycles();
+                const auto   keep = [back](io::Table &t) {
+                  std::size_t k = 0;
+                  while (k < t.n_rows() && t.row(k)[0] <= back)
+                    ++k;
+                  t.truncate(k);
+                };
+                keep(table);
+                keep(loop);
+                log.line("cycle jump after cycle " + io::format_number(back, 8)
+                         + " undone: the slip "
+                         + "per cycle after it changed by "
+                         + io::format_number(100. * change, 3)
+                         + " %; jumping half as far");
+              }
             if (controls.jump_max > 0 && run_.cycles() >= jump_start
                 && run_.cycles() + 1 < cycles)
               {
@@ -881,9 +906,7 @@ namespace rockdda::coupling
                            + io::format_number(j.displacement_after
                                                  - j.displacement_before,
                                                4)
-                           + " m (slip per cycle changed by "
-                           + io::format_number(100. * j.rate_change, 3)
-                           + " % since the last jump), infill moved "
+                           + " m, infill moved "
                            + io::format_number(j.infill_fraction, 4)
                            + " of its extrapolated descent, offset "
                            + io::format_number(j.infill_offset, 3));

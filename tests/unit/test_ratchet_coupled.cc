@@ -568,3 +568,34 @@ TEST(RatchetCoupled, RestartWithCycleJumpsIsIdentical)
   EXPECT_EQ(resumed.displacement(), straight.displacement());
   EXPECT_EQ(resumed.aperture(), straight.aperture());
 }
+
+
+
+// A jump whose next window moves at a slip per cycle beyond the jump
+// tolerance is undone: with a tolerance of 0 every jump of more than one
+// cycle is, and the run returns bit for bit to its state before the jump
+// (cycles, slip, aperture), then jumps half as far.
+TEST(RatchetCoupled, RejectedCycleJumpIsUndone)
+{
+  const DefaultScene d;
+  RatchetControls    c;
+  c.jump_max       = 4;
+  c.jump_window    = 1;
+  c.jump_tolerance = 0.;
+  RatchetRun run(d.scene, d.T, d.f, 8e-6, c);
+  run.run_cycle();
+  run.run_cycle();
+  const double slip = run.displacement(), aperture = run.aperture();
+  ASSERT_EQ(run.jump(10).cycles, 2u);
+  EXPECT_NE(run.displacement(), slip);
+  EXPECT_FALSE(run.review_jump()); // its window is not full yet
+  run.run_cycle();
+  run.run_cycle();
+  double change = -1.;
+  ASSERT_TRUE(run.review_jump(&change));
+  EXPECT_GT(change, 0.);
+  EXPECT_EQ(run.cycles(), 2u);
+  EXPECT_EQ(run.displacement(), slip);
+  EXPECT_EQ(run.aperture(), aperture);
+  EXPECT_EQ(run.jump(10).cycles, 1u);
+}

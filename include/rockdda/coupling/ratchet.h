@@ -157,9 +157,6 @@ namespace rockdda::coupling
     /// Largest sideways offset given to a fragment, as a fraction of its
     /// extrapolated motion (RatchetRun::jump()).
     double infill_offset = 0.;
-    /// Relative change of the slip per cycle since the window of the last
-    /// jump (0 for the first), which set this jump's length.
-    double rate_change = 0.;
   };
 
   /// One temperature sample within a cycle (the loop of thesis Fig. 5-6).
@@ -200,11 +197,11 @@ namespace rockdda::coupling
      * RatchetControls::jump_window cycles simulated since the last jump
      * (the first cycle after a jump is not among them: it settles what the
      * jump left).
-     * - m: RatchetControls::jump_window x 2 at first; then doubled while
-     *   the slip per cycle stays within RatchetControls::jump_tolerance of
-     *   the last jump's window, halved when not; at most
-     *   RatchetControls::jump_max; with a supply rule, short of the newest
-     *   fragment's supply.
+     * - m: RatchetControls::jump_window x 2 at first, then as
+     *   review_jump() sets it; at most RatchetControls::jump_max; with a
+     *   supply rule, short of the newest fragment's supply; shortened to
+     *   the fraction of its drift that an infill fragment can descend
+     *   (the wedge reaching the crack's bottom).
      * - The block's slices move together, along the bedding plane; the
      *   cliff stays.
      * - Each infill fragment, oldest first, moves as far along its own
@@ -218,6 +215,20 @@ namespace rockdda::coupling
      */
     JumpRecord
     jump(const unsigned int cycles);
+    /**
+     * Review the last jump once the window after it is full: its slip per
+     * cycle against the window the jump extrapolated. Within
+     * RatchetControls::jump_tolerance (relative) the jump stands and the
+     * next one doubles (up to RatchetControls::jump_max). Beyond it a jump
+     * of more than one cycle is undone: the run returns to its state
+     * before the jump (cycles() says where) and the next jump is half as
+     * long, so a change of regime inside a jump (a burst, the wedge
+     * reaching the crack's bottom) costs simulated cycles, not accuracy.
+     * Returns whether the run was rewound; @p change (optional) receives
+     * the relative change.
+     */
+    bool
+    review_jump(double *change = nullptr);
     /// Cycles simulated since the last jump (or the start) that jump() can
     /// extrapolate from: its window is full at RatchetControls::jump_window.
     unsigned int
@@ -338,11 +349,18 @@ namespace rockdda::coupling
     /// (the first is the end of the cycle after it), at most
     /// RatchetControls::jump_window + 1 of them.
     std::deque<std::vector<geometry::Point>> history;
-    /// Length of the next jump before its limits (cycles), and the slip
-    /// per cycle of the last jump's window (m; NaN before the first).
-    unsigned int next_jump      = 1;
-    double       last_jump_slip = std::numeric_limits<double>::quiet_NaN();
-    unsigned int n_cycles       = 0;
+    /// Length of the next jump before its limits (cycles).
+    unsigned int next_jump = 1;
+    /// The jump under review (review_jump()): the state before it
+    /// (checkpoint(), empty: none), its length and its window's slip per
+    /// cycle (m).
+    std::string  pending_state;
+    unsigned int pending_cycles = 0;
+    double       pending_slip   = 0.;
+    /// The block's mean slip per cycle over the window (m).
+    double
+                 window_slip() const;
+    unsigned int n_cycles  = 0;
     double       aperture0 = 0., last_displacement = 0.;
     double       tolerance = 0.;
     /// The pseudo time step in use (s): RatchetControls::pseudo_time_step

@@ -157,6 +157,14 @@ namespace rockdda::io
     void
     add_row(const std::vector<double> &values);
 
+    /// Keep only the first @p n rows (a run that rewinds).
+    void
+    truncate(const std::size_t n)
+    {
+      if (n < rows.size())
+        rows.resize(n);
+    }
+
     /// Number of rows so far.
     std::size_t
     n_rows() const
