@@ -378,19 +378,30 @@ namespace rockdda::coupling
 
 
 
-  double
+  std::array<double, 2>
   RatchetRun::window_slip() const
   {
-    const auto &system = engine->system();
-    double      slip = 0., area = 0.;
-    for (const int b : scene.block_slices)
+    const auto         &system = engine->system();
+    std::vector<double> per_cycle;
+    for (std::size_t k = 1; k < history.size(); ++k)
       {
-        const double a = system.blocks[b].polygon.area();
-        slip
-          += a * (history.back()[b] - history.front()[b]).dot(scene.downslope);
-        area += a;
+        double slip = 0., area = 0.;
+        for (const int b : scene.block_slices)
+          {
+            const double a = system.blocks[b].polygon.area();
+            slip
+              += a * (history[k][b] - history[k - 1][b]).dot(scene.downslope);
+            area += a;
+          }
+        per_cycle.push_back(slip / area);
       }
-    return slip / (area * static_cast<double>(history.size() - 1));
+    const double n    = static_cast<double>(per_cycle.size());
+    double       mean = 0., var = 0.;
+    for (const double v : per_cycle)
+      mean += v / n;
+    for (const double v : per_cycle)
+      var += (v - mean) * (v - mean) / std::max(1., n - 1.);
+    return {{mean, std::sqrt(var / n)}};
   }
 
 
@@ -414,8 +425,9 @@ namespace rockdda::coupling
     const auto rate = [&](const std::size_t b) -> geometry::Point {
       return (history.back()[b] - history.front()[b]) / window;
     };
-    const double slip = window_slip();
-    unsigned int m    = std::min(cycles, next_jump);
+    const auto   window_mean = window_slip();
+    const double slip        = window_mean[0];
+    unsigned int m           = std::min(cycles, next_jump);
     // With a supply rule, stop short of the newest fragment's supply.
     if (scene.supply_distance > 0. && !fragments.empty())
       {
@@ -513,6 +525,7 @@ namespace rockdda::coupling
     pending_state  = checkpoint();
     pending_cycles = m;
     pending_slip   = slip;
+    pending_error  = window_mean[1];
     engine->translate_blocks(shift);
     n_cycles += m;
     j.cycles             = m;
@@ -532,10 +545,13 @@ namespace rockdda::coupling
   {
     if (pending_state.empty() || cycles_in_window() < ctrl.jump_window)
       return false;
-    const double slip = window_slip();
+    // The change beyond what the two windows' scatter explains (two
+    // standard errors of the difference of their means), relative.
+    const auto   w     = window_slip();
+    const double noise = 2. * std::hypot(w[1], pending_error);
     const double c
-      = std::abs(slip - pending_slip)
-        / std::max({std::abs(pending_slip), std::abs(slip), tolerance});
+      = std::max(0., std::abs(w[0] - pending_slip) - noise)
+        / std::max({std::abs(pending_slip), std::abs(w[0]), tolerance});
     if (change != nullptr)
       *change = c;
     const unsigned int m = pending_cycles;
@@ -697,6 +713,7 @@ namespace rockdda::coupling
     w.put_string(pending_state);
     w.put<std::uint32_t>(pending_cycles);
     w.put(pending_slip);
+    w.put(pending_error);
     w.put<std::uint32_t>(static_cast<std::uint32_t>(history.size()));
     for (const auto &c : history)
       {
@@ -742,6 +759,7 @@ namespace rockdda::coupling
     const std::string jump_state  = r.get_string();
     const auto        jump_cycles = r.get<std::uint32_t>();
     const double      jump_slip   = r.get<double>();
+    const double      jump_error  = r.get<double>();
     std::deque<std::vector<geometry::Point>> window;
     const auto                               n_window = r.get<std::uint32_t>();
     for (std::uint32_t k = 0; k < n_window && k <= ctrl.jump_window; ++k)
@@ -773,6 +791,7 @@ namespace rockdda::coupling
     pending_state     = jump_state;
     pending_cycles    = jump_cycles;
     pending_slip      = jump_slip;
+    pending_error     = jump_error;
     n_cycles          = cycles;
     aperture0         = a0;
     last_displacement = last;

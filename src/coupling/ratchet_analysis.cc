@@ -333,9 +333,10 @@ namespace rockdda::coupling
                     "-",
                     "Relative change of the slip per cycle between the "
                     "window a cycle jump extrapolates and the window after "
-                    "it up to which the jump stands and the next doubles; "
-                    "beyond it the jump is undone and redone half as long "
-                    "(>= 0).");
+                    "it, beyond two standard errors of their difference "
+                    "(the cycles' scatter), up to which the jump stands and "
+                    "the next doubles; beyond it the jump is undone and "
+                    "redone half as long (>= 0).");
         io::declare(prm,
                     "Jump window",
                     "4",

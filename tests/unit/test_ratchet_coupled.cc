@@ -572,9 +572,10 @@ TEST(RatchetCoupled, RestartWithCycleJumpsIsIdentical)
 
 
 // A jump whose next window moves at a slip per cycle beyond the jump
-// tolerance is undone: with a tolerance of 0 every jump of more than one
-// cycle is, and the run returns bit for bit to its state before the jump
-// (cycles, slip, aperture), then jumps half as far.
+// tolerance is undone: with a tolerance of 0 and windows of one cycle (no
+// scatter to allow for) every jump of more than one cycle whose window
+// moved differently is, and the run returns bit for bit to its state
+// before the jump (cycles, slip, aperture), then jumps half as far.
 TEST(RatchetCoupled, RejectedCycleJumpIsUndone)
 {
   const DefaultScene d;

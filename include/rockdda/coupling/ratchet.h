@@ -12,6 +12,7 @@
 #include <rockdda/dda/engine.h>
 #include <rockdda/seismic/record.h>
 
+#include <array>
 #include <deque>
 #include <limits>
 #include <memory>
@@ -217,9 +218,11 @@ namespace rockdda::coupling
     jump(const unsigned int cycles);
     /**
      * Review the last jump once the window after it is full: its slip per
-     * cycle against the window the jump extrapolated. Within
-     * RatchetControls::jump_tolerance (relative) the jump stands and the
-     * next one doubles (up to RatchetControls::jump_max). Beyond it a jump
+     * cycle against the window the jump extrapolated. If they differ by at
+     * most RatchetControls::jump_tolerance (relative) beyond two standard
+     * errors of the difference of the two means (the cycles' scatter: a
+     * change the windows cannot resolve is not one), the jump stands and
+     * the next one doubles (up to RatchetControls::jump_max). Beyond it a jump
      * of more than one cycle is undone: the run returns to its state
      * before the jump (cycles() says where) and the next jump is half as
      * long, so a change of regime inside a jump (a burst, the wedge
@@ -352,13 +355,14 @@ namespace rockdda::coupling
     /// Length of the next jump before its limits (cycles).
     unsigned int next_jump = 1;
     /// The jump under review (review_jump()): the state before it
-    /// (checkpoint(), empty: none), its length and its window's slip per
-    /// cycle (m).
+    /// (checkpoint(), empty: none), its length, its window's slip per
+    /// cycle and that mean's standard error (m).
     std::string  pending_state;
     unsigned int pending_cycles = 0;
-    double       pending_slip   = 0.;
-    /// The block's mean slip per cycle over the window (m).
-    double
+    double       pending_slip = 0., pending_error = 0.;
+    /// The block's mean slip per cycle over the window and its standard
+    /// error from the cycles' scatter (m).
+    std::array<double, 2>
                  window_slip() const;
     unsigned int n_cycles  = 0;
     double       aperture0 = 0., last_displacement = 0.;
