@@ -37,6 +37,20 @@ namespace
     RatchetScene             scene = make_ratchet_scene(g, m);
     PeriodicBlockTemperature T{scene.heat_blocks, f, cheap_heat()};
   };
+
+  /// The default controls with cycle jumps of at most @p most cycles from
+  /// windows of @p window cycles, reviewed at @p tolerance.
+  RatchetControls
+  jumping(const unsigned int most,
+          const unsigned int window,
+          const double       tolerance = 0.1)
+  {
+    RatchetControls c;
+    c.jump_max       = most;
+    c.jump_window    = window;
+    c.jump_tolerance = tolerance;
+    return c;
+  }
 } // namespace
 
 TEST(RatchetCoupled, BadInputNamesTheKey)
@@ -482,12 +496,10 @@ TEST(RatchetCoupled, CuttingExactCyclesChangesNoAcceptedStep)
 // after a jump stays within the range of the simulated run's.
 TEST(RatchetCoupled, CycleJumpFollowsTheSimulatedRatchet)
 {
-  const DefaultScene d;
-  RatchetControls    c;
-  c.jump_max    = 8;
-  c.jump_window = 2;
-  RatchetRun          full(d.scene, d.T, d.f, 8e-6, c);
-  std::vector<double> slip, energy;
+  const DefaultScene    d;
+  const RatchetControls c = jumping(8, 2);
+  RatchetRun            full(d.scene, d.T, d.f, 8e-6, c);
+  std::vector<double>   slip, energy;
   for (int k = 0; k < 14; ++k)
     {
       const CycleRecord r = full.run_cycle();
@@ -545,11 +557,9 @@ TEST(RatchetCoupled, CycleJumpFollowsTheSimulatedRatchet)
 // jump window and the jump length are part of the state).
 TEST(RatchetCoupled, RestartWithCycleJumpsIsIdentical)
 {
-  const DefaultScene d;
-  RatchetControls    c;
-  c.jump_max    = 4;
-  c.jump_window = 1;
-  RatchetRun straight(d.scene, d.T, d.f, 8e-6, c);
+  const DefaultScene    d;
+  const RatchetControls c = jumping(4, 1);
+  RatchetRun            straight(d.scene, d.T, d.f, 8e-6, c);
   straight.run_cycle();
   EXPECT_EQ(straight.jump(10).cycles, 0u); // the window is not full yet
   straight.run_cycle();
@@ -578,12 +588,9 @@ TEST(RatchetCoupled, RestartWithCycleJumpsIsIdentical)
 // before the jump (cycles, slip, aperture), then jumps half as far.
 TEST(RatchetCoupled, RejectedCycleJumpIsUndone)
 {
-  const DefaultScene d;
-  RatchetControls    c;
-  c.jump_max       = 4;
-  c.jump_window    = 1;
-  c.jump_tolerance = 0.;
-  RatchetRun run(d.scene, d.T, d.f, 8e-6, c);
+  const DefaultScene    d;
+  const RatchetControls c = jumping(4, 1, 0.);
+  RatchetRun            run(d.scene, d.T, d.f, 8e-6, c);
   run.run_cycle();
   run.run_cycle();
   const double slip = run.displacement(), aperture = run.aperture();
