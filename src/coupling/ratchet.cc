@@ -192,6 +192,15 @@ namespace rockdda::coupling
 
 
 
+  double
+  RatchetRun::infill_descent() const
+  {
+    return scene.infill >= 0 ? -engine->centroid_displacement(scene.infill)[1]
+                             : 0.;
+  }
+
+
+
   void
   RatchetRun::equilibrate(const double time, CycleRecord &record)
   {
@@ -340,12 +349,11 @@ namespace rockdda::coupling
           }
       }
     ++n_cycles;
-    r.displacement    = displacement();
-    r.permanent       = r.displacement - last_displacement;
-    last_displacement = r.displacement;
-    r.aperture        = aperture();
-    if (scene.infill >= 0)
-      r.infill_descent = -engine->centroid_displacement(scene.infill)[1];
+    r.displacement                = displacement();
+    r.permanent                   = r.displacement - last_displacement;
+    last_displacement             = r.displacement;
+    r.aperture                    = aperture();
+    r.infill_descent              = infill_descent();
     const std::size_t n_fragments = fragments.size();
     supply(n_cycles * forcing.period);
     r.fragments = static_cast<unsigned int>(fragments.size());
@@ -412,9 +420,7 @@ namespace rockdda::coupling
     JumpRecord j;
     j.displacement_before = j.displacement_after = displacement();
     j.aperture_before = j.aperture_after = aperture();
-    j.descent_before                     = j.descent_after
-      = scene.infill >= 0 ? -engine->centroid_displacement(scene.infill)[1]
-                          : 0.;
+    j.descent_before = j.descent_after = infill_descent();
     if (cycles == 0 || ctrl.jump_max == 0 || ctrl.jump_window == 0
         || cycles_in_window() < ctrl.jump_window)
       return j;
@@ -478,10 +484,11 @@ namespace rockdda::coupling
           // smallest gap is the lower of the two faces' (one rising, one
           // falling with the offset), so a golden-section search finds it.
           const auto best_offset = [&](const double a) {
-            if (gap(a, 0.) >= deepest)
+            const double straight = gap(a, 0.);
+            if (straight >= deepest)
               return 0.;
             constexpr double golden = 0.6180339887498949;
-            const double     range = 4. * (deepest - gap(a, 0.));
+            const double     range = 4. * (deepest - straight);
             double           lo = -range, hi = range;
             for (int it = 0; it < 60; ++it)
               {
@@ -521,7 +528,7 @@ namespace rockdda::coupling
           1u, static_cast<unsigned int>(std::floor(j.infill_fraction * m)));
         place(m);
       }
-    pending_state.clear();
+    pending_state.clear(); // the saved state holds no earlier one
     pending_state  = checkpoint();
     pending_cycles = m;
     pending_slip   = slip;
@@ -532,8 +539,7 @@ namespace rockdda::coupling
     j.displacement_after = displacement();
     last_displacement    = j.displacement_after;
     j.aperture_after     = aperture();
-    if (scene.infill >= 0)
-      j.descent_after = -engine->centroid_displacement(scene.infill)[1];
+    j.descent_after      = infill_descent();
     history.clear();
     return j;
   }
@@ -762,7 +768,9 @@ namespace rockdda::coupling
     const double      jump_error  = r.get<double>();
     std::deque<std::vector<geometry::Point>> window;
     const auto                               n_window = r.get<std::uint32_t>();
-    for (std::uint32_t k = 0; k < n_window && k <= ctrl.jump_window; ++k)
+    if (n_window > ctrl.jump_window + 1)
+      throw InputError(source + ": the checkpoint is damaged (jump window)");
+    for (std::uint32_t k = 0; k < n_window; ++k)
       {
         const auto n_points = r.get<std::uint32_t>();
         if (n_points != n_blocks)

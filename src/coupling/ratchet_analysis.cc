@@ -857,7 +857,8 @@ namespace rockdda::coupling
             // A cycle jump (the last cycle is always simulated): one row
             // per skipped cycle, the state interpolated linearly.
             // A jump whose next window changed its slip per cycle by more
-            // than the jump tolerance is undone (RatchetRun::review_jump).
+            // than the jump tolerance beyond the windows' scatter is undone
+            // (RatchetRun::review_jump); its rows go too.
             double change = 0.;
             if (controls.jump_max > 0 && run_.review_jump(&change))
               {

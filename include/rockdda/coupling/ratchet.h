@@ -277,6 +277,10 @@ namespace rockdda::coupling
     /// Change of the crack aperture at the top since the start (m).
     double
     aperture() const;
+    /// Descent of the first infill fragment since the start (m; 0 without
+    /// infill).
+    double
+    infill_descent() const;
     /// Cycles done.
     unsigned int
     cycles() const
