@@ -11,7 +11,7 @@ usage: shaking_table.py ROCKDDA BLOCKS [--modes loading,displacement]
        the filter's padding)]
        [--contact-damping 0,1,...] [--step-damping 0,1,...]
        [--strain-damping 0,1e-4,...] [--stiff-velocity false,true]
-       [--shared-strength false,true]
+       [--shared-strength false,true] [--shear-ratio 0.4,0.04,...]
        [--out shaking_table.csv] [--histories DIR]
 
 Columns: mode, dt_s, penalty_N_per_m, status (ok, or the run's failure),
@@ -23,7 +23,7 @@ onset against the yield acceleration is checked by the unit test), wall_s, steps
 DIR/MODE-DT-PENALTY[-cdZETA][-sbBETA][-sdETA][-sv].csv; contact_damping,
 contact_step_damping, strain_damping_s, stiff_velocity (key "Stiff mode
 velocity"), shared_strength (key "Face group shared strength", history
-names -ss).
+names -ss), shear_ratio (key "Shear penalty ratio", history names -srX).
 """
 import argparse
 import csv
@@ -44,7 +44,8 @@ from fig4_2_error import summary  # noqa: E402
 
 # Keys of the DDA 3d section that the template leaves at their defaults.
 OPTIONAL = ("Contact damping ratio", "Contact step damping", "Strain damping",
-            "Stiff mode velocity", "Face group shared strength")
+            "Stiff mode velocity", "Face group shared strength",
+            "Shear penalty ratio")
 ONSET = 1e-4  # m: 1e3 x the elastic slip of the contact springs at 1e10 N/m
 
 
@@ -104,6 +105,8 @@ def main():
     p.add_argument("--shared-strength", default="false",
                    help="Face group shared strength values (false, true), "
                    "comma-separated")
+    p.add_argument("--shear-ratio", default="0.4",
+                   help="Shear penalty ratio values (-), comma-separated")
     p.add_argument("--out", default="shaking_table.csv")
     p.add_argument("--histories")
     a = p.parse_args()
@@ -131,17 +134,17 @@ def main():
                    float("nan"))
     rows = [["analytical", "1e-4", "-", "ok",
              f"{sum(e * l for e, l in zip(end, line)):.6f}", "0", "0",
-             f"{onset_a:.3f}", "", "", "", "", "", "", "", ""]]
+             f"{onset_a:.3f}", "", "", "", "", "", "", "", "", ""]]
     print(*rows[-1], flush=True)
     if a.histories:
         os.makedirs(a.histories, exist_ok=True)
         shutil.copy(os.path.join(ref, "statistics.csv"),
                     os.path.join(a.histories, "analytical.csv"))
-    for mode, zeta, beta, eta, sv, ss, dt, pen in itertools.product(
+    for mode, zeta, beta, eta, sv, ss, sr, dt, pen in itertools.product(
             a.modes.split(","), a.contact_damping.split(","),
             a.step_damping.split(","), a.strain_damping.split(","),
             a.stiff_velocity.split(","), a.shared_strength.split(","),
-            a.dt.split(","),
+            a.shear_ratio.split(","), a.dt.split(","),
             a.penalty.split(",")):
         name = f"{mode}-{dt}-{pen}"
         replace = {"Time step": ["0.005", dt], "Contact penalty": pen,
@@ -164,13 +167,16 @@ def main():
         if ss != "false":
             replace["Face group shared strength"] = ss
             name += "-ss"
+        if sr != "0.4":
+            replace["Shear penalty ratio"] = sr
+            name += f"-sr{sr}"
         out, status, wall = run(
             a.rockdda, os.path.join(PRM, "dda3d-shaking-table.prm"),
             replace, work, name, a.blocks)
         stats = os.path.join(out, "statistics.csv")
         if not os.path.exists(stats):
             rows.append([mode, dt, pen, status] + [""] * 7
-                        + [zeta, beta, eta, sv, ss])
+                        + [zeta, beta, eta, sv, ss, sr])
             print(*rows[-1], flush=True)
             continue
         hist = table(stats)
@@ -189,7 +195,7 @@ def main():
                      f"{wall:.2f}",
                      int(s.get("steps", 0)),
                      int(s.get("time_step_cuts", 0)), zeta, beta, eta, sv,
-                     ss])
+                     ss, sr])
         print(*rows[-1], flush=True)
         if a.histories:
             shutil.copy(stats, os.path.join(a.histories,
@@ -199,7 +205,8 @@ def main():
         w.writerow(["mode", "dt_s", "penalty_N_per_m", "status", "slide_m",
                     "error_final", "error_history", "onset_s", "wall_s", "steps", "cuts",
                     "contact_damping", "contact_step_damping",
-                    "strain_damping_s", "stiff_velocity", "shared_strength"])
+                    "strain_damping_s", "stiff_velocity", "shared_strength",
+                    "shear_ratio"])
         w.writerows(rows)
     shutil.rmtree(work)
 

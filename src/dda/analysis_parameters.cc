@@ -11,6 +11,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <cmath>
+#include <limits>
 
 namespace rockdda::dda
 {
@@ -149,7 +150,27 @@ namespace rockdda::dda
                 io::DoubleInterval::positive(),
                 "-",
                 "Shear penalty / normal penalty, > 0 (in series with a "
-                "joint's shear stiffness, if it has one).");
+                "joint's shear stiffness, if it has one), unless 'Shear "
+                "penalty' is set.");
+    io::declare(prm,
+                "Shear penalty",
+                "0",
+                io::DoubleInterval(
+                  0., false, std::numeric_limits<double>::infinity(), false),
+                "N/m",
+                std::string("Shear penalty spring of every contact, >= 0 "
+                            "N/m, independent of the normal penalty; 0: the "
+                            "Shear penalty ratio x the normal penalty. A "
+                            "locked contact's shear spring much stiffer than "
+                            "its blocks (above ~E L, E the Young modulus, L "
+                            "the block size")
+                  + (dim == 2 ? " (per m)" : "")
+                  + ") locks their elastic (Poisson) deformation into a "
+                    "self-stress between the contacts: in a wedge it raises "
+                    "the normal forces and delays the onset of sliding. "
+                    "0.2 E L keeps that below 1 % while the locked elastic "
+                    "slip W / p_s stays negligible (benchmarks/"
+                    "dda3d-shaking-table, 'Shear penalty').");
     io::declare(prm,
                 "Contact force tolerance",
                 "1e-4",
@@ -291,6 +312,7 @@ namespace rockdda::dda
     max_open_close         = prm.get_integer("Maximum open-close iterations");
     max_displacement_ratio = prm.get_double("Maximum displacement ratio");
     shear_ratio            = prm.get_double("Shear penalty ratio");
+    shear_penalty          = prm.get_double("Shear penalty");
     force_tolerance        = prm.get_double("Contact force tolerance");
     fixed_penalty          = prm.get_double("Fixed point penalty");
     settling_steps         = prm.get_integer("Settling steps");
@@ -344,6 +366,11 @@ namespace rockdda::dda
                 s + "Shear penalty ratio",
                 shear_ratio,
                 "> 0");
+    io::require(shear_penalty >= 0. && std::isfinite(shear_penalty),
+                prm_file,
+                s + "Shear penalty",
+                shear_penalty,
+                ">= 0 N/m");
     io::require(force_tolerance >= 1e-8 && force_tolerance <= 0.1,
                 prm_file,
                 s + "Contact force tolerance",

@@ -234,9 +234,10 @@ namespace rockdda::dda
                              + "'; valid: 'auto' or a stiffness >= 0 N/m "
                                "(0 = auto)");
         }
-        c.law.shear_ratio     = shared.shear_ratio;
-        c.law.force_tolerance = shared.force_tolerance;
-        c.fixed_penalty       = shared.fixed_penalty;
+        c.law.shear_ratio         = shared.shear_ratio;
+        c.law.fixed_shear_penalty = shared.shear_penalty;
+        c.law.force_tolerance     = shared.force_tolerance;
+        c.fixed_penalty           = shared.fixed_penalty;
         c.solver = SolverParameters<2>::parse_parameters(prm, prm_file);
         const std::string mode = prm.get("Seismic input");
         hdf5_snapshots         = shared.hdf5_output;

@@ -182,6 +182,7 @@ namespace rockdda::dda3d
         c.max_open_close          = shared.max_open_close;
         c.max_displacement_ratio  = shared.max_displacement_ratio;
         c.law.shear_ratio         = shared.shear_ratio;
+        c.law.fixed_shear_penalty = shared.shear_penalty;
         c.law.force_tolerance     = shared.force_tolerance;
         c.fixed_penalty           = shared.fixed_penalty;
         const double      gravity = shared.gravity;

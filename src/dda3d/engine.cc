@@ -215,6 +215,11 @@ namespace rockdda::dda3d
                        + "; valid: >= 0");
     if (!(ctrl.law.normal_penalty > 0.) || !(ctrl.law.shear_ratio > 0.))
       throw InputError("contact penalty and shear ratio must be > 0");
+    if (!(ctrl.law.fixed_shear_penalty >= 0.)
+        || !std::isfinite(ctrl.law.fixed_shear_penalty))
+      throw InputError("shear penalty "
+                       + std::to_string(ctrl.law.fixed_shear_penalty)
+                       + " N/m; valid: >= 0 (0: the ratio x the penalty)");
     if (!(ctrl.max_displacement_ratio > 0.))
       throw InputError("maximum displacement ratio must be > 0");
     if (ctrl.fixed_penalty <= 0.)
@@ -616,12 +621,13 @@ namespace rockdda::dda3d
             }
             // The shared rule of both engines (dda/contact_mechanics.h) with
             // the representation error of the local coordinates the gap and
-            // the shear displacement are measured from as the round-off. No
-            // floor relative to the block size: times the spring it would let
-            // a locked contact carry k_n 1e-12 L beyond its strength, a force
-            // that grows with the penalty (0.2 N, 2.6 % of the shaking-table
-            // wedge's weight per contact at 1e12 N/m: the wedge stuck).
-            K.tolerance = dda::coordinate_round_off(g.p, g.q);
+            // the shear displacement are measured from as the round-off
+            // (gap_round_off(), unpadded). No floor relative to the block
+            // size: times the spring it would let a locked contact carry k_n
+            // 1e-12 L beyond its strength, a force that grows with the
+            // penalty (0.2 N, 2.6 % of the shaking-table wedge's weight per
+            // contact at 1e12 N/m: the wedge stuck).
+            K.tolerance = dda::gap_round_off(g.p, g.q);
             K.weight_tolerance
               = dda::contact_weight_tolerance(std::min(mass[g.i], mass[g.j]),
                                               body_accel,

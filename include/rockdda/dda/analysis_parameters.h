@@ -54,6 +54,9 @@ namespace rockdda::dda
     double max_displacement_ratio = 0.01;
     /// Shear penalty / normal penalty (-), > 0.
     double shear_ratio = 0.4;
+    /// Shear penalty (N/m), >= 0; 0: shear_ratio x the normal penalty
+    /// (dda::ContactLaw::fixed_shear_penalty).
+    double shear_penalty = 0.;
     /// Force tolerance of the contact conditions, fraction of the lighter
     /// block's weight (dda::ContactLaw::force_tolerance).
     double force_tolerance = 1e-4;

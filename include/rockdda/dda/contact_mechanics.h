@@ -134,8 +134,15 @@ namespace rockdda::dda
   {
     /// Normal penalty p (N/m).
     double normal_penalty = 1e11;
-    /// Shear penalty p_s = shear_ratio * p.
+    /// Shear penalty p_s = shear_ratio * p, unless fixed_shear_penalty > 0.
     double shear_ratio = 0.4;
+    /// Shear penalty p_s (N/m) independent of the normal one, >= 0; 0: p_s
+    /// = shear_ratio * p. A locked contact's shear spring much stiffer than
+    /// its blocks (p_s >> E L) locks their elastic (Poisson) deformation
+    /// into a self-stress between the contacts; in a wedge it raises the
+    /// normal forces and delays the onset of sliding (doc/theory/dda3d.md,
+    /// "Shear penalty").
+    double fixed_shear_penalty = 0.;
     /// Force tolerance of the open-close iteration as a fraction of the
     /// lighter block's weight (contact_weight_tolerance()): the accuracy
     /// knob of the contact conditions.
@@ -144,7 +151,8 @@ namespace rockdda::dda
     double
     shear_penalty() const
     {
-      return shear_ratio * normal_penalty;
+      return fixed_shear_penalty > 0. ? fixed_shear_penalty
+                                      : shear_ratio * normal_penalty;
     }
   };
 
@@ -232,17 +240,17 @@ namespace rockdda::dda
    * (escalated_tolerance()). The weight is N/m per metre of thickness in 2D and
    * N in 3D.
    *
-   * The engines differ in r alone. 3D uses the coordinates' round-off
-   * (coordinate_round_off()); 2D also adds 1e-12 x the smaller block's size
-   * (round_off_tolerance()). That term times k_n lets a locked contact carry
-   * k_n 1e-12 L beyond its strength, which grows with the penalty: it made
-   * the 3D shaking-table wedge stick at 1e12 N/m (c9d1a47, test
-   * LightWedgeOnStiffContactsYieldsAtTheYieldAcceleration), so 3D dropped
-   * it. 2D keeps it for now because its results at stiff penalties (the
-   * ratchet at 1e13 N/m) and its too-stiff penalty warning (p 1e-12 L
-   * against 1 % of a block's weight, engine_sanity.cc) were measured and
-   * calibrated with it; dropping it there changes 2D results and is left
-   * to a measured change of the 2D engine.
+   * The engines differ in r alone. 3D uses the representation error of the
+   * gap (gap_round_off()); 2D uses 4 x that (coordinate_round_off()) plus
+   * 1e-12 x the smaller block's size (round_off_tolerance()). That term times
+   * k_n lets a locked contact carry k_n 1e-12 L beyond its strength, which
+   * grows with the penalty: it made the 3D shaking-table wedge stick at 1e12
+   * N/m (c9d1a47, test LightWedgeOnStiffContactsYieldsAtTheYieldAcceleration),
+   * so 3D dropped it. 2D keeps it for now because its results at stiff
+   * penalties (the ratchet at 1e13 N/m) and its too-stiff penalty warning (p
+   * 1e-12 L against 1 % of a block's weight, engine_sanity.cc) were measured
+   * and calibrated with it; dropping it there changes 2D results and is left to
+   * a measured change of the 2D engine.
    */
   /// @{
 
@@ -257,6 +265,25 @@ namespace rockdda::dda
                        const Eigen::MatrixBase<DerivedQ> &Q)
   {
     return 4. * std::numeric_limits<double>::epsilon() * (P.norm() + Q.norm());
+  }
+
+  /**
+   * Representation error (m) of a gap or shear displacement measured between
+   * points @p P and @p Q in local coordinates: eps (|P| + |Q|), half an ulp
+   * of each coordinate and the rounding of the difference and of its
+   * projection. The 3D force tolerance's round-off floor: times the normal
+   * spring it is a force that a locked contact may carry beyond its
+   * strength, so it must not be padded. coordinate_round_off()'s 4 x this
+   * made 1.4e-3 of the shaking-table wedge's weight per contact at 4e13 N/m
+   * (14 x the weight tolerance): the wedge started each pulse late and slid
+   * 18 % short (benchmarks/dda3d-shaking-table, "Shear penalty").
+   */
+  template <typename DerivedP, typename DerivedQ>
+  inline double
+  gap_round_off(const Eigen::MatrixBase<DerivedP> &P,
+                const Eigen::MatrixBase<DerivedQ> &Q)
+  {
+    return std::numeric_limits<double>::epsilon() * (P.norm() + Q.norm());
   }
 
   /**

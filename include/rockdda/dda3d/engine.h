@@ -95,7 +95,7 @@ namespace rockdda::dda3d
     double normal_dashpot = 0., shear_dashpot = 0.;
     /// Round-off of the gap and shear displacement (m): the representation
     /// error of the local coordinates of the contact points
-    /// (dda::coordinate_round_off()).
+    /// (dda::gap_round_off()).
     double tolerance = 0.;
     /// Force below which a state change is noise (N;
     /// dda::contact_force_tolerance()): weight_tolerance, at least the
