@@ -36,7 +36,11 @@ def main():
         h = rows(os.path.join(folder, run + ".csv"))
         mode, dt, pen = run.split("-", 2)
         pen, _, options = pen.partition("-")
-        extra = ", stiff-mode velocity" if "sv" in options.split("-") else ""
+        opts = options.split("-")
+        extra = ", stiff-mode velocity" if "sv" in opts else ""
+        ks = [o[2:] for o in opts if o.startswith("ks")]
+        extra += (f", shear {float(ks[0]):.0e} N/m" if ks
+                  else ", shear 0.4 p")
         ax.plot([r["time_s"] for r in h],
                 [sum((r[f"mp1_u{c}_m"] - r.get(f"ground_u{c}_m", 0.)) * l
                      for c, l in zip("xyz", line)) for r in h],

@@ -12,6 +12,7 @@ usage: shaking_table.py ROCKDDA BLOCKS [--modes loading,displacement]
        [--contact-damping 0,1,...] [--step-damping 0,1,...]
        [--strain-damping 0,1e-4,...] [--stiff-velocity false,true]
        [--shared-strength false,true] [--shear-ratio 0.4,0.04,...]
+       [--shear-penalty 0,4e9,... (N/m; 0: the ratio x the penalty)]
        [--out shaking_table.csv] [--histories DIR]
 
 Columns: mode, dt_s, penalty_N_per_m, status (ok, or the run's failure),
@@ -23,7 +24,14 @@ onset against the yield acceleration is checked by the unit test), wall_s, steps
 DIR/MODE-DT-PENALTY[-cdZETA][-sbBETA][-sdETA][-sv].csv; contact_damping,
 contact_step_damping, strain_damping_s, stiff_velocity (key "Stiff mode
 velocity"), shared_strength (key "Face group shared strength", history
-names -ss), shear_ratio (key "Shear penalty ratio", history names -srX).
+names -ss), shear_ratio (key "Shear penalty ratio", history names -srX),
+shear_penalty_N_per_m (key "Shear penalty", history names -ksX). Every
+one of these keys is written into the run's parameter file, so the
+defaults here (false, false, 0.4, 0: Shi's velocity, each contact its own
+strength, the shear penalty 0.4 x the normal one) override the documented
+setting of the template (stiff-mode velocity, shared strength, 4e9 N/m):
+pass --stiff-velocity true --shared-strength true --shear-penalty 4e9 for
+it.
 """
 import argparse
 import csv
@@ -45,7 +53,7 @@ from fig4_2_error import summary  # noqa: E402
 # Keys of the DDA 3d section that the template leaves at their defaults.
 OPTIONAL = ("Contact damping ratio", "Contact step damping", "Strain damping",
             "Stiff mode velocity", "Face group shared strength",
-            "Shear penalty ratio")
+            "Shear penalty ratio", "Shear penalty")
 ONSET = 1e-4  # m: 1e3 x the elastic slip of the contact springs at 1e10 N/m
 
 
@@ -107,6 +115,9 @@ def main():
                    "comma-separated")
     p.add_argument("--shear-ratio", default="0.4",
                    help="Shear penalty ratio values (-), comma-separated")
+    p.add_argument("--shear-penalty", default="0",
+                   help="Shear penalty values (N/m; 0: the ratio x the "
+                   "normal penalty), comma-separated")
     p.add_argument("--out", default="shaking_table.csv")
     p.add_argument("--histories")
     a = p.parse_args()
@@ -134,22 +145,25 @@ def main():
                    float("nan"))
     rows = [["analytical", "1e-4", "-", "ok",
              f"{sum(e * l for e, l in zip(end, line)):.6f}", "0", "0",
-             f"{onset_a:.3f}", "", "", "", "", "", "", "", "", ""]]
+             f"{onset_a:.3f}", "", "", "", "", "", "", "", "", "", ""]]
     print(*rows[-1], flush=True)
     if a.histories:
         os.makedirs(a.histories, exist_ok=True)
         shutil.copy(os.path.join(ref, "statistics.csv"),
                     os.path.join(a.histories, "analytical.csv"))
-    for mode, zeta, beta, eta, sv, ss, sr, dt, pen in itertools.product(
+    for mode, zeta, beta, eta, sv, ss, sr, ks, dt, pen in itertools.product(
             a.modes.split(","), a.contact_damping.split(","),
             a.step_damping.split(","), a.strain_damping.split(","),
             a.stiff_velocity.split(","), a.shared_strength.split(","),
-            a.shear_ratio.split(","), a.dt.split(","),
+            a.shear_ratio.split(","), a.shear_penalty.split(","),
+            a.dt.split(","),
             a.penalty.split(",")):
         name = f"{mode}-{dt}-{pen}"
         replace = {"Time step": ["0.005", dt], "Contact penalty": pen,
                    "Seismic input": mode, "End time": a.end,
-                   "Duration": record}
+                   "Duration": record, "Stiff mode velocity": sv,
+                   "Face group shared strength": ss,
+                   "Shear penalty ratio": sr, "Shear penalty": ks}
         # (Keys at their defaults are left out: the history names
         # and an older driver stay as they were.)
         if zeta != "0":
@@ -162,21 +176,20 @@ def main():
             replace["Strain damping"] = eta
             name += f"-sd{eta}"
         if sv != "false":
-            replace["Stiff mode velocity"] = sv
             name += "-sv"
         if ss != "false":
-            replace["Face group shared strength"] = ss
             name += "-ss"
         if sr != "0.4":
-            replace["Shear penalty ratio"] = sr
             name += f"-sr{sr}"
+        if ks != "0":
+            name += f"-ks{ks}"
         out, status, wall = run(
             a.rockdda, os.path.join(PRM, "dda3d-shaking-table.prm"),
             replace, work, name, a.blocks)
         stats = os.path.join(out, "statistics.csv")
         if not os.path.exists(stats):
             rows.append([mode, dt, pen, status] + [""] * 7
-                        + [zeta, beta, eta, sv, ss, sr])
+                        + [zeta, beta, eta, sv, ss, sr, ks])
             print(*rows[-1], flush=True)
             continue
         hist = table(stats)
@@ -195,7 +208,7 @@ def main():
                      f"{wall:.2f}",
                      int(s.get("steps", 0)),
                      int(s.get("time_step_cuts", 0)), zeta, beta, eta, sv,
-                     ss, sr])
+                     ss, sr, ks])
         print(*rows[-1], flush=True)
         if a.histories:
             shutil.copy(stats, os.path.join(a.histories,
@@ -206,7 +219,7 @@ def main():
                     "error_final", "error_history", "onset_s", "wall_s", "steps", "cuts",
                     "contact_damping", "contact_step_damping",
                     "strain_damping_s", "stiff_velocity", "shared_strength",
-                    "shear_ratio"])
+                    "shear_ratio", "shear_penalty_N_per_m"])
         w.writerows(rows)
     shutil.rmtree(work)
 
