@@ -229,6 +229,49 @@ TEST(DdaSingleBlock, InclineSticking)
     EXPECT_NE(c.state, ContactState::sliding);
 }
 
+TEST(DdaSingleBlock, ShearPenaltySetOnItsOwnGivesTheElasticSlip)
+{
+  // Key 'Shear penalty' (dda::ContactLaw::fixed_shear_penalty): the shear
+  // springs take it instead of the ratio x the normal penalty. A 1 m block
+  // (W = 2700 g = 26.5 kN/m) sticking on a 30 deg incline (phi = 35 deg),
+  // static steps: its two base corners share the slope's load W sin(a)
+  // equally (equal springs, the same height on a uniformly strained
+  // block), so each slips elastically by W sin(a) / (2 p_s) = 6.6e-5 m at
+  // p_s = 1e8 N/m, and 400 times less with the default ratio (0.4 x 1e11
+  // N/m). What else could move them along the slope, the tilt on the
+  // unequal normal forces, is second order (measured: both within 1e-6).
+  const double alpha = M_PI / 6.;
+  for (const double ps : {1e8, 0.})
+    {
+      BlockSystem scene = incline_scene(alpha, 35.);
+      const auto  v0    = scene.blocks[1].polygon.vertices;
+      // Static steps of 0.1 s: the inertia term 2 M / dt^2 = 5.4e5 N/m is
+      // far below the springs, so each step ends at equilibrium.
+      Controls c                = controls(0.1, 0., 1e11);
+      c.law.fixed_shear_penalty = ps;
+      DdaSystem dda(scene, c);
+      dda.run_until(1.);
+      const double W = 2700. * g_earth;
+      const double expected
+        = W * std::sin(alpha) / (2. * (ps > 0. ? ps : 0.4 * 1e11));
+      const Point s_dir(std::cos(alpha), -std::sin(alpha));
+      double      slip = 0.;
+      for (int k : {0, 1})
+        slip += 0.5
+                * (dda.system().origin
+                   + dda.system().blocks[1].polygon.vertices[k] - v0[k])
+                    .dot(s_dir);
+      std::printf("shear penalty %.0e N/m: base corners slip %.6e m, "
+                  "W sin(a) / (2 p_s) = %.6e m\n",
+                  ps,
+                  slip,
+                  expected);
+      EXPECT_NEAR(slip / expected, 1., 1e-3);
+      for (const auto &ct : dda.contacts())
+        EXPECT_EQ(ct.state, ContactState::locked);
+    }
+}
+
 TEST(DdaSingleBlock, StrainDampingDampsTheStrainModeNotTheSlide)
 {
   // A soft 1 m block (E = 10 MPa, rho = 2700 kg/m^3) on a 30 deg incline,
