@@ -8,11 +8,15 @@
  * centroid.
  *
  *   make_wedge_scene OUT.blocks [phi_deg [height_m [slope_dip slope_dd
- *                    [j1_dip j1_dd j2_dip j2_dd]]]]
+ *                    [j1_dip j1_dd j2_dip j2_dd [margin_m]]]]]
  *
  * Defaults: phi = 26.76 deg (the angle that makes 0.14 g critical, as the
  * thesis chose its friction angle), height 0.1 m below a slope face
- * 80/000.5 (the wedge is about 0.2 m long, as the 13 x 20 cm model).
+ * 80/000.5 (the wedge is about 0.2 m long, as the 13 x 20 cm model), a
+ * trough 0.3 m longer than the wedge on every side: the wedge stays on it
+ * for the whole 0.17 m of the 20 s record. (The trough was once only the
+ * height, 0.1 m, longer: from about 16 s the wedge's toe ran off its end,
+ * and at dt = 1 ms it jammed on the trough's end edges.)
  */
 #include <rockdda/dda3d/block_file.h>
 #include <rockdda/dda3d/generators.h>
@@ -33,7 +37,8 @@ main(int argc, char **argv)
   if (argc < 2)
     {
       std::cerr << "usage: make_wedge_scene OUT.blocks [phi_deg [height_m "
-                   "[slope_dip slope_dd [j1_dip j1_dd j2_dip j2_dd]]]]\n";
+                   "[slope_dip slope_dd [j1_dip j1_dd j2_dip j2_dd "
+                   "[margin_m]]]]]\n";
       return 2;
     }
   auto arg = [&](const int k, const double fallback) {
@@ -42,13 +47,13 @@ main(int argc, char **argv)
   const double phi = arg(2, 26.76), height = arg(3, 0.1);
   const double slope_dip = arg(4, 80.), slope_dd = arg(5, 0.5);
   const double j1 = arg(6, 51.4), d1 = arg(7, 65.8), j2 = arg(8, 51.4),
-               d2 = arg(9, 295.2);
+               d2 = arg(9, 295.2), margin = arg(10, 0.3);
   try
     {
       const WedgeInTrough w
         = make_wedge_in_trough({j1, d1, j2, d2, slope_dip, slope_dd},
                                height,
-                               height);
+                               margin);
       dda::JointMaterial joint;
       joint.friction_deg = phi;
       const BlockSystem s

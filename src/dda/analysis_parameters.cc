@@ -168,8 +168,8 @@ namespace rockdda::dda
                   + ") locks their elastic (Poisson) deformation into a "
                     "self-stress between the contacts: in a wedge it raises "
                     "the normal forces and delays the onset of sliding. "
-                    "0.2 E L keeps that below 1 % while the locked elastic "
-                    "slip W / p_s stays negligible (benchmarks/"
+                    "0.05 E L keeps that below 0.3 % while the locked "
+                    "elastic slip W / p_s stays negligible (benchmarks/"
                     "dda3d-shaking-table, 'Shear penalty').");
     io::declare(prm,
                 "Contact force tolerance",

@@ -275,8 +275,9 @@ namespace rockdda::dda
    * spring it is a force that a locked contact may carry beyond its
    * strength, so it must not be padded. coordinate_round_off()'s 4 x this
    * made 1.4e-3 of the shaking-table wedge's weight per contact at 4e13 N/m
-   * (14 x the weight tolerance): the wedge started each pulse late and slid
-   * 18 % short (benchmarks/dda3d-shaking-table, "Shear penalty").
+   * (14 x the weight tolerance): the wedge started each pulse late, 7 %
+   * short with the shear penalty at 4e9 N/m, against 1.8 % unpadded
+   * (benchmarks/dda3d-shaking-table, "Shear penalty").
    */
   template <typename DerivedP, typename DerivedQ>
   inline double
