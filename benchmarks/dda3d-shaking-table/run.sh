@@ -17,7 +17,7 @@ hist=$(mktemp -d)
 trap 'rm -rf "$hist"' EXIT
 cd "$here"
 penalties=1e10,2e10,4e10,1e11,1e12,1e13,2e13,4e13
-documented="--stiff-velocity true --shared-strength true"
+documented="--stiff-velocity true"
 # The documented setting (parameter-files/dda3d-shaking-table.prm): shear
 # penalty 1e9 N/m whatever the normal one.
 $py shaking_table.py "$build/rockdda" "$blocks" --penalty $penalties \
@@ -35,8 +35,8 @@ $py shaking_table.py "$build/rockdda" "$blocks" --penalty 4e10,1e12,4e13 \
   $documented --shear-penalty 1e9 --dt 0.002,0.001 \
   --out shaking_table_dt_documented.csv
 $py plot_history.py "$hist" shaking_table.png \
-  loading-0.005-4e10-sv-ss-ks1e9 displacement-0.005-4e10-sv-ss-ks1e9 \
-  loading-0.005-4e13-sv-ss-ks1e9 loading-0.005-4e13-sv-ss
+  loading-0.005-4e10-sv-ks1e9 displacement-0.005-4e10-sv-ks1e9 \
+  loading-0.005-4e13-sv-ks1e9 loading-0.005-4e13-sv
 if [ "$older" = "--older" ]; then
   # Shi's velocity, each contact its own strength, shear 0.4 p (the
   # engine's defaults), then the stiff-mode velocity alone.
