@@ -145,10 +145,8 @@ namespace rockdda::dda
     if (!(ctrl.law.shear_ratio > 0.))
       throw InputError("shear penalty ratio " + num(ctrl.law.shear_ratio)
                        + "; valid: > 0");
-    if (!(ctrl.law.fixed_shear_penalty >= 0.)
-        || !std::isfinite(ctrl.law.fixed_shear_penalty))
-      throw InputError("shear penalty " + num(ctrl.law.fixed_shear_penalty)
-                       + " N/m; valid: >= 0 (0: the ratio x the penalty)");
+    if (const std::string e = shear_penalty_error(ctrl.law); !e.empty())
+      throw InputError(e);
     for (std::size_t j = 0; j < scene.joints.size(); ++j)
       for (const auto &[what, k] :
            {std::pair<const char *, double>{"normal",

@@ -215,11 +215,8 @@ namespace rockdda::dda3d
                        + "; valid: >= 0");
     if (!(ctrl.law.normal_penalty > 0.) || !(ctrl.law.shear_ratio > 0.))
       throw InputError("contact penalty and shear ratio must be > 0");
-    if (!(ctrl.law.fixed_shear_penalty >= 0.)
-        || !std::isfinite(ctrl.law.fixed_shear_penalty))
-      throw InputError("shear penalty "
-                       + std::to_string(ctrl.law.fixed_shear_penalty)
-                       + " N/m; valid: >= 0 (0: the ratio x the penalty)");
+    if (const std::string e = dda::shear_penalty_error(ctrl.law); !e.empty())
+      throw InputError(e);
     if (!(ctrl.max_displacement_ratio > 0.))
       throw InputError("maximum displacement ratio must be > 0");
     if (ctrl.fixed_penalty <= 0.)

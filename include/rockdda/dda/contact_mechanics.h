@@ -156,6 +156,23 @@ namespace rockdda::dda
     }
   };
 
+  /**
+   * What is wrong with @p law's shear penalty set on its own (empty if
+   * nothing): ContactLaw::fixed_shear_penalty negative or not finite. Both
+   * engines throw InputError with it.
+   */
+  inline std::string
+  shear_penalty_error(const ContactLaw &law)
+  {
+    if (law.fixed_shear_penalty >= 0. && std::isfinite(law.fixed_shear_penalty))
+      return "";
+    std::ostringstream o;
+    o.precision(6);
+    o << "shear penalty " << law.fixed_shear_penalty
+      << " N/m; valid: >= 0 (0: the ratio x the penalty)";
+    return o.str();
+  }
+
   /// The normal and shear spring of one contact (N/m per m thickness).
   struct ContactSprings
   {
@@ -255,19 +272,6 @@ namespace rockdda::dda
   /// @{
 
   /**
-   * Round-off (m) of a gap or shear displacement measured between points
-   * @p P and @p Q given in local coordinates: their representation error,
-   * 4 eps (|P| + |Q|). Any dimension.
-   */
-  template <typename DerivedP, typename DerivedQ>
-  inline double
-  coordinate_round_off(const Eigen::MatrixBase<DerivedP> &P,
-                       const Eigen::MatrixBase<DerivedQ> &Q)
-  {
-    return 4. * std::numeric_limits<double>::epsilon() * (P.norm() + Q.norm());
-  }
-
-  /**
    * Representation error (m) of a gap or shear displacement measured between
    * points @p P and @p Q in local coordinates: eps (|P| + |Q|), half an ulp
    * of each coordinate and the rounding of the difference and of its
@@ -285,6 +289,20 @@ namespace rockdda::dda
                 const Eigen::MatrixBase<DerivedQ> &Q)
   {
     return std::numeric_limits<double>::epsilon() * (P.norm() + Q.norm());
+  }
+
+  /**
+   * Round-off (m) of a gap or shear displacement measured between points
+   * @p P and @p Q given in local coordinates: 4 x their representation
+   * error gap_round_off(), 4 eps (|P| + |Q|) (the factor is a power of two:
+   * the same bits as written out). Any dimension.
+   */
+  template <typename DerivedP, typename DerivedQ>
+  inline double
+  coordinate_round_off(const Eigen::MatrixBase<DerivedP> &P,
+                       const Eigen::MatrixBase<DerivedQ> &Q)
+  {
+    return 4. * gap_round_off(P, Q);
   }
 
   /**
