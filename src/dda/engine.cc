@@ -164,9 +164,12 @@ namespace rockdda::dda
       ctrl.max_iterations = 1;
     if (ctrl.fixed_penalty <= 0.)
       ctrl.fixed_penalty = 10. * ctrl.law.normal_penalty;
-    dt_min
-      = ctrl.min_time_step > 0. ? ctrl.min_time_step : 1e-6 * ctrl.time_step;
-    dt = ctrl.time_step;
+    step_control = TimeStepControl(ctrl.time_step,
+                                   ctrl.min_time_step > 0.
+                                     ? ctrl.min_time_step
+                                     : 1e-6 * ctrl.time_step,
+                                   ctrl.cut_factor,
+                                   ctrl.growth);
     for (const auto &b : scene.blocks)
       {
         block_size.push_back(dda::block_size(b.polygon));
@@ -216,7 +219,7 @@ namespace rockdda::dda
     friction_work       = 0.;
     load_work           = 0.;
     damping_work        = 0.;
-    dt                  = ctrl.time_step;
+    step_control.reset();
     last_solution.setZero();
     for (auto &b : scene.blocks)
       {
@@ -242,9 +245,8 @@ namespace rockdda::dda
   {
     if (!(time_step > 0.) || !std::isfinite(time_step))
       throw InputError("time step " + num(time_step) + " s; valid: dt > 0");
-    dt_min *= time_step / ctrl.time_step;
+    step_control.set_nominal(time_step);
     ctrl.time_step = time_step;
-    dt             = std::min(dt, time_step);
   }
 
 
@@ -256,18 +258,14 @@ namespace rockdda::dda
     report.time             = t;
     const double        eps = 1e-9 * ctrl.time_step;
     const unsigned long limit
-      = ctrl.max_steps > 0
-          ? ctrl.max_steps
-          : static_cast<unsigned long>(100. * std::max(0., end_time - t)
-                                       / ctrl.time_step)
-              + 1000;
+      = step_control.step_limit(end_time - t, ctrl.max_steps);
     unsigned long steps = 0;
     while (t < end_time - eps)
       {
         if (++steps > limit)
           throw DdaFailure(
             "stopped at t = " + num(t) + " s after " + std::to_string(limit)
-            + " steps (step limit): the time step stayed at " + num(dt)
+            + " steps (step limit): the time step stayed at " + num(step_control.current())
             + " s, far below the requested " + num(ctrl.time_step) + " s");
         report = advance(end_time - t);
       }
@@ -295,8 +293,11 @@ namespace rockdda::dda
     const double ground_step
       = !moving_ground ? 0.
         : scene.seismic.vertical_record.acceleration.empty()
-          ? std::abs(ground.displacement(t + dt) - ground.displacement(t))
-          : (ground_displacement(t + dt) - ground_displacement(t)).norm();
+          ? std::abs(ground.displacement(t + step_control.current())
+                     - ground.displacement(t))
+          : (ground_displacement(t + step_control.current())
+             - ground_displacement(t))
+              .norm();
     for (std::size_t b = 0; b < polys.size(); ++b)
       {
         detection.vertex_reach[b] = ctrl.search_factor * allowed_step[b];
@@ -351,24 +352,22 @@ namespace rockdda::dda
     unsigned    cuts = 0;
     for (;;)
       {
-        const double h = std::min(dt, max_length);
+        const double h = step_control.attempt(max_length);
         if (try_step(h, start, report, why))
           break;
         ++cuts;
         ++n_cuts;
-        dt = h / ctrl.cut_factor;
-        if (dt < dt_min)
+        if (!step_control.cut(h))
           throw DdaFailure("step " + std::to_string(n_steps + 1)
                            + " at t = " + num(t) + " s: " + why
                            + "; cutting the time step further would go below "
                              "the minimum "
-                           + num(dt_min)
+                           + num(step_control.minimum())
                            + " s. Check the penalty, the time "
                              "step and the geometry.");
       }
     report.cuts = cuts;
-    if (cuts == 0 && report.iterations <= std::max(2u, ctrl.max_iterations / 2))
-      dt = std::min(ctrl.time_step, dt * ctrl.growth);
+    step_control.accept(cuts, report.iterations, ctrl.max_iterations);
     return report;
   }
 

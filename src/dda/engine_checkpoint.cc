@@ -81,7 +81,7 @@ namespace rockdda::dda
         w.put(c.slip_rate);
       }
     w.put(t);
-    w.put(dt);
+    w.put(step_control.current());
     w.put<std::uint64_t>(n_steps);
     w.put<std::uint64_t>(n_cuts);
     w.put<std::uint64_t>(n_iterations);
@@ -226,7 +226,7 @@ namespace rockdda::dda
     current_contacts = std::move(contacts);
     contact_set.store(current_contacts);
     t                    = time;
-    dt                   = step;
+    step_control.restore(step);
     n_steps              = steps;
     n_cuts               = cuts;
     n_iterations         = iterations;

@@ -6,6 +6,7 @@
  */
 #include <rockdda/dda/contact_damping.h>
 #include <rockdda/dda/logarithmic_strain.h>
+#include <rockdda/dda/state_check.h>
 #include <rockdda/dda/strain_damping.h>
 #include <rockdda/dda3d/engine.h>
 #include <rockdda/io/error.h>
@@ -34,73 +35,12 @@ namespace rockdda::dda3d
               const double             f,
               const JointMaterial     &joint)
   {
-    StateCheck r;
-    r.state                  = contact.state;
-    r.direction              = direction;
-    const double          kn = kin.normal_stiffness, ks = kin.shear_stiffness;
-    const double          n  = -kn * g;
-    const Eigen::Vector2d fs = -ks * s; // shear spring force on block i
-    auto                  slide_along = [&](const Eigen::Vector2d &v) {
-      const double l = v.norm();
-      return l > 0. ? Eigen::Vector2d(v / l) : direction;
-    };
-    if (contact.state == ContactState::open)
-      {
-        if (n > f)
-          {
-            Contact locked = contact;
-            locked.state   = ContactState::locked;
-            r.state        = ContactState::locked;
-            r.normal_force = n;
-            if (dda::frictionless(locked, joint)
-                || fs.norm()
-                     > dda::shear_strength(locked, n, contact.area, joint) + f)
-              {
-                r.state     = ContactState::sliding;
-                r.direction = slide_along(s);
-              }
-          }
-      }
-    else
-      {
-        const double tension_limit
-          = !contact.broken && contact.state == ContactState::locked
-              ? joint.tensile * contact.area
-              : 0.;
-        if (-n > tension_limit + f)
-          r.state = ContactState::open;
-        else
-          {
-            const double strength
-              = dda::shear_strength(contact, n, contact.area, joint);
-            r.normal_force = n;
-            if (dda::frictionless(contact, joint))
-              {
-                r.state     = ContactState::sliding;
-                r.direction = slide_along(s);
-              }
-            else if (contact.state == ContactState::locked)
-              {
-                r.shear_force = fs;
-                if (fs.norm() > strength + f)
-                  {
-                    r.state     = ContactState::sliding;
-                    r.direction = slide_along(s);
-                  }
-              }
-            else if (direction.squaredNorm() == 0.)
-              r.state = ContactState::locked;
-            else // sliding
-              {
-                if (ks * s.dot(direction) < -f)
-                  r.state = ContactState::locked;
-                else
-                  r.shear_force = -strength * r.direction;
-              }
-          }
-      }
-    r.changed = r.state != contact.state;
-    return r;
+    dda::StateCheckSprings k;
+    k.normal_stiffness = kin.normal_stiffness;
+    k.shear_stiffness  = kin.shear_stiffness;
+    k.force_tolerance  = f;
+    k.extent           = contact.area;
+    return dda::check_contact_state(contact, direction, g, s, k, joint);
   }
 
 
@@ -241,7 +181,7 @@ namespace rockdda::dda3d
                   > 1e-6 * s * s)
                 clamped_[b] = 1;
       }
-    dt_now = ctrl.dt;
+    steps_ = dda::TimeStepControl(ctrl.dt, ctrl.min_dt_ratio * ctrl.dt);
   }
 
 
@@ -249,11 +189,19 @@ namespace rockdda::dda3d
   void
   Engine::step()
   {
+    advance(std::numeric_limits<double>::infinity());
+  }
+
+
+
+  void
+  Engine::advance(const double max_length)
+  {
     const BlockSystem          saved_system   = system;
     const std::vector<Contact> saved_contacts = stored;
     const double saved_friction = friction_work, saved_load = load_work,
                  saved_damping = damping_work;
-    double h                   = dt_now;
+    double h                   = steps_.attempt(max_length);
     int    cuts                = 0;
     while (!try_step(h))
       {
@@ -262,17 +210,18 @@ namespace rockdda::dda3d
         friction_work = saved_friction;
         load_work     = saved_load;
         damping_work  = saved_damping;
-        h /= 3.;
         ++cuts;
-        if (h < ctrl.min_dt_ratio * ctrl.dt)
+        if (!steps_.cut(h))
           throw dda::DdaFailure(
-            "3D DDA: the time step fell below " + io::format_number(h, 3)
+            "3D DDA: the time step fell below "
+            + io::format_number(steps_.current(), 3)
             + " s (Minimum time step ratio "
             + io::format_number(ctrl.min_dt_ratio, 3) + " x "
             + io::format_number(ctrl.dt, 3)
             + " s) at t = " + io::format_number(t, 8)
             + " s (the open-close iteration does not converge, or blocks "
               "move too far per step)");
+        h = steps_.attempt(max_length);
       }
     t += h;
     ++n_steps;
@@ -281,10 +230,9 @@ namespace rockdda::dda3d
     stats.cuts      = cuts;
     stats.dt        = h;
     first_detection = false;
-    if (cuts == 0 && stats.iterations <= std::max(2, ctrl.max_open_close / 2))
-      dt_now = std::min(ctrl.dt, 1.3 * h);
-    else
-      dt_now = h;
+    steps_.accept(static_cast<unsigned>(cuts),
+                  static_cast<unsigned>(stats.iterations),
+                  static_cast<unsigned>(ctrl.max_open_close));
   }
 
 
@@ -293,11 +241,7 @@ namespace rockdda::dda3d
   Engine::advance_to(const double t_end)
   {
     const double        t0 = t;
-    const unsigned long limit
-      = ctrl.max_steps > 0 ? ctrl.max_steps
-                           : static_cast<unsigned long>(
-                               std::min(1e15, 100. * (t_end - t0) / ctrl.dt))
-                               + 1000ul;
+    const unsigned long limit = steps_.step_limit(t_end - t0, ctrl.max_steps);
     unsigned long steps = 0;
     while (t < t_end - 1e-12 * ctrl.dt)
       {
@@ -310,9 +254,7 @@ namespace rockdda::dda3d
             + " s of " + io::format_number(ctrl.dt, 3)
             + " s: the open-close iteration does not converge, or blocks move "
               "too far per step)");
-        if (t + dt_now > t_end)
-          dt_now = t_end - t;
-        step();
+        advance(t_end - t);
       }
   }
 
@@ -343,7 +285,7 @@ namespace rockdda::dda3d
       }
     ctrl   = saved;
     t      = t0;
-    dt_now = ctrl.dt;
+    steps_.reset();
     for (auto &b : system.blocks)
       {
         b.velocity.setZero();

@@ -69,7 +69,7 @@ namespace rockdda::dda3d
         w.put(c.slip_rate);
       }
     w.put(t);
-    w.put(dt_now);
+    w.put(steps_.current());
     w.put<std::uint64_t>(n_steps);
     w.put<std::uint64_t>(n_cuts);
     w.put<std::uint64_t>(n_iterations);
@@ -174,7 +174,7 @@ namespace rockdda::dda3d
     system          = std::move(s);
     stored          = std::move(contacts);
     t               = time;
-    dt_now          = step;
+    steps_.restore(step);
     n_steps         = steps;
     n_cuts          = cuts;
     n_iterations    = iterations;

@@ -577,8 +577,12 @@ TEST(Dda3dConcave, LPrismDroppedFlatLandsOnAllItsBottomVertices)
   // the contact (as the convex free-fall test). Rest after 1 s: every one
   // of its 6 bottom corners carries a closed vertical contact, the bottom
   // stays level (tilt below 1e-6 rad) and the contact forces carry the
-  // weight (mean of the last two steps within 1e-5, the convex resting
-  // block's bound).
+  // weight: the mean of the last two steps within 1e-4 of it, the state
+  // check's force tolerance (1e-4 of the lighter block's weight), since
+  // the impact's vibration is not yet gone at 1 s (measured at steps of dt:
+  // 7.0e-5 on the box, 2.5e-5 on the L-prism; the 4e-7 measured before the
+  // shared step control came from steps that never grew back to dt after
+  // the first one shortened to an output time).
   for (const bool on_l : {false, true})
     {
       const double     drop = 0.02;
@@ -606,9 +610,12 @@ TEST(Dda3dConcave, LPrismDroppedFlatLandsOnAllItsBottomVertices)
       const double fall  = -engine.displacement(1).z();
       const double exact = 0.5 * g * std::pow(engine.time(), 2);
       double       f_now = 0., f_before = 0.;
+      // Steps of dt to about 1 s (not clipped to 1 s: the mean of two
+      // steps cancels the stiff contact modes' period-2 oscillation only
+      // if the two steps are equally long).
       while (engine.time() < 1. - 1e-9)
         {
-          engine.advance_to(std::min(1., engine.time() + c.dt));
+          engine.advance_to(engine.time() + c.dt);
           f_before = f_now;
           f_now    = contact_force(engine, 1).z();
         }
@@ -641,7 +648,7 @@ TEST(Dda3dConcave, LPrismDroppedFlatLandsOnAllItsBottomVertices)
       EXPECT_LT(std::abs(fall - exact), 1e-6 * exact);
       EXPECT_EQ(n_carried, 6);
       EXPECT_LT(tilt, 1e-6);
-      EXPECT_NEAR(0.5 * (f_now + f_before) / weight, 1., 1e-5);
+      EXPECT_NEAR(0.5 * (f_now + f_before) / weight, 1., 1e-4);
       // The bottom rests on the plane, within the springs' compression.
       EXPECT_NEAR(poly.vertices[0].z() + o.z(), 0., 1e-6);
     }

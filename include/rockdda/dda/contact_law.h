@@ -108,16 +108,12 @@ namespace rockdda::dda
   };
 
   /**
-   * Mohr-Coulomb check of the open-close iteration for a contact whose
-   * latest gap is @p g and shear displacement @p s (m), with force
-   * criteria (f the force tolerance; k_n and k_s the contact's springs,
-   * ContactKinematics::normal_stiffness and shear_stiffness):
-   * - open -> locked when the compressive force -k_n g exceeds f;
-   * - closed -> open when the tensile force k_n g exceeds T l + f (T only
-   *   while the joint is intact and locked);
-   * - locked -> sliding when |k_s s| > strength + f (direction of s);
-   * - sliding -> locked when the slip reverses against the sliding
-   *   direction by more than f / k_s.
+   * The state check of the open-close iteration
+   * (dda::check_contact_state(), the one implementation of both engines)
+   * for a contact whose latest gap is @p g and shear displacement @p s (m)
+   * along the edge, with the force and hold tolerances of @p kinematics. A
+   * locked contact reports its spring force k_s s as shear_force (this
+   * engine's convention), a sliding one its friction on block i.
    */
   StateCheck
   check_state(const Contact           &contact,

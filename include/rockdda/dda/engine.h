@@ -13,6 +13,7 @@
 #include <rockdda/dda/contact_set.h>
 #include <rockdda/dda/failure.h>
 #include <rockdda/dda/linear_solver.h>
+#include <rockdda/dda/time_step_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -290,7 +291,7 @@ namespace rockdda::dda
     double
     time_step() const
     {
-      return dt;
+      return step_control.current();
     }
     double
     domain_size() const
@@ -575,8 +576,9 @@ namespace rockdda::dda
     GroundMotionIntegral     ground;
     Eigen::VectorXd          last_solution;
     std::vector<std::string> warning_list;
-    double                   t = 0., dt = 0., domain = 0.;
-    double                   dt_min = 0.;
+    double                   t = 0., domain = 0.;
+    /// The adaptive time step (current, nominal and minimum step).
+    TimeStepControl step_control;
     /// Allowed vertex displacement per step of each block (m), and its
     /// size (larger side of its bounding box at t = 0, m).
     std::vector<double> allowed_step, block_size;

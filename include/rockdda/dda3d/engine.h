@@ -13,6 +13,8 @@
 #include <rockdda/dda/contact_mechanics.h>
 #include <rockdda/dda/failure.h>
 #include <rockdda/dda/linear_solver.h>
+#include <rockdda/dda/state_check.h>
+#include <rockdda/dda/time_step_control.h>
 #include <rockdda/dda3d/block_matrices.h>
 #include <rockdda/dda3d/contact_detection.h>
 #include <rockdda/dda3d/local_scene.h>
@@ -108,32 +110,18 @@ namespace rockdda::dda3d
     double weight_tolerance = 0.;
   };
 
-  /// Result of the Mohr-Coulomb check of one contact after a solve.
-  struct StateCheck
-  {
-    ContactState state;
-    /// Normal force (N, compression positive).
-    double normal_force = 0.;
-    /// Shear force on block i (N) in the tangent basis.
-    Eigen::Vector2d shear_force = Eigen::Vector2d::Zero();
-    /// Sliding direction in the tangent basis (unit; zero if none).
-    Eigen::Vector2d direction = Eigen::Vector2d::Zero();
-    bool            changed   = false;
-  };
+  /// Result of the Mohr-Coulomb check of one contact after a solve
+  /// (dda::check_contact_state()): forces in N, the shear force and the
+  /// sliding direction in the tangent basis.
+  using StateCheck = dda::StateCheckOf<Eigen::Vector2d>;
 
   /**
-   * The 3D form of the 2D engine's state check (dda::check_state()), with
-   * the shear displacement @p s a vector in the contact plane and the
-   * sliding direction @p direction a unit vector there (k_n, k_s the
-   * contact's springs, f the force tolerance):
-   * - open -> locked when -k_n g > f (sliding at once if |k_s s| exceeds
-   *   the strength + f);
-   * - closed -> open when k_n g > T A + f (T only while intact and locked);
-   * - locked -> sliding when |k_s s| > strength + f, along s;
-   * - sliding -> locked when the slip reverses, k_s s . direction < -f
-   *   (@p direction is not changed here: the engine sets it from the
-   *   resultant of the contact's face group, doc/theory/dda3d.md);
-   * - a frictionless contact is sliding whenever closed.
+   * The state check of the open-close iteration (dda::check_contact_state(),
+   * the one implementation of both engines) of a contact with shear
+   * displacement @p s in the contact plane, sliding along the unit vector
+   * @p direction (not changed here: the engine sets it from the resultant
+   * of the contact's face group, doc/theory/dda3d.md), with the force
+   * tolerance @p force_tolerance (N) and no hold.
    */
   StateCheck
   check_state(const Contact           &contact,
@@ -349,7 +337,7 @@ namespace rockdda::dda3d
     double
     time_step() const
     {
-      return dt_now;
+      return steps_.current();
     }
 
     /// Statistics of the last accepted step.
@@ -378,8 +366,13 @@ namespace rockdda::dda3d
     bool
     try_step(const double h);
 
+    /// One step of at most @p max_length (s), cut until it converges.
+    void
+    advance(double max_length);
+
     EngineControls       ctrl;
-    double               dt_now = 0.;
+    /// The adaptive time step (dda::TimeStepControl, shared with 2D).
+    dda::TimeStepControl steps_;
     std::vector<char>    clamped_;
     std::vector<Contact> stored;
     bool                 first_detection = true;
