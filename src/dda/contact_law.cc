@@ -20,11 +20,11 @@ namespace rockdda::dda
               const JointMaterial     &joint)
   {
     StateCheckSprings k;
-    k.normal_stiffness = kin.normal_stiffness;
-    k.shear_stiffness  = kin.shear_stiffness;
-    k.force_tolerance  = kin.force_tolerance;
-    k.hold_tolerance   = kin.hold_tolerance;
-    k.extent           = kin.length;
+    k.normal_stiffness           = kin.normal_stiffness;
+    k.shear_stiffness            = kin.shear_stiffness;
+    k.force_tolerance            = kin.force_tolerance;
+    k.hold_tolerance             = kin.hold_tolerance;
+    k.extent                     = kin.length;
     const StateCheckOf<double> c = check_contact_state(
       contact, static_cast<double>(contact.slide_direction), g, s, k, joint);
     StateCheck r;

@@ -164,12 +164,12 @@ namespace rockdda::dda
       ctrl.max_iterations = 1;
     if (ctrl.fixed_penalty <= 0.)
       ctrl.fixed_penalty = 10. * ctrl.law.normal_penalty;
-    step_control = TimeStepControl(ctrl.time_step,
-                                   ctrl.min_time_step > 0.
-                                     ? ctrl.min_time_step
-                                     : 1e-6 * ctrl.time_step,
-                                   ctrl.cut_factor,
-                                   ctrl.growth);
+    step_control
+      = TimeStepControl(ctrl.time_step,
+                        ctrl.min_time_step > 0. ? ctrl.min_time_step
+                                                : 1e-6 * ctrl.time_step,
+                        ctrl.cut_factor,
+                        ctrl.growth);
     for (const auto &b : scene.blocks)
       {
         block_size.push_back(dda::block_size(b.polygon));
@@ -265,8 +265,9 @@ namespace rockdda::dda
         if (++steps > limit)
           throw DdaFailure(
             "stopped at t = " + num(t) + " s after " + std::to_string(limit)
-            + " steps (step limit): the time step stayed at " + num(step_control.current())
-            + " s, far below the requested " + num(ctrl.time_step) + " s");
+            + " steps (step limit): the time step stayed at "
+            + num(step_control.current()) + " s, far below the requested "
+            + num(ctrl.time_step) + " s");
         report = advance(end_time - t);
       }
     return report;

@@ -225,7 +225,7 @@ namespace rockdda::dda
     clamped_block.resize(block_size.size(), 0);
     current_contacts = std::move(contacts);
     contact_set.store(current_contacts);
-    t                    = time;
+    t = time;
     step_control.restore(step);
     n_steps              = steps;
     n_cuts               = cuts;

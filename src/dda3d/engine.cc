@@ -240,9 +240,9 @@ namespace rockdda::dda3d
   void
   Engine::advance_to(const double t_end)
   {
-    const double        t0 = t;
+    const double        t0    = t;
     const unsigned long limit = steps_.step_limit(t_end - t0, ctrl.max_steps);
-    unsigned long steps = 0;
+    unsigned long       steps = 0;
     while (t < t_end - 1e-12 * ctrl.dt)
       {
         if (steps++ >= limit)
@@ -283,8 +283,8 @@ namespace rockdda::dda3d
         ctrl = saved;
         throw;
       }
-    ctrl   = saved;
-    t      = t0;
+    ctrl = saved;
+    t    = t0;
     steps_.reset();
     for (auto &b : system.blocks)
       {

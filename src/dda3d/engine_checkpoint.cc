@@ -171,9 +171,9 @@ namespace rockdda::dda3d
                        + std::to_string(time)
                        + " s, dt = " + std::to_string(step) + " s)");
 
-    system          = std::move(s);
-    stored          = std::move(contacts);
-    t               = time;
+    system = std::move(s);
+    stored = std::move(contacts);
+    t      = time;
     steps_.restore(step);
     n_steps         = steps;
     n_cuts          = cuts;

@@ -740,8 +740,8 @@ TEST(Dda3dSeismic, ThesisFig4_2AAndBWithTable4_1BlockAgainstSliding3d)
   for (const bool b : {false, true})
     {
       Summary      s;
-      const double error
-        = fig4_2_error(b, 2e7, 0.005, 1e10, "  set Strain damping = 5e-3\n", &s);
+      const double error = fig4_2_error(
+        b, 2e7, 0.005, 1e10, "  set Strain damping = 5e-3\n", &s);
       EXPECT_LT(error, 0.01);
       // The damping dissipates (the ledger books it) and no energy is
       // created: the balance never rises above its start by more than the
@@ -978,7 +978,7 @@ TEST(Dda3dSeismic, ShakingTableWedgeRunsOutWithVelocityWeakeningAsSliding3d)
   const double az = 0.5, v0 = 1e-5;
   const double phi = analytical::critical_friction_angle_wedge(
     51.4, 65.8, 51.4, 295.2, az, 0.14);
-  const double       record = 12., T = 3.5, dt = 1e-3, penalty = 4e10;
+  const double record = 12., T = 3.5, dt = 1e-3, penalty = 4e10;
   // The documented setting's shear spring and end-of-step velocity
   // (parameter-files/dda3d-shaking-table.prm).
   const std::string documented
@@ -1028,13 +1028,13 @@ TEST(Dda3dSeismic, ShakingTableWedgeRunsOutWithVelocityWeakeningAsSliding3d)
       const auto                                 exact = slide(run.a_minus_b);
       double                                     wall  = 0.;
       std::vector<std::map<std::string, double>> rows;
-      const auto                                 s
-        = run_dda3d("dda3d-rate-" + run.name,
-                    blocks,
-                    ground
-                      + shaking_table_prm(T, dt, penalty, "loading", documented + run.keys),
-                    &wall,
-                    &rows);
+      const auto                                 s = run_dda3d(
+        "dda3d-rate-" + run.name,
+        blocks,
+        ground
+          + shaking_table_prm(T, dt, penalty, "loading", documented + run.keys),
+        &wall,
+        &rows);
       double error = 0.;
       Point  u     = Point::Zero();
       for (const auto &r : rows)

@@ -99,9 +99,9 @@ namespace rockdda::dda
   {
     ContactState state        = ContactState::open;
     double       normal_force = 0.;
-    Shear        shear_force = zero_shear(Shear());
-    Shear        direction   = zero_shear(Shear());
-    bool         changed = false;
+    Shear        shear_force  = zero_shear(Shear());
+    Shear        direction    = zero_shear(Shear());
+    bool         changed      = false;
   };
 
   /**
@@ -146,12 +146,12 @@ namespace rockdda::dda
                       const JointMaterial     &joint)
   {
     StateCheckOf<Shear> r;
-    r.state          = contact.state;
-    r.direction      = direction;
-    r.shear_force    = zero_shear(s);
-    const double n   = -k.normal_stiffness * g;
-    const double f   = k.force_tolerance;
-    const double h   = std::max(f, k.hold_tolerance);
+    r.state        = contact.state;
+    r.direction    = direction;
+    r.shear_force  = zero_shear(s);
+    const double n = -k.normal_stiffness * g;
+    const double f = k.force_tolerance;
+    const double h = std::max(f, k.hold_tolerance);
     // The locked spring's force k_s s and its magnitude.
     const Shear  spring = k.shear_stiffness * s;
     const double fs     = shear_magnitude(spring);

@@ -2,7 +2,8 @@
  * @file
  * The adaptive time step of both DDA engines: a step whose open-close
  * iteration fails is cut, an easy step lets the step grow back to the
- * nominal one (Shi 1988, ch. 5; doc/theory/dda.md, "Open-close iteration and time stepping").
+ * nominal one (Shi 1988, ch. 5; doc/theory/dda.md, "Open-close iteration and
+ * time stepping").
  */
 #ifndef ROCKDDA_DDA_TIME_STEP_CONTROL_H
 #define ROCKDDA_DDA_TIME_STEP_CONTROL_H
@@ -116,10 +117,11 @@ namespace rockdda::dda
     unsigned long
     step_limit(const double duration, const unsigned long max_steps) const
     {
-      return max_steps > 0 ? max_steps
-                           : static_cast<unsigned long>(std::min(
-                               1e15, 100. * std::max(0., duration) / nominal_))
-                               + 1000ul;
+      return max_steps > 0
+               ? max_steps
+               : static_cast<unsigned long>(
+                   std::min(1e15, 100. * std::max(0., duration) / nominal_))
+                   + 1000ul;
     }
 
   private:

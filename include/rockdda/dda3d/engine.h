@@ -370,7 +370,7 @@ namespace rockdda::dda3d
     void
     advance(double max_length);
 
-    EngineControls       ctrl;
+    EngineControls ctrl;
     /// The adaptive time step (dda::TimeStepControl, shared with 2D).
     dda::TimeStepControl steps_;
     std::vector<char>    clamped_;
