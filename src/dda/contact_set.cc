@@ -33,32 +33,25 @@ namespace rockdda::dda
     const std::function<double(const ContactCandidate &)> &closed_gap,
     const bool                                             intact) const
   {
-    std::vector<Contact> result(candidates.size());
-    // Whether the candidates hold vertex (i, k) of block i against edge e
-    // of block j: the candidates of one vertex and block are adjacent
-    // (detection emits them together), so look at the neighbours of c.
-    const auto present = [&](const std::size_t c, const int e) {
-      const ContactCandidate &g    = candidates[c];
-      const auto              same = [&](const ContactCandidate &o) {
-        return o.block_i == g.block_i && o.vertex == g.vertex
-               && o.block_j == g.block_j;
-      };
-      for (std::size_t d = c; d < candidates.size() && same(candidates[d]); ++d)
-        if (candidates[d].edge == e)
-          return true;
-      for (std::size_t d = c; d-- > 0 && same(candidates[d]);)
-        if (candidates[d].edge == e)
-          return true;
-      return false;
-    };
+    std::vector<Contact>       result(candidates.size());
+    std::vector<std::uint64_t> detected(candidates.size());
+    for (std::size_t c = 0; c < candidates.size(); ++c)
+      {
+        const ContactCandidate &g = candidates[c];
+        detected[c]               = key(g.block_i, g.vertex, g.block_j, g.edge);
+      }
+    std::sort(detected.begin(), detected.end());
     for (std::size_t c = 0; c < candidates.size(); ++c)
       {
         const ContactCandidate &g = candidates[c];
         Contact                &r = result[c];
         r.geometry                = g;
         r.xi_ref                  = g.projection;
-        const Contact *found
-          = find(by_edge, key(g.block_i, g.vertex, g.block_j, g.edge));
+        const std::uint64_t v     = vertex_key(g.block_i, g.vertex, g.block_j);
+        const auto m = history.find(key(g.block_i, g.vertex, g.block_j, g.edge),
+                                    &v,
+                                    detected);
+        const Contact *found = m.same_feature ? &stored[m.index] : nullptr;
         if (found != nullptr)
           {
             const Contact &o  = *found;
@@ -74,15 +67,12 @@ namespace rockdda::dda
           }
         else
           {
-            const Contact *v
-              = find(by_vertex, vertex_key(g.block_i, g.vertex, g.block_j));
-            // Only if the vertex has left its previous edge (near a reflex
-            // corner it touches both, each with its own state).
-            if (v != nullptr && v->state != ContactState::open
-                && !present(c, v->geometry.edge))
+            // The vertex moved onto another edge of the same block (it
+            // left its previous edge: near a reflex corner it touches
+            // both, each with its own state).
+            if (m.index >= 0)
               {
-                // The vertex moved onto another edge of the same block.
-                const Contact &o  = *v;
+                const Contact &o  = stored[m.index];
                 r.state           = o.state;
                 r.normal_force    = o.normal_force;
                 r.slide_direction = o.slide_direction;
@@ -108,54 +98,19 @@ namespace rockdda::dda
 
 
 
-  const Contact *
-  ContactSet::find(const std::vector<std::pair<std::uint64_t, int>> &index,
-                   const std::uint64_t                               k) const
-  {
-    const auto it
-      = std::lower_bound(index.begin(), index.end(), std::make_pair(k, -1));
-    return it != index.end() && it->first == k ? &stored[it->second] : nullptr;
-  }
-
-
-
   void
   ContactSet::store(const std::vector<Contact> &contacts)
   {
     stored = contacts;
-    by_edge.clear();
-    by_vertex.clear();
+    std::vector<std::uint64_t>                  keys(stored.size());
+    std::vector<std::pair<bool, std::uint64_t>> vertex_keys(stored.size());
     for (std::size_t c = 0; c < stored.size(); ++c)
       {
-        const auto &g = stored[c].geometry;
-        by_edge.emplace_back(key(g.block_i, g.vertex, g.block_j, g.edge),
-                             static_cast<int>(c));
-        by_vertex.emplace_back(vertex_key(g.block_i, g.vertex, g.block_j),
-                               static_cast<int>(c));
+        const auto &g  = stored[c].geometry;
+        keys[c]        = key(g.block_i, g.vertex, g.block_j, g.edge);
+        vertex_keys[c] = {stored[c].state != ContactState::open,
+                          vertex_key(g.block_i, g.vertex, g.block_j)};
       }
-    std::sort(by_edge.begin(), by_edge.end());
-    // Per vertex key, keep one entry: the first closed contact in input
-    // order, else the first one.
-    std::sort(by_vertex.begin(),
-              by_vertex.end(),
-              [this](const auto &a, const auto &b) {
-                if (a.first != b.first)
-                  return a.first < b.first;
-                const bool ca = stored[a.second].state != ContactState::open;
-                const bool cb = stored[b.second].state != ContactState::open;
-                if (ca != cb)
-                  return ca;
-                return a.second < b.second;
-              });
-    by_vertex.erase(std::unique(by_vertex.begin(),
-                                by_vertex.end(),
-                                [](const auto &a, const auto &b) {
-                                  return a.first == b.first;
-                                }),
-                    by_vertex.end());
-    // Duplicate edge keys (not expected) keep the last contact, as before.
-    for (std::size_t k = by_edge.size(); k-- > 1;)
-      if (by_edge[k].first == by_edge[k - 1].first)
-        by_edge[k - 1].second = by_edge[k].second;
+    history.store(keys, vertex_keys);
   }
 } // namespace rockdda::dda

@@ -5,9 +5,11 @@
  * ledger (Shi 1988, 2001; doc/theory/dda3d.md).
  */
 #include <rockdda/dda/contact_damping.h>
+#include <rockdda/dda/contact_history.h>
 #include <rockdda/dda/logarithmic_strain.h>
 #include <rockdda/dda/state_check.h>
 #include <rockdda/dda/strain_damping.h>
+#include <rockdda/dda3d/block_terms.h>
 #include <rockdda/dda3d/engine.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
@@ -316,58 +318,39 @@ namespace rockdda::dda3d
     // Block terms (as FreeBlocks::step()), with the strain damping.
     const dda::StrainDamping damping(ctrl.strain_damping, h, ctrl.dynamic);
     // The contacts' dashpots (their end-of-step velocity is 2 D / h - v).
-    const dda::ContactDamping      dashpots(ctrl.contact_damping,
+    const dda::ContactDamping dashpots(ctrl.contact_damping,
                                        ctrl.contact_step_damping,
                                        h,
                                        ctrl.dynamic);
-    std::vector<PolyhedronMoments> moments(n);
-    std::vector<Matrix12>          K0(n);
-    std::vector<Vector12>          F0(n), Fext(n);
-    std::vector<double>            mass(n), size(n);
-    for (std::size_t b = 0; b < n; ++b)
-      {
-        const Block    &block = system.blocks[b];
-        const Material &mat   = system.materials[block.material];
-        moments[b]            = block.polyhedron.moments();
-        const auto &m         = moments[b];
-        mass[b]               = mat.density * m.volume;
-        size[b]               = block.polyhedron.size();
-        const Matrix12 M      = mass_matrix(m, mat.density);
-        K0[b]                 = (2. / (h * h)) * M;
-        K0[b].block<6, 6>(6, 6)
-          += (1. + damping.factor()) * m.volume * elasticity_matrix(mat);
-        Fext[b] = Vector12::Zero();
-        if (ctrl.ground_acceleration)
-          Fext[b] = body_force(m, mat.density, -ag);
-        F0[b] = (2. / h) * (M * (ctrl.dynamic * block.velocity))
-                + body_force(m, mat.density, system.gravity) + Fext[b]
-                + initial_stress_load(m.volume, block.stress);
-      }
-    for (const auto &l : system.load_points)
-      {
-        const Vector12 f
-          = point_load(moments[l.block].centroid, l.point, l.force);
-        F0[l.block] += f;
-        Fext[l.block] += f;
-      }
     // Displacement mode: the ground's displacement at the end of the step;
     // clamped blocks get the translation that puts their centroid there.
     const Point ug = ctrl.ground_displacement ? ctrl.ground_displacement(t + h)
                                               : Point::Zero();
+    // The block terms (shared with FreeBlocks), with the strain damping.
+    BlockTerms                            terms   = block_terms(system,
+                                   h,
+                                   ctrl.dynamic,
+                                   1. + damping.factor(),
+                                   ag,
+                                   ug,
+                                   ctrl.fixed_penalty);
+    const std::vector<PolyhedronMoments> &moments = terms.moments;
+    std::vector<Matrix12>                &K0      = terms.K;
+    std::vector<Vector12>                &F0      = terms.F;
+    const std::vector<Vector12>          &Fext    = terms.external;
+    std::vector<double>                   mass(n), size(n);
+    for (std::size_t b = 0; b < n; ++b)
+      {
+        mass[b] = system.materials[system.blocks[b].material].density
+                  * moments[b].volume;
+        size[b] = system.blocks[b].polyhedron.size();
+      }
     std::vector<Vector12> prescribed(n, Vector12::Zero());
     if (ctrl.ground_displacement)
       for (std::size_t b = 0; b < n; ++b)
         if (clamped_[b])
           prescribed[b].head<3>()
             = ug - (moments[b].centroid - system.blocks[b].initial_centroid);
-    for (const auto &f : system.fixed_points)
-      {
-        const Point &c = moments[f.block].centroid;
-        K0[f.block] += fixed_point_stiffness(c, f.point, ctrl.fixed_penalty);
-        F0[f.block] += ctrl.fixed_penalty
-                       * displacement_matrix(c, f.point).transpose()
-                       * (f.anchor + ug - f.point);
-      }
 
     // Contacts: detection on the geometry at the start of the step.
     DetectionTolerances tol;
@@ -395,40 +378,45 @@ namespace rockdda::dda3d
     // the first contact's state, force and sliding direction it pulled the
     // vertex onto the floor with the slope's force (a box sliding into a
     // valley stopped there, the step cut below its minimum).
-    using Key = std::tuple<int, int, int, int, int>;
-    std::map<Key, const Contact *>                       by_key;
-    std::map<std::tuple<int, int, int>, const Contact *> by_vertex;
-    std::set<Key>                                        detected;
+    // (dda::ContactHistory, the 2D engine's rule.)
+    using Key       = std::tuple<int, int, int, int, int>;
+    using VertexKey = std::tuple<int, int, int>;
+    std::vector<Key> detected;
+    detected.reserve(candidates.size());
     for (const auto &g : candidates)
-      detected.insert({int(g.type), g.i, g.a, g.j, g.b});
-    for (const auto &c : stored)
-      {
-        const auto &g = c.geometry;
-        const Key   key{int(g.type), g.i, g.a, g.j, g.b};
-        by_key[key] = &c;
-        if (g.type == ContactType::vertex_face && c.state != ContactState::open
-            && detected.count(key) == 0)
-          by_vertex[{g.i, g.a, g.j}] = &c;
-      }
+      detected.emplace_back(int(g.type), g.i, g.a, g.j, g.b);
+    std::sort(detected.begin(), detected.end());
+    dda::ContactHistory<Key, VertexKey> history;
+    {
+      std::vector<Key>                        keys;
+      std::vector<std::pair<bool, VertexKey>> vertex_keys;
+      for (const auto &c : stored)
+        {
+          const auto &g = c.geometry;
+          keys.emplace_back(int(g.type), g.i, g.a, g.j, g.b);
+          vertex_keys.emplace_back(g.type == ContactType::vertex_face
+                                     && c.state != ContactState::open,
+                                   VertexKey{g.i, g.a, g.j});
+        }
+      history.store(keys, vertex_keys);
+    }
     std::vector<Contact> contacts(candidates.size());
     // The shear force each contact carried at the start of the step (N;
     // zero if new or open), whose spring energy the ledger had stored.
     std::vector<Point> shear_at_start(candidates.size(), Point::Zero());
     for (std::size_t k = 0; k < candidates.size(); ++k)
       {
-        const auto &g      = candidates[k];
-        Contact    &c      = contacts[k];
-        c.geometry         = g;
-        c.joint            = system.blocks[g.j].joint;
-        auto           it  = by_key.find({int(g.type), g.i, g.a, g.j, g.b});
-        const Contact *old = it != by_key.end() ? it->second : nullptr;
-        bool           same_feature = old != nullptr;
-        if (!old && g.type == ContactType::vertex_face)
-          {
-            auto iv = by_vertex.find({g.i, g.a, g.j});
-            if (iv != by_vertex.end())
-              old = iv->second;
-          }
+        const auto &g = candidates[k];
+        Contact    &c = contacts[k];
+        c.geometry    = g;
+        c.joint       = system.blocks[g.j].joint;
+        const VertexKey vertex{g.i, g.a, g.j};
+        const auto      m
+          = history.find(Key{int(g.type), g.i, g.a, g.j, g.b},
+                         g.type == ContactType::vertex_face ? &vertex : nullptr,
+                         detected);
+        const Contact *old          = m.index >= 0 ? &stored[m.index] : nullptr;
+        const bool     same_feature = m.same_feature;
         if (old)
           {
             c.state         = old->state;
@@ -1299,34 +1287,8 @@ namespace rockdda::dda3d
       }
     for (std::size_t b = 0; b < n; ++b)
       {
-        Block      &block = system.blocks[b];
-        const Point c     = moments[b].centroid;
-        for (auto &v : block.polyhedron.vertices)
-          v = move_point(c, Db[b], v);
-        for (auto &f : system.fixed_points)
-          if (f.block == int(b))
-            f.point = move_point(c, Db[b], f.point);
-        for (auto &l : system.load_points)
-          if (l.block == int(b))
-            l.point = move_point(c, Db[b], l.point);
-        for (auto &m : system.measurement_points)
-          if (m.block == int(b))
-            m.point = move_point(c, Db[b], m.point);
-        const Matrix6 C = elasticity_matrix(system.materials[block.material]);
-        const Eigen::Matrix3d R = rotation_matrix(rotation_vector(Db[b]));
-        // The logarithmic strain of the step's stretch, as in 2D
-        // (dda/logarithmic_strain.h): the stress is a function of the shape.
-        const Vector6   d = Db[b].tail<6>();
-        Eigen::Matrix3d E;
-        E << d[0], 0.5 * d[3], 0.5 * d[5], 0.5 * d[3], d[1], 0.5 * d[4],
-          0.5 * d[5], 0.5 * d[4], d[2];
-        const Eigen::Matrix3d L = dda::logarithmic_strain_increment<3>(E);
-        Vector6               e;
-        e << L(0, 0), L(1, 1), L(2, 2), 2. * L(0, 1), 2. * L(1, 2),
-          2. * L(0, 2);
-        block.stress   = rotate_voigt(block.stress + C * e, R, 1.);
-        block.strain   = rotate_voigt(block.strain + e, R, 0.5);
-        block.velocity = v_end[b];
+        apply_increment(system, b, Db[b]);
+        system.blocks[b].velocity = v_end[b];
       }
     stored                  = std::move(contacts);
     last_solution           = D;
@@ -1368,6 +1330,14 @@ namespace rockdda::dda3d
         e.potential -= mat.density * m.volume
                        * system.gravity.dot(m.centroid - b.initial_centroid);
       }
+    // The springs of the fixed points of blocks that are not clamped; the
+    // anchors follow the ground.
+    const Point ug
+      = ctrl.ground_displacement ? ctrl.ground_displacement(t) : Point::Zero();
+    for (const auto &f : system.fixed_points)
+      if (!clamped_[f.block])
+        e.fixed += 0.5 * ctrl.fixed_penalty
+                   * (f.point - (f.anchor + ug)).squaredNorm();
     e.contact   = contact_energy;
     e.friction  = friction_work;
     e.damping   = damping_work;

@@ -2,6 +2,7 @@
  * @file
  * Contact-free time stepping of 3D DDA blocks.
  */
+#include <rockdda/dda3d/block_terms.h>
 #include <rockdda/dda3d/free_blocks.h>
 #include <rockdda/io/error.h>
 
@@ -36,37 +37,16 @@ namespace rockdda::dda3d
   void
   FreeBlocks::step()
   {
-    const double h = ctrl.dt;
-    Point        a = system.gravity;
-    if (ctrl.ground_acceleration)
-      a -= ctrl.ground_acceleration(t + 0.5 * h);
-    const std::size_t              n = system.blocks.size();
-    std::vector<PolyhedronMoments> moments(n);
-    std::vector<Matrix12>          K(n);
-    std::vector<Vector12>          F(n);
-    for (std::size_t b = 0; b < n; ++b)
-      {
-        const Block    &block = system.blocks[b];
-        const Material &mat   = system.materials[block.material];
-        moments[b]            = block.polyhedron.moments();
-        const auto    &m      = moments[b];
-        const Matrix12 M      = mass_matrix(m, mat.density);
-        K[b]                  = (2. / (h * h)) * M;
-        K[b].block<6, 6>(6, 6) += m.volume * elasticity_matrix(mat);
-        F[b] = (2. / h) * (M * (ctrl.dynamic * block.velocity))
-               + body_force(m, mat.density, a)
-               + initial_stress_load(m.volume, block.stress);
-      }
-    for (const auto &l : system.load_points)
-      F[l.block] += point_load(moments[l.block].centroid, l.point, l.force);
-    for (const auto &f : system.fixed_points)
-      {
-        const Point &c = moments[f.block].centroid;
-        K[f.block] += fixed_point_stiffness(c, f.point, ctrl.fixed_penalty);
-        F[f.block] += ctrl.fixed_penalty
-                      * displacement_matrix(c, f.point).transpose()
-                      * (f.anchor - f.point);
-      }
+    const double      h  = ctrl.dt;
+    const Point       ag = ctrl.ground_acceleration
+                             ? ctrl.ground_acceleration(t + 0.5 * h)
+                             : Point::Zero();
+    const std::size_t n  = system.blocks.size();
+    // The engine's block terms (no strain damping, anchors at rest).
+    const BlockTerms terms = block_terms(
+      system, h, ctrl.dynamic, 1., ag, Point::Zero(), ctrl.fixed_penalty);
+    const std::vector<Matrix12> &K = terms.K;
+    const std::vector<Vector12> &F = terms.F;
     for (std::size_t b = 0; b < n; ++b)
       {
         const Eigen::LDLT<Matrix12> ldlt(K[b]);
@@ -92,25 +72,8 @@ namespace rockdda::dda3d
   void
   FreeBlocks::apply_increment(const std::size_t b, const Vector12 &d)
   {
-    Block      &block = system.blocks[b];
-    const Point c     = block.polyhedron.moments().centroid;
-    for (auto &v : block.polyhedron.vertices)
-      v = move_point(c, d, v);
-    for (auto &f : system.fixed_points)
-      if (f.block == int(b))
-        f.point = move_point(c, d, f.point);
-    for (auto &l : system.load_points)
-      if (l.block == int(b))
-        l.point = move_point(c, d, l.point);
-    for (auto &m : system.measurement_points)
-      if (m.block == int(b))
-        m.point = move_point(c, d, m.point);
-    const Matrix6 C = elasticity_matrix(system.materials[block.material]);
-    const Eigen::Matrix3d R = rotation_matrix(rotation_vector(d));
-    const Vector6         e = d.tail<6>();
-    block.stress            = rotate_voigt(block.stress + C * e, R, 1.);
-    block.strain            = rotate_voigt(block.strain + e, R, 0.5);
-    increments[b]           = d;
+    dda3d::apply_increment(system, b, d);
+    increments[b] = d;
   }
 
 

@@ -7,6 +7,7 @@
 #define ROCKDDA_DDA_CONTACT_SET_H
 
 #include <rockdda/dda/contact_detection.h>
+#include <rockdda/dda/contact_history.h>
 #include <rockdda/dda/contact_mechanics.h>
 
 #include <cstdint>
@@ -92,14 +93,9 @@ namespace rockdda::dda
     key(int i, int k, int j, int e);
     static std::uint64_t
     vertex_key(int i, int k, int j);
-    /// The contact with key @p k in @p index, or nullptr.
-    const Contact *
-    find(const std::vector<std::pair<std::uint64_t, int>> &index,
-         const std::uint64_t                               k) const;
-    /// The stored contacts and their sorted (key, index) tables by
-    /// (vertex, edge) and by vertex.
-    std::vector<Contact>                       stored;
-    std::vector<std::pair<std::uint64_t, int>> by_edge, by_vertex;
+    /// The stored contacts, and which of them a new contact continues.
+    std::vector<Contact>                         stored;
+    ContactHistory<std::uint64_t, std::uint64_t> history;
   };
 } // namespace rockdda::dda
 

@@ -11,6 +11,7 @@
 #include <rockdda/dda/block_system.h>
 #include <rockdda/dda/contact_law.h>
 #include <rockdda/dda/contact_set.h>
+#include <rockdda/dda/energy_ledger.h>
 #include <rockdda/dda/failure.h>
 #include <rockdda/dda/linear_solver.h>
 #include <rockdda/dda/time_step_control.h>
@@ -136,43 +137,6 @@ namespace rockdda::dda
     /// the tolerance the open-close iteration allowed that contact (0: every
     /// contact within its strength; a step above 1 is cut, not accepted).
     double strength_ratio = 0.;
-  };
-
-  /**
-   * The energy ledger of a run (J per m thickness). Stored: kinetic, block
-   * strain, contact springs, gravity potential (relative to t = 0). Flows
-   * since t = 0: work dissipated by sliding friction (>= 0) and work done on
-   * the blocks by point loads and the seismic inertial load. In exact
-   * dynamics balance() stays at its initial value; the time integration
-   * (Newmark beta = 1/2, gamma = 1) may only lower it. Not included: the
-   * work of fixed points that move (displacement-mode seismic input), so
-   * the balance closes only without it.
-   */
-  struct EnergyLedger
-  {
-    double kinetic = 0., strain = 0., contact = 0., potential = 0.;
-    /// Springs of the fixed points of blocks that are not clamped.
-    double fixed    = 0.;
-    double friction = 0., load_work = 0.;
-    /// Dissipated by the strain damping (StrainDamping) and the contact
-    /// dashpots (ContactDamping).
-    double damping = 0.;
-    /// kinetic + strain + contact + potential + fixed + friction + damping
-    /// - load_work.
-    double
-    balance() const
-    {
-      return kinetic + strain + contact + potential + fixed + friction + damping
-             - load_work;
-    }
-    /// Sum of the magnitudes of the terms (J/m): the energy in play.
-    double
-    scale() const
-    {
-      return std::abs(kinetic) + std::abs(strain) + std::abs(contact)
-             + std::abs(potential) + std::abs(fixed) + std::abs(friction)
-             + std::abs(damping) + std::abs(load_work);
-    }
   };
 
   /**

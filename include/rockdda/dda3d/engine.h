@@ -11,6 +11,7 @@
 #define ROCKDDA_DDA3D_ENGINE_H
 
 #include <rockdda/dda/contact_mechanics.h>
+#include <rockdda/dda/energy_ledger.h>
 #include <rockdda/dda/failure.h>
 #include <rockdda/dda/linear_solver.h>
 #include <rockdda/dda/state_check.h>
@@ -213,33 +214,8 @@ namespace rockdda::dda3d
     dda::SolverOptions solver;
   };
 
-  /// Energies of the ledger (J).
-  struct Energy
-  {
-    double kinetic = 0., strain = 0., contact = 0., potential = 0.,
-           friction = 0., load_work = 0.;
-    /// Energy dissipated by the strain damping (J; dda::StrainDamping)
-    /// and the contact dashpots (dda::ContactDamping).
-    double damping = 0.;
-
-    /// kinetic + strain + contact + potential + friction + damping - load
-    /// work: constant in exact dynamics; Shi's scheme may only lose energy.
-    double
-    balance() const
-    {
-      return kinetic + strain + contact + potential + friction + damping
-             - load_work;
-    }
-
-    /// Sum of the magnitudes of the terms (J): the energy in play.
-    double
-    scale() const
-    {
-      return std::abs(kinetic) + std::abs(strain) + std::abs(contact)
-             + std::abs(potential) + std::abs(friction) + std::abs(damping)
-             + std::abs(load_work);
-    }
-  };
+  /// Energies of the ledger (J; dda::EnergyLedger, shared with 2D).
+  using Energy = dda::EnergyLedger;
 
   /// Statistics of the last accepted step.
   struct StepStatistics

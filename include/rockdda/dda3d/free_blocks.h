@@ -40,7 +40,9 @@ namespace rockdda::dda3d
    * block, (2 M / dt^2 + V C + sum p T^T T) D = (2 / dt) M (dynamic v)
    * + rho V a + loads - V sigma + sum p T^T (anchor - x), then moves the
    * vertices with the exact rotation (move_point()), sets
-   * v = 2 D / dt - dynamic v, and adds and rotates the stress and strain.
+   * v = 2 D / dt - dynamic v, and adds and rotates the stress and strain
+   * (the engine's block terms and update, block_terms() and
+   * dda3d::apply_increment(): the logarithmic strain of the step).
    * With dynamic = 1 this is the constant-average-acceleration rule: a
    * constant force is integrated exactly.
    *
