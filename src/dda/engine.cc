@@ -15,7 +15,6 @@
 #include <Eigen/Cholesky>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -586,26 +585,12 @@ namespace rockdda::dda
                          }
                      });
       check_face_groups(contacts, x, hold, checks);
-      static const int experiment = std::getenv("ROCKDDA_EXPERIMENT_INDEPENDENT") ? std::atoi(std::getenv("ROCKDDA_EXPERIMENT_INDEPENDENT")) : 0;
-      std::vector<char> block_changed(experiment ? scene.blocks.size() : 0, 0);
       for (std::size_t c = 0; c < contacts.size(); ++c)
         {
           Contact                 &ct  = contacts[c];
           const ContactKinematics &kin = assembler.kinematics()[c];
           const int                ci  = static_cast<int>(c);
           const StateCheck        &r   = checks[c];
-          if (experiment && r.changed && (experiment != 2 || (ct.state != ContactState::open && r.state != ContactState::open)))
-            {
-              const int bi = ct.geometry.block_i, bj = ct.geometry.block_j;
-              if (block_changed[bi] || block_changed[bj])
-                {
-                  ++changes;
-                  assembled_normal[c] = ct.normal_force;
-                  residual[c]         = 0.;
-                  continue;
-                }
-              block_changed[bi] = block_changed[bj] = 1;
-            }
           // The friction of a sliding contact used the normal force of
           // the previous iteration; iterate until it agrees (implicit
           // friction), which suppresses a rocking instability when the
