@@ -8,6 +8,7 @@
 #include <rockdda/dda/contact_law.h>
 #include <rockdda/dda/engine.h>
 #include <rockdda/dda/logarithmic_strain.h>
+#include <rockdda/dda/state_check.h>
 #include <rockdda/dda/strain_damping.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
@@ -466,9 +467,7 @@ namespace rockdda::dda
     const auto update_factors = [&]() {
       for (std::size_t c = 0; c < contacts.size(); ++c)
         {
-          factor[c] = flips[c] >= 2 ? std::min(std::pow(10., flips[c] - 1),
-                                               max_tolerance_factor())
-                                    : 1.;
+          factor[c] = chatter_factor(flips[c], ctrl.law.force_tolerance);
           hold[c]   = 0.;
           if (flips[c] >= static_cast<int>(ctrl.hold_after) || contacts[c].held)
             {

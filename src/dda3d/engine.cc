@@ -996,33 +996,33 @@ namespace rockdda::dda3d
         const std::size_t                grain = 128;
         std::vector<std::array<char, 2>> flags((contacts.size() + grain - 1)
                                                / grain);
-        dda::for_each_chunk(chunks,
-                            contacts.size(),
-                            grain,
-                            [&](const std::size_t lo, const std::size_t hi) {
-                              for (std::size_t k = lo; k < hi; ++k)
-                                {
-                                  const auto &c = contacts[k];
-                                  const auto &K = kin[k];
-                                  // Chatter: 10 x and 100 x the weight part
-                                  // after two and three changes; the round-off
-                                  // part stays a floor.
-                                  check_tolerance[k] = dda::escalated_tolerance(
-                                    K.weight_tolerance,
-                                    K.force_tolerance,
-                                    changes[k] >= 3   ? 100.
-                                    : changes[k] >= 2 ? 10.
-                                                      : 1.);
-                                  checks[k]
-                                    = check_state(c,
-                                                  K,
-                                                  dir[k],
-                                                  gap_after(k),
-                                                  shear_after(k),
-                                                  check_tolerance[k],
-                                                  system.joints[c.joint]);
-                                }
-                            });
+        dda::for_each_chunk(
+          chunks,
+          contacts.size(),
+          grain,
+          [&](const std::size_t lo, const std::size_t hi) {
+            for (std::size_t k = lo; k < hi; ++k)
+              {
+                const auto &c = contacts[k];
+                const auto &K = kin[k];
+                // Chatter (dda::chatter_factor(), the 2D
+                // rule): 10 x and 100 x the weight part
+                // after two and three changes, at most 1 %
+                // of the weight; the round-off part stays a
+                // floor.
+                check_tolerance[k] = dda::escalated_tolerance(
+                  K.weight_tolerance,
+                  K.force_tolerance,
+                  dda::chatter_factor(changes[k], ctrl.law.force_tolerance));
+                checks[k] = check_state(c,
+                                        K,
+                                        dir[k],
+                                        gap_after(k),
+                                        shear_after(k),
+                                        check_tolerance[k],
+                                        system.joints[c.joint]);
+              }
+          });
         if (ctrl.face_group_friction)
           for (int gk = 0; gk < n_groups; ++gk)
             decide_group(gk);

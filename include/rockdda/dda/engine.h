@@ -14,6 +14,7 @@
 #include <rockdda/dda/energy_ledger.h>
 #include <rockdda/dda/failure.h>
 #include <rockdda/dda/linear_solver.h>
+#include <rockdda/dda/state_check.h>
 #include <rockdda/dda/time_step_control.h>
 
 #include <algorithm>
@@ -422,7 +423,7 @@ namespace rockdda::dda
     double
     max_tolerance_factor() const
     {
-      return std::max(1., 1e-2 / ctrl.law.force_tolerance);
+      return max_chatter_factor(ctrl.law.force_tolerance);
     }
 
     /**

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 
 namespace rockdda::dda
@@ -87,6 +88,32 @@ namespace rockdda::dda
     return l > 0. ? Eigen::Vector2d(s / l) : fallback;
   }
   /// @}
+
+  /**
+   * The largest factor by which a chattering contact's force tolerance
+   * may grow (escalated_tolerance()): the tolerance stays at most 1 % of
+   * the lighter block's weight, @p weight_fraction being the weight part's
+   * fraction of it (ContactLaw::force_tolerance, 1e-4 by default: 100).
+   */
+  inline double
+  max_chatter_factor(const double weight_fraction)
+  {
+    return std::max(1., 1e-2 / weight_fraction);
+  }
+
+  /**
+   * The factor by which the force tolerance of a contact that has changed
+   * state @p changes times within the step grows (chatter, doc/theory/
+   * dda.md): 1 until two changes, then 10^(changes - 1) (10 after two,
+   * 100 after three), at most max_chatter_factor(@p weight_fraction).
+   */
+  inline double
+  chatter_factor(const int changes, const double weight_fraction)
+  {
+    return changes >= 2 ? std::min(std::pow(10., changes - 1),
+                                   max_chatter_factor(weight_fraction))
+                        : 1.;
+  }
 
   /**
    * The result of checking one contact after a solve: the new state, the
