@@ -867,7 +867,28 @@ namespace
    * A 1 m cube (rho 2700, E 10 GPa) on a clamped 6 x 3 x 1 m base whose
    * top is the plane z = 0 rotated by @p alpha_deg about y (dipping
    * towards +x), then rotated by @p R and shifted by @p shift; friction
-   * @p phi_deg, penalty 1e11 N/m (10 E x 1 m), dt @p dt, run to @p t_end.
+   * @p phi_deg.
+   */
+  test_scenes::InclineScene
+  slider_scene(const double           alpha_deg,
+               const double           phi_deg,
+               const Eigen::Matrix3d &R     = Eigen::Matrix3d::Identity(),
+               const Point           &shift = Point::Zero())
+  {
+    return test_scenes::incline_scene(alpha_deg,
+                                      phi_deg,
+                                      Point(-3., -1.5, -1.),
+                                      Point(3., 1.5, 0.),
+                                      Point(-2., -0.5, 0.),
+                                      Point(-1., 0.5, 1.),
+                                      {2700., 1e10, 0.25, 1},
+                                      R,
+                                      shift);
+  }
+
+  /**
+   * The slider_scene() run with penalty 1e11 N/m (10 E x 1 m), dt @p dt,
+   * to @p t_end.
    */
   InclineRun
   run_incline(const double           alpha_deg,
@@ -877,15 +898,7 @@ namespace
               const Eigen::Matrix3d &R     = Eigen::Matrix3d::Identity(),
               const Point           &shift = Point::Zero())
   {
-    const auto             Sc = test_scenes::incline_scene(alpha_deg,
-                                               phi_deg,
-                                               Point(-3., -1.5, -1.),
-                                               Point(3., 1.5, 0.),
-                                               Point(-2., -0.5, 0.),
-                                               Point(-1., 0.5, 1.),
-                                               {2700., 1e10, 0.25, 1},
-                                               R,
-                                               shift);
+    const auto             Sc = slider_scene(alpha_deg, phi_deg, R, shift);
     const Eigen::Matrix3d &Q  = Sc.frame;
     const BlockSystem     &s  = Sc.system;
     EngineControls         c;
@@ -1085,15 +1098,7 @@ TEST(Dda3dContacts, AnOutputTimeDoesNotShortenTheTimeStep)
   // shared, the 3D engine grew its next step from the shortened one: each
   // call then took 2-3 steps of 0.3-0.5 dt for the rest of the run.)
   const double   a = 30. * pi / 180., phi = 20. * pi / 180., dt = 0.005;
-  const auto     Sc = test_scenes::incline_scene(30.,
-                                             20.,
-                                             Point(-3., -1.5, -1.),
-                                             Point(3., 1.5, 0.),
-                                             Point(-2., -0.5, 0.),
-                                             Point(-1., 0.5, 1.),
-                                             {2700., 1e10, 0.25, 1},
-                                             Eigen::Matrix3d::Identity(),
-                                             Point::Zero());
+  const auto     Sc = slider_scene(30., 20.);
   EngineControls c;
   c.dt                 = dt;
   c.law.normal_penalty = 1e11;
@@ -1690,15 +1695,8 @@ TEST(Dda3dOutput, ContactsVtuMatchesTheEngine)
   // The 30/20 incline after 1 s (200 steps): one line cell per contact of the
   // engine, with its state, blocks, forces and detection points; the file
   // is the 2D engine's binary format (read back by tests/unit/vtu_reader.h).
-  const auto     sc = test_scenes::incline_scene(30.,
-                                             20.,
-                                             Point(-3., -1.5, -1.),
-                                             Point(3., 1.5, 0.),
-                                             Point(-2., -0.5, 0.),
-                                             Point(-1., 0.5, 1.),
-                                             {2700., 1e10, 0.25, 1},
-                                             Eigen::Matrix3d::Identity(),
-                                             Point(5e5, 4e6, 0.));
+  const auto sc
+    = slider_scene(30., 20., Eigen::Matrix3d::Identity(), Point(5e5, 4e6, 0.));
   EngineControls c;
   c.dt = 0.005;
   Engine engine(sc.system, c);
