@@ -256,12 +256,11 @@ namespace rockdda::dda
   DdaSystem::run_until(const double end_time)
   {
     StepReport report;
-    report.time             = t;
-    const double        eps = 1e-9 * ctrl.time_step;
+    report.time = t;
     const unsigned long limit
       = step_control.step_limit(end_time - t, ctrl.max_steps);
     unsigned long steps = 0;
-    while (t < end_time - eps)
+    while (step_control.before(t, end_time))
       {
         if (++steps > limit)
           throw DdaFailure(

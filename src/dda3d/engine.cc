@@ -245,7 +245,7 @@ namespace rockdda::dda3d
     const double        t0    = t;
     const unsigned long limit = steps_.step_limit(t_end - t0, ctrl.max_steps);
     unsigned long       steps = 0;
-    while (t < t_end - 1e-12 * ctrl.dt)
+    while (steps_.before(t, t_end))
       {
         if (steps++ >= limit)
           throw dda::DdaFailure(

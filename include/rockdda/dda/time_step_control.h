@@ -111,6 +111,15 @@ namespace rockdda::dda
       current_ = current;
     }
 
+    /// Whether time @p t (s) is still short of @p t_end (s): by more than
+    /// 1e-9 of the nominal step (a remainder below that is round-off of
+    /// the sum of the steps, not a step to take).
+    bool
+    before(const double t, const double t_end) const
+    {
+      return t < t_end - 1e-9 * nominal_;
+    }
+
     /// The most steps an advance over @p duration (s) may take before the
     /// run stops with a diagnosis: @p max_steps if set, else 100 x the
     /// nominal steps of the duration + 1000.
