@@ -60,10 +60,12 @@ namespace rockdda::dda3d
 
 
   void
-  apply_increment(BlockSystem &system, const std::size_t b, const Vector12 &d)
+  apply_increment(BlockSystem      &system,
+                  const std::size_t b,
+                  const Point      &c,
+                  const Vector12   &d)
   {
-    Block      &block = system.blocks[b];
-    const Point c     = block.polyhedron.moments().centroid;
+    Block &block = system.blocks[b];
     for (auto &v : block.polyhedron.vertices)
       v = move_point(c, d, v);
     for (auto &f : system.fixed_points)

@@ -6,7 +6,6 @@
  */
 #include <rockdda/dda/contact_damping.h>
 #include <rockdda/dda/contact_history.h>
-#include <rockdda/dda/logarithmic_strain.h>
 #include <rockdda/dda/state_check.h>
 #include <rockdda/dda/strain_damping.h>
 #include <rockdda/dda3d/block_terms.h>
@@ -23,7 +22,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <set>
 #include <tuple>
 
 namespace rockdda::dda3d
@@ -315,7 +313,6 @@ namespace rockdda::dda3d
         ag = ctrl.ground_acceleration(t + 0.5 * h);
         a -= ag;
       }
-    // Block terms (as FreeBlocks::step()), with the strain damping.
     const dda::StrainDamping damping(ctrl.strain_damping, h, ctrl.dynamic);
     // The contacts' dashpots (their end-of-step velocity is 2 D / h - v).
     const dda::ContactDamping dashpots(ctrl.contact_damping,
@@ -1287,7 +1284,7 @@ namespace rockdda::dda3d
       }
     for (std::size_t b = 0; b < n; ++b)
       {
-        apply_increment(system, b, Db[b]);
+        apply_increment(system, b, moments[b].centroid, Db[b]);
         system.blocks[b].velocity = v_end[b];
       }
     stored                  = std::move(contacts);

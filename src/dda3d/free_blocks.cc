@@ -55,11 +55,12 @@ namespace rockdda::dda3d
           throw InputError("block " + std::to_string(system.blocks[b].id)
                            + ": the step's solution is not finite");
       }
-    // Points first: apply_increment() recomputes the centroid from the
-    // geometry it moves.
     for (std::size_t b = 0; b < n; ++b)
       {
-        apply_increment(b, increments[b]);
+        dda3d::apply_increment(system,
+                               b,
+                               terms.moments[b].centroid,
+                               increments[b]);
         Block &block = system.blocks[b];
         block.velocity
           = (2. / h) * increments[b] - ctrl.dynamic * block.velocity;
@@ -72,7 +73,10 @@ namespace rockdda::dda3d
   void
   FreeBlocks::apply_increment(const std::size_t b, const Vector12 &d)
   {
-    dda3d::apply_increment(system, b, d);
+    dda3d::apply_increment(system,
+                           b,
+                           system.blocks[b].polyhedron.moments().centroid,
+                           d);
     increments[b] = d;
   }
 

@@ -47,14 +47,18 @@ namespace rockdda::dda3d
               double             fixed_penalty);
 
   /**
-   * Move block @p b of @p system by its increment @p d (Eq. 2.4 order):
+   * Move block @p b of @p system, whose centroid is @p centroid (before
+   * the move), by its increment @p d (Eq. 2.4 order):
    * its vertices and its fixed, load and measurement points with the
    * exact rotation (move_point()), and its stress and strain by the
    * logarithmic strain of the step's stretch (dda/logarithmic_strain.h),
    * rotated with the block. The velocity is not changed.
    */
   void
-  apply_increment(BlockSystem &system, std::size_t b, const Vector12 &d);
+  apply_increment(BlockSystem    &system,
+                  std::size_t     b,
+                  const Point    &centroid,
+                  const Vector12 &d);
 } // namespace rockdda::dda3d
 
 #endif
