@@ -3,6 +3,7 @@
  * Assembly of the 2D DDA equations (Shi 1988, ch. 2-4; Shi 1993).
  */
 #include <rockdda/dda/assembler.h>
+#include <rockdda/dda/block_step_terms.h>
 #include <rockdda/dda/strain_damping.h>
 
 #include <Eigen/Cholesky>
@@ -227,15 +228,22 @@ namespace rockdda::dda
         mass[b]                    = mass_matrix(m, mat.density);
         Matrix6 &K                 = base_matrix[b];
         Vector6 &F                 = base_rhs[b];
-        K                          = (2. / (dt * dt)) * mass[b];
-        K.block<3, 3>(3, 3)
-          += (1. + damping.factor()) * m.area * elasticity_matrix(mat);
-        F = (2. / dt) * (mass[b] * (params.dynamic * block.velocity));
-        F.segment<3>(3) -= m.area * block.stress;
+        // (dda/block_step_terms.h, shared with 3D.)
+        block_step_terms<6, 3, 2>(mass[b],
+                                  elasticity_matrix(mat),
+                                  m.area,
+                                  mat.density,
+                                  block.stress,
+                                  block.velocity,
+                                  params.dynamic,
+                                  dt,
+                                  1. + damping.factor(),
+                                  params.body_acceleration,
+                                  K,
+                                  F);
         if (block.eigenstrain != block.applied_eigenstrain)
           F.segment<3>(3)
             += m.area * elasticity_matrix(mat) * eigenstrain_step(block);
-        F.segment<2>(0) += mat.density * m.area * params.body_acceleration;
       }
     for (const auto &l : system.load_points)
       base_rhs[l.block]

@@ -51,45 +51,26 @@ namespace rockdda::dda
         const auto m = history.find(key(g.block_i, g.vertex, g.block_j, g.edge),
                                     &v,
                                     detected);
-        const Contact *found = m.same_feature ? &stored[m.index] : nullptr;
-        if (found != nullptr)
-          {
-            const Contact &o  = *found;
-            r.state           = o.state;
-            r.normal_force    = o.normal_force;
-            r.shear_force     = o.shear_force;
-            r.slide_direction = o.slide_direction;
-            r.broken          = o.broken;
-            r.held            = o.held;
-            r.slip_rate       = o.slip_rate;
-            if (o.state == ContactState::locked)
-              r.xi_ref = o.xi_ref;
-          }
+        // (continue_contact(): the rule of both engines.)
+        if (m.index >= 0)
+          continue_contact(r,
+                           stored[m.index],
+                           m.same_feature,
+                           [](Contact &to, const Contact &from) {
+                             to.held = from.held;
+                             if (from.state == ContactState::locked)
+                               to.xi_ref = from.xi_ref;
+                           });
         else
           {
-            // The vertex moved onto another edge of the same block (it
-            // left its previous edge: near a reflex corner it touches
-            // both, each with its own state).
-            if (m.index >= 0)
-              {
-                const Contact &o  = stored[m.index];
-                r.state           = o.state;
-                r.normal_force    = o.normal_force;
-                r.slide_direction = o.slide_direction;
-                r.broken          = o.broken;
-                r.slip_rate       = o.slip_rate;
-              }
-            else
-              {
-                // A vertex beyond the edge's end (coming round a reflex
-                // corner) starts open: it closes when it crosses the edge's
-                // line.
-                const bool beyond = g.projection < 0. || g.projection > 1.;
-                r.state           = !beyond && g.gap <= closed_gap(g)
-                                      ? ContactState::locked
-                                      : ContactState::open;
-                r.broken          = !intact;
-              }
+            // A vertex beyond the edge's end (coming round a reflex
+            // corner) starts open: it closes when it crosses the edge's
+            // line.
+            const bool beyond = g.projection < 0. || g.projection > 1.;
+            r.state           = !beyond && g.gap <= closed_gap(g)
+                                  ? ContactState::locked
+                                  : ContactState::open;
+            r.broken          = !intact;
           }
         r.state_at_start = r.state;
       }

@@ -170,12 +170,13 @@ namespace rockdda::dda
         io::declare(prm,
                     "Seismic input",
                     "none",
-                    Selection("none|inertial|displacement"),
+                    Selection("none|inertial|loading|displacement"),
                     "-",
                     "Ground acceleration from the 'Ground motion' section "
                     "(horizontal, towards +x, and the optional vertical "
                     "record, upward; processed and scaled there): "
-                    "'inertial' (loading mode) loads every block with "
+                    "'inertial' or 'loading' (the loading mode, as in "
+                    "dda3d) loads every block with "
                     "-a(t) (fixed points stay put); 'displacement' moves "
                     "the fixed points (the foundation) with the ground "
                     "displacement, the double integral of a(t) from rest "
@@ -261,16 +262,11 @@ namespace rockdda::dda
         if (mode != "none")
           {
             motion.parse_parameters(prm, prm_file);
-            if (motion.polarity == seismic::GroundMotionInput::Polarity::both)
-              throw InputError(prm_file
-                               + ": key 'Ground motion/Polarity' = both is not "
-                                 "supported by dda (one simulation per "
-                                 "file); valid: normal or inverted");
-            if (motion.polarity
-                == seismic::GroundMotionInput::Polarity::inverted)
+            if (motion.single_polarity_sign(prm_file, "dda") < 0.)
               for (auto &a : motion.record.acceleration)
                 a = -a;
-            scene.seismic.mode            = mode == "inertial"
+            // ('loading' is the thesis's and the dda3d analysis's name.)
+            scene.seismic.mode = mode == "inertial" || mode == "loading"
                                               ? SeismicInput::Mode::inertial
                                               : SeismicInput::Mode::displacement;
             scene.seismic.record          = motion.record;

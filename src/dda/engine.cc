@@ -5,9 +5,11 @@
  * scheme (Shi 1988; Doolin & Sitar 2004).
  */
 #include <rockdda/dda/block_matrices.h>
+#include <rockdda/dda/block_step_terms.h>
 #include <rockdda/dda/contact_law.h>
 #include <rockdda/dda/engine.h>
 #include <rockdda/dda/logarithmic_strain.h>
+#include <rockdda/dda/open_close.h>
 #include <rockdda/dda/state_check.h>
 #include <rockdda/dda/strain_damping.h>
 #include <rockdda/io/error.h>
@@ -31,41 +33,6 @@ namespace rockdda::dda
     {
       return io::format_number(x, digits);
     }
-
-    /**
-     * A 128-bit fingerprint of a sequence of words (two independent 64-bit
-     * mixes): the open-close iteration's exact state, to recognise an
-     * iteration that has returned to an earlier iterate.
-     */
-    class Fingerprint
-    {
-    public:
-      void
-      add(const std::uint64_t w)
-      {
-        // Two multiply-xorshift mixes of the word, one multiplication each.
-        a = (a ^ w) * 0x9e3779b97f4a7c15ull;
-        a ^= a >> 32;
-        b = (b + w) * 0xc2b2ae3d27d4eb4full;
-        b ^= b >> 29;
-      }
-      void
-      add(const double x)
-      {
-        std::uint64_t w;
-        std::memcpy(&w, &x, sizeof w);
-        add(w);
-      }
-      std::pair<std::uint64_t, std::uint64_t>
-      value() const
-      {
-        return {a, b};
-      }
-
-    private:
-      std::uint64_t a = 0xcbf29ce484222325ull;
-      std::uint64_t b = 0x94d049bb133111ebull;
-    };
   } // namespace
 
 
@@ -428,13 +395,12 @@ namespace rockdda::dda
       x = Eigen::VectorXd::Zero(6 * scene.blocks.size());
     Eigen::VectorXd F;
     report.solver_iterations = 0;
-    bool     converged       = false;
     unsigned changes = 0, friction_changes = 0;
-    unsigned it = 0;
-    // The contact states must settle within max_iterations; iterations
-    // that change no state only update the friction forces (and reuse the
-    // factorisation or preconditioner), for up to max_iterations more.
-    unsigned         state_iterations = 0;
+    // Open-close iterations of this attempt (run_open_close(): the states
+    // settle within max_iterations; iterations that change no state only
+    // update the friction forces and reuse the factorisation or
+    // preconditioner, for up to max_iterations more).
+    unsigned         it = 0;
     std::vector<int> flips(contacts.size(), 0);
     Eigen::VectorXd  x_prev;
     bool             damped_last = false;
@@ -470,43 +436,29 @@ namespace rockdda::dda
           hold[c]   = 0.;
           if (flips[c] >= static_cast<int>(ctrl.hold_after) || contacts[c].held)
             {
-              // An elastic slip or penetration of hold_fraction x the
-              // smaller block's size, and at most 100 force tolerances (1 %
-              // of the lighter block's weight): a light block between stiff
-              // ones (an infill wedge) is not hung on a held contact, and no
-              // held contact exceeds its strength by more. (A contact that
-              // still cycled used to get the slip bound alone, 1.6e4 N for
-              // the ratchet's wedge, 3x its weight: accepted locked contacts
-              // then carried shear far beyond Mohr-Coulomb and pushed.)
-              const auto  &g   = contacts[c].geometry;
-              const auto  &kin = assembler.kinematics()[c];
-              const double size
-                = std::min(block_size[g.block_i], block_size[g.block_j]);
-              const double slip
-                = kin.shear_stiffness * ctrl.hold_fraction * size;
-              hold[c]
-                = std::min(slip,
-                           escalated_tolerance(kin, max_tolerance_factor()));
-              // An open contact carries no force, so holding it open hangs
-              // no block: it stays open up to a penetration of
-              // hold_fraction x the smaller block's size and at most the
-              // lighter block's weight in force (the compression its own
-              // weight gives one contact spring, which the penalty method
-              // incurs anyway), not capped at 1 % of the weight. With that
-              // cap the lightly loaded end of a face contact that rocks
-              // (0.01-0.06 of a brick's weight when closed) opened and
-              // closed until the step was cut: 29 of the 53 cuts of
-              // wall-25x40 from rest (benchmarks/dda-scaling, section 10).
-              // (Without the weight bound an impact in the valley run-out of
+              // (dda::hold_tolerance(), the rule of both engines.) At most
+              // 1 % of the lighter block's weight: a light block between
+              // stiff ones (an infill wedge) is not hung on a held contact,
+              // and no held contact exceeds its strength by more. Before
+              // the cap a contact that still cycled got the slip bound
+              // alone, 1.6e4 N for the ratchet's wedge, 3x its weight:
+              // accepted locked contacts then carried shear far beyond
+              // Mohr-Coulomb and pushed. (Without the weight bound on open
+              // contacts an impact in the valley run-out of
               // Invariance.TranslationScalingRotation was held open up to
               // more than the block's weight, and its run-out spread 0.8 %
               // under 1e-13 perturbations.)
-              if (contacts[c].state == ContactState::open)
-                hold[c] = std::max(
-                  hold[c],
-                  std::min(kin.normal_stiffness * ctrl.hold_fraction * size,
-                           escalated_tolerance(kin,
-                                               1. / ctrl.law.force_tolerance)));
+              const auto &g   = contacts[c].geometry;
+              const auto &kin = assembler.kinematics()[c];
+              hold[c]         = hold_tolerance(
+                contacts[c].state == ContactState::open,
+                kin.normal_stiffness,
+                kin.shear_stiffness,
+                ctrl.hold_fraction,
+                std::min(block_size[g.block_i], block_size[g.block_j]),
+                kin.weight_tolerance,
+                kin.force_tolerance,
+                ctrl.law.force_tolerance);
             }
         }
     };
@@ -632,15 +584,19 @@ namespace rockdda::dda
                   // energy no work paid for: +864 J/m (4.6 % of the energy
                   // in play) in one step of an earthquake episode of the
                   // ratchet (issue 15).
-                  const Contact &at_start = start[c];
-                  if (r.state == ContactState::locked
-                      && at_start.state == ContactState::locked)
+                  // (lock_anchor(): the rule of both engines.)
+                  const Contact   &at_start = start[c];
+                  const LockAnchor anchor   = r.state == ContactState::locked
+                                                ? lock_anchor(at_start.state,
+                                                              old,
+                                                              true)
+                                                : LockAnchor::here;
+                  if (anchor == LockAnchor::start_spring)
                     ct.xi_ref = at_start.xi_ref;
                   else
                     {
                       ct.xi_ref = ct.geometry.projection;
-                      if (r.state == ContactState::locked
-                          && at_start.state == ContactState::sliding)
+                      if (anchor == LockAnchor::start_friction)
                         ct.xi_ref += at_start.shear_force
                                      / (kin.shear_stiffness * kin.edge_length);
                     }
@@ -665,7 +621,7 @@ namespace rockdda::dda
                                       std::max(max_tolerance_factor(), 1.)))));
     std::set<std::pair<std::uint64_t, std::uint64_t>> visited;
     const auto                                        fingerprint = [&]() {
-      Fingerprint f;
+      IterateFingerprint f;
       for (Eigen::Index i = 0; i < x.size(); ++i)
         f.add(x[i]);
       for (std::size_t c = 0; c < contacts.size(); ++c)
@@ -699,111 +655,100 @@ namespace rockdda::dda
              + std::to_string(scene.blocks[g.block_j].id) + " changed state "
              + std::to_string(*most) + " times";
     };
-    while (state_iterations < ctrl.max_iterations
-           && it < 2 * ctrl.max_iterations)
-      {
-        // (From the fourth iteration on: most steps converge before, and a
-        // cycle that began earlier repeats an iterate recorded after it.)
-        if (ctrl.cut_exact_cycles && it >= 3 && !contacts.empty()
-            && !visited.insert(fingerprint()).second)
-          {
-            why = "the open-close iteration cycles (iteration "
-                  + std::to_string(it) + " returned to an earlier iterate; "
-                  + most_changed() + ")";
-            return false;
-          }
-        ++it;
-        assembler.assemble(contacts, matrix, F);
-        if (!F.allFinite())
-          {
-            why = "the load vector is not finite";
-            return false;
-          }
-        // After an iteration without state changes (only the friction
-        // forces were updated) the matrix is unchanged: reuse its
-        // factorisation. While the states settle, CG solves to a looser
-        // tolerance (inexact Newton); the settled states are confirmed by a
-        // solve to the solver's tolerance.
-        x_prev = x;
-        // The first solve of a step is exact: on a settled scene it is
-        // usually the only one.
-        const bool loose = ctrl.inexact_factor > 1. && it > 1 && !confirming
-                           && solver.type() != SolverType::direct;
-        if (!solver.solve(matrix,
-                          F,
-                          x,
-                          it > 1 && changes == 0,
-                          loose ? ctrl.inexact_factor * ctrl.solver.tolerance
-                                : 0.))
-          {
-            why = "the linear solver failed ("
-                  + std::string(solver.type() == SolverType::direct
-                                  ? "matrix not positive definite"
-                                  : "CG did not converge")
-                  + ")";
-            return false;
-          }
-        report.solver_iterations += solver.last_iterations();
-        ++n_solves;
-        n_solver_iterations += solver.last_iterations();
-        if (!x.allFinite())
-          {
-            why = "the displacement increment is not finite";
-            return false;
-          }
-        // Line search along the Newton direction (engine_line_search.cc),
-        // from the second iteration on (the first starts from the previous
-        // step's increments, not from a point of the current states).
-        // The state check's tolerances for this iteration (they depend on
-        // the state changes so far), used by the search and the check.
-        update_factors();
-        double alpha = 1.;
-        if (ctrl.line_search && it > 1 && !damped_last)
-          {
-            alpha = line_search(contacts, x_prev, x, factor, hold);
-            if (alpha < 1.)
-              x = x_prev + alpha * (x - x_prev);
-          }
-        update_states(x);
-        // A damped step after which no state changed: the next step is a
-        // full one (the line search stopped at a state's tolerance band).
-        damped_last = alpha < 1. && changes == 0;
-        if (alpha < 1. && changes == 0)
-          friction_changes = std::max(friction_changes, 1u);
-        // Converged when no contact changes state and the friction forces
-        // agree with the normal forces; otherwise the step is cut.
-        if (changes == 0 && friction_changes == 0 && loose)
-          {
-            // Settled on inexact solves: confirm with a solve to the
-            // solver tolerance.
-            confirming = true;
-            continue;
-          }
-        confirming = false;
-        if (changes == 0 && friction_changes == 0)
-          {
-            converged = true;
-            break;
-          }
-        if (changes > 0)
-          ++state_iterations;
-        // A contact that keeps changing state although held: the
-        // iteration cycles; a shorter step resolves the contact.
-        const auto most = std::max_element(flips.begin(), flips.end());
-        if (most != flips.end() && *most >= static_cast<int>(ctrl.cycle_limit))
-          {
-            why = "the open-close iteration cycles (" + most_changed() + ")";
-            return false;
-          }
-      }
-    if (!converged)
-      {
-        why = "the open-close iteration did not converge in "
-              + std::to_string(it) + " iterations (" + std::to_string(changes)
-              + " contacts changing state, " + std::to_string(friction_changes)
-              + " sliding contacts whose friction force has not converged)";
-        return false;
-      }
+    // The shared driver (dda/open_close.h) with this engine's exact-cycle
+    // cut, inexact solves, line search and holds.
+    bool       loose = false;
+    const auto may_continue = [&](const unsigned done, std::string &reason) {
+      // (From the fourth iteration on: most steps converge before, and a
+      // cycle that began earlier repeats an iterate recorded after it.)
+      if (ctrl.cut_exact_cycles && done >= 3 && !contacts.empty()
+          && !visited.insert(fingerprint()).second)
+        {
+          reason = "the open-close iteration cycles (iteration "
+                   + std::to_string(done) + " returned to an earlier iterate; "
+                   + most_changed() + ")";
+          return false;
+        }
+      return true;
+    };
+    const auto solve = [&](const unsigned iteration, std::string &reason) {
+      it = iteration;
+      assembler.assemble(contacts, matrix, F);
+      if (!F.allFinite())
+        {
+          reason = "the load vector is not finite";
+          return false;
+        }
+      // After an iteration without state changes (only the friction
+      // forces were updated) the matrix is unchanged: reuse its
+      // factorisation. While the states settle, CG solves to a looser
+      // tolerance (inexact Newton); the settled states are confirmed by a
+      // solve to the solver's tolerance.
+      x_prev = x;
+      // The first solve of a step is exact: on a settled scene it is
+      // usually the only one.
+      loose = ctrl.inexact_factor > 1. && it > 1 && !confirming
+              && solver.type() != SolverType::direct;
+      if (!solver.solve(matrix,
+                        F,
+                        x,
+                        it > 1 && changes == 0,
+                        loose ? ctrl.inexact_factor * ctrl.solver.tolerance
+                              : 0.))
+        {
+          reason = "the linear solver failed ("
+                   + std::string(solver.type() == SolverType::direct
+                                   ? "matrix not positive definite"
+                                   : "CG did not converge")
+                   + ")";
+          return false;
+        }
+      report.solver_iterations += solver.last_iterations();
+      ++n_solves;
+      n_solver_iterations += solver.last_iterations();
+      if (!x.allFinite())
+        {
+          reason = "the displacement increment is not finite";
+          return false;
+        }
+      return true;
+    };
+    const auto check = [&](const unsigned) {
+      // Line search along the Newton direction (engine_line_search.cc),
+      // from the second iteration on (the first starts from the previous
+      // step's increments, not from a point of the current states).
+      // The state check's tolerances for this iteration (they depend on
+      // the state changes so far), used by the search and the check.
+      update_factors();
+      double alpha = 1.;
+      if (ctrl.line_search && it > 1 && !damped_last)
+        {
+          alpha = line_search(contacts, x_prev, x, factor, hold);
+          if (alpha < 1.)
+            x = x_prev + alpha * (x - x_prev);
+        }
+      update_states(x);
+      // A damped step after which no state changed: the next step is a
+      // full one (the line search stopped at a state's tolerance band).
+      damped_last = alpha < 1. && changes == 0;
+      if (alpha < 1. && changes == 0)
+        friction_changes = std::max(friction_changes, 1u);
+      // Settled on inexact solves: confirm with a solve to the solver
+      // tolerance.
+      confirming = changes == 0 && friction_changes == 0 && loose;
+      OpenCloseCheck r;
+      r.state_changes    = changes;
+      r.friction_changes = friction_changes;
+      r.confirm          = confirming;
+      r.most_changes     = static_cast<unsigned>(
+        flips.empty() ? 0 : *std::max_element(flips.begin(), flips.end()));
+      return r;
+    };
+    OpenCloseLimits limits;
+    limits.max_iterations = ctrl.max_iterations;
+    limits.cycle_limit    = ctrl.cycle_limit;
+    if (!run_open_close(limits, may_continue, solve, check, most_changed, it, why))
+      return false;
 
     // No contact beyond its strength by more than its tolerance, whatever
     // path (chatter, hold, face group) accepted it.
@@ -1145,7 +1090,8 @@ namespace rockdda::dda
         const auto   &c     = moments[b].centroid;
         for (auto &p : block.polygon.vertices)
           p = move_point(c, D, p);
-        block.velocity = (2. / h) * D - ctrl.dynamic * block.velocity;
+        block.velocity
+          = end_of_step_velocity(D, block.velocity, h, ctrl.dynamic);
         const Eigen::Matrix3d C
           = elasticity_matrix(scene.materials[block.material]);
         // The stress adds the logarithmic strain of the step's stretch
@@ -1347,9 +1293,9 @@ namespace rockdda::dda
     double e = 0.;
     for (const auto &b : scene.blocks)
       {
-        const Matrix6 M = mass_matrix(block_moments(b.polygon),
-                                      scene.materials[b.material].density);
-        e += 0.5 * b.velocity.dot(M * b.velocity);
+        e += kinetic_energy_of(b.velocity,
+                               mass_matrix(block_moments(b.polygon),
+                                           scene.materials[b.material].density));
       }
     return e;
   }
@@ -1362,9 +1308,9 @@ namespace rockdda::dda
     double e = 0.;
     for (const auto &b : scene.blocks)
       {
-        const Eigen::Matrix3d C
-          = elasticity_matrix(scene.materials[b.material]);
-        e += 0.5 * b.polygon.area() * b.stress.dot(C.ldlt().solve(b.stress));
+        e += strain_energy_of(b.polygon.area(),
+                              b.stress,
+                              elasticity_matrix(scene.materials[b.material]));
       }
     return e;
   }
@@ -1409,8 +1355,11 @@ namespace rockdda::dda
     for (const auto &b : scene.blocks)
       {
         const BlockMoments m = block_moments(b.polygon);
-        e -= scene.materials[b.material].density * m.area
-             * scene.gravity.dot(m.centroid - b.initial_centroid);
+        e += gravity_potential_of(scene.materials[b.material].density,
+                                  m.area,
+                                  scene.gravity,
+                                  geometry::Point(m.centroid
+                                                  - b.initial_centroid));
       }
     return e;
   }

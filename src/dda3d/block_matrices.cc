@@ -159,16 +159,6 @@ namespace rockdda::dda3d
 
 
 
-  Vector12
-  initial_stress_load(const double volume, const Vector6 &sigma)
-  {
-    Vector12 F  = Vector12::Zero();
-    F.tail<6>() = -volume * sigma;
-    return F;
-  }
-
-
-
   Vector6
   rotate_voigt(const Vector6 &v, const Eigen::Matrix3d &R, const double f)
   {

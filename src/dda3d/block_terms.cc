@@ -2,6 +2,7 @@
  * @file
  * Per-block terms of a 3D DDA step and the block update (Shi 2001).
  */
+#include <rockdda/dda/block_step_terms.h>
 #include <rockdda/dda/logarithmic_strain.h>
 #include <rockdda/dda3d/block_terms.h>
 
@@ -29,15 +30,23 @@ namespace rockdda::dda3d
         const Material &mat   = system.materials[block.material];
         r.moments[b]          = block.polyhedron.moments();
         const auto    &m      = r.moments[b];
-        const Matrix12 M      = mass_matrix(m, mat.density);
-        r.K[b]                = (2. / (h * h)) * M;
-        r.K[b].block<6, 6>(6, 6)
-          += elastic_factor * m.volume * elasticity_matrix(mat);
+        // (dda/block_step_terms.h, shared with 2D.) The loading-mode
+        // ground acceleration is a body force: its part is also kept as
+        // the external load whose work the ledger books.
+        dda::block_step_terms<12, 6, 3>(mass_matrix(m, mat.density),
+                                        elasticity_matrix(mat),
+                                        m.volume,
+                                        mat.density,
+                                        block.stress,
+                                        block.velocity,
+                                        dynamic,
+                                        h,
+                                        elastic_factor,
+                                        Point(system.gravity - a_ground),
+                                        r.K[b],
+                                        r.F[b]);
         if (seismic)
           r.external[b] = body_force(m, mat.density, -a_ground);
-        r.F[b] = (2. / h) * (M * (dynamic * block.velocity))
-                 + body_force(m, mat.density, system.gravity) + r.external[b]
-                 + initial_stress_load(m.volume, block.stress);
       }
     for (const auto &l : system.load_points)
       {

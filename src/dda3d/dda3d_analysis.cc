@@ -110,9 +110,10 @@ namespace rockdda::dda3d
         io::declare(prm,
                     "Seismic input",
                     "none",
-                    Selection("none|loading|displacement"),
+                    Selection("none|loading|inertial|displacement"),
                     "-",
-                    "'loading' (the thesis's loading mode): every block is "
+                    "'loading' or 'inertial' (the thesis's loading mode, as "
+                    "in dda): every block is "
                     "loaded by the inertial body force -rho V a_g(t) at the "
                     "middle of each step, the foundation stays put (the "
                     "scene is seen in the ground's frame); 'displacement': "
@@ -422,7 +423,8 @@ namespace rockdda::dda3d
     prm.leave_subsection();
     if (mode == "none")
       return in;
-    in.mode = mode == "loading" ? SeismicInput3d::Mode::loading
+    in.mode = mode == "loading" || mode == "inertial"
+                ? SeismicInput3d::Mode::loading
                                 : SeismicInput3d::Mode::displacement;
     // The three components as records (g): x, y, z.
     std::array<seismic::Record, 3> records;
@@ -461,15 +463,7 @@ namespace rockdda::dda3d
       {
         seismic::GroundMotionInput motion;
         motion.parse_parameters(prm, prm_file);
-        if (motion.polarity == seismic::GroundMotionInput::Polarity::both)
-          throw InputError(prm_file
-                           + ": key 'Ground motion/Polarity' = both is not "
-                             "supported by dda3d (one simulation per file); "
-                             "valid: normal or inverted");
-        const double sign
-          = motion.polarity == seismic::GroundMotionInput::Polarity::inverted
-              ? -1.
-              : 1.;
+        const double sign = motion.single_polarity_sign(prm_file, "dda3d");
         const double a  = azimuth * M_PI / 180.;
         const Point  e1 = sign * Point(std::sin(a), std::cos(a), 0.);
         const Point  e2 = sign * Point(std::cos(a), -std::sin(a), 0.);

@@ -4,8 +4,10 @@
  * checks, the open-close iteration with step cutting, and the energy
  * ledger (Shi 1988, 2001; doc/theory/dda3d.md).
  */
+#include <rockdda/dda/block_step_terms.h>
 #include <rockdda/dda/contact_damping.h>
 #include <rockdda/dda/contact_history.h>
+#include <rockdda/dda/open_close.h>
 #include <rockdda/dda/state_check.h>
 #include <rockdda/dda/strain_damping.h>
 #include <rockdda/dda3d/block_terms.h>
@@ -22,6 +24,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <tuple>
 
 namespace rockdda::dda3d
@@ -33,12 +36,14 @@ namespace rockdda::dda3d
               const double             g,
               const Eigen::Vector2d   &s,
               const double             f,
-              const JointMaterial     &joint)
+              const JointMaterial     &joint,
+              const double             hold)
   {
     dda::StateCheckSprings k;
     k.normal_stiffness = kin.normal_stiffness;
     k.shear_stiffness  = kin.shear_stiffness;
     k.force_tolerance  = f;
+    k.hold_tolerance   = hold;
     k.extent           = contact.area;
     return dda::check_contact_state(contact, direction, g, s, k, joint);
   }
@@ -218,9 +223,7 @@ namespace rockdda::dda3d
             + " s (Minimum time step ratio "
             + io::format_number(ctrl.min_dt_ratio, 3) + " x "
             + io::format_number(ctrl.dt, 3)
-            + " s) at t = " + io::format_number(t, 8)
-            + " s (the open-close iteration does not converge, or blocks "
-              "move too far per step)");
+            + " s) at t = " + io::format_number(t, 8) + " s: " + why_);
         h = steps_.attempt(max_length);
       }
     t += h;
@@ -253,7 +256,8 @@ namespace rockdda::dda3d
             + " s (the time step stays cut to " + io::format_number(stats.dt, 3)
             + " s of " + io::format_number(ctrl.dt, 3)
             + " s: the open-close iteration does not converge, or blocks move "
-              "too far per step)");
+              "too far per step"
+            + (why_.empty() ? std::string(")") : "; last cut: " + why_ + ")"));
         advance(t_end - t);
       }
   }
@@ -416,14 +420,15 @@ namespace rockdda::dda3d
         const bool     same_feature = m.same_feature;
         if (old)
           {
-            c.state         = old->state;
-            c.direction     = old->direction;
-            c.normal_force  = old->normal_force;
-            c.broken        = old->broken;
-            c.reference     = old->reference;
-            c.has_reference = same_feature && old->has_reference;
-            c.slip_rate     = old->slip_rate;
-            if (old->state != ContactState::open)
+            // (dda::continue_contact(): the rule of both engines.)
+            dda::continue_contact(c,
+                                  *old,
+                                  same_feature,
+                                  [](Contact &to, const Contact &from) {
+                                    to.reference     = from.reference;
+                                    to.has_reference = from.has_reference;
+                                  });
+            if (same_feature && old->state != ContactState::open)
               shear_at_start[k] = old->shear_force;
           }
         else
@@ -562,12 +567,20 @@ namespace rockdda::dda3d
             c.state_at_start  = c.state;
           }
       });
+    // The shear springs' anchors at the step's start (dda::lock_anchor()).
+    std::vector<Point> reference_at_start(contacts.size());
+    std::vector<char>  has_reference_at_start(contacts.size());
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+      {
+        reference_at_start[k]     = contacts[k].reference;
+        has_reference_at_start[k] = contacts[k].has_reference;
+      }
     // Sliding directions in each contact's tangent basis.
     std::vector<Eigen::Vector2d> dir(contacts.size(), Eigen::Vector2d::Zero());
     for (std::size_t k = 0; k < contacts.size(); ++k)
       {
-        const Eigen::Vector2d d(kin[k].t1.dot(contacts[k].direction),
-                                kin[k].t2.dot(contacts[k].direction));
+        const Eigen::Vector2d d(kin[k].t1.dot(contacts[k].slide_direction),
+                                kin[k].t2.dot(contacts[k].slide_direction));
         dir[k] = d.norm() > 1e-12 ? Eigen::Vector2d(d.normalized())
                                   : Eigen::Vector2d::Zero();
       }
@@ -704,8 +717,6 @@ namespace rockdda::dda3d
     // block i, in the tangent basis): the energy ledger books its work.
     std::vector<Eigen::Vector2d> friction_applied(contacts.size(),
                                                   Eigen::Vector2d::Zero());
-    int                          state_iterations = 0, iterations = 0;
-    bool                         converged = false;
     std::vector<Vector12>        Db(n);
     // Contact k's gap and shear displacement at the end of the step of the
     // last solve.
@@ -841,12 +852,57 @@ namespace rockdda::dda3d
           r.changed = r.state != contacts[k].state;
         }
     };
-    while (!converged)
-      {
-        ++iterations;
-        if (state_iterations > ctrl.max_open_close
-            || iterations > 2 * ctrl.max_open_close)
-          return false;
+    // The contact that changed state most often in this attempt, for the
+    // diagnosis of an iteration that cycles.
+    const auto most_changed = [&]() {
+      const auto  most = std::max_element(changes.begin(), changes.end());
+      const auto &g    = contacts[most - changes.begin()].geometry;
+      return "the contact of block " + std::to_string(system.blocks[g.i].id)
+             + " on block " + std::to_string(system.blocks[g.j].id)
+             + " changed state " + std::to_string(*most) + " times";
+    };
+    // An iteration that returned bit for bit to an earlier iterate cycles
+    // for good (dda::IterateFingerprint, as in 2D): cut the attempt now.
+    // Each contact's change count enters up to where its chatter
+    // tolerance stops growing.
+    const int flip_cap = std::max(
+      static_cast<int>(ctrl.hold_after),
+      2
+        + static_cast<int>(std::ceil(
+          std::log10(dda::max_chatter_factor(ctrl.law.force_tolerance)))));
+    std::set<std::pair<std::uint64_t, std::uint64_t>> visited;
+    const auto may_continue = [&](const unsigned done, std::string &reason) {
+      if (done < 3 || contacts.empty())
+        return true;
+      dda::IterateFingerprint f;
+      for (Eigen::Index i = 0; i < D.size(); ++i)
+        f.add(D[i]);
+      for (std::size_t k = 0; k < contacts.size(); ++k)
+        {
+          const auto &c = contacts[k];
+          f.add(static_cast<std::uint64_t>(c.state)
+                | static_cast<std::uint64_t>(c.has_reference) << 8
+                | static_cast<std::uint64_t>(std::min(changes[k], flip_cap))
+                    << 16);
+          f.add(dir[k].x());
+          f.add(dir[k].y());
+          f.add(c.normal_force);
+          for (int d = 0; d < 3; ++d)
+            {
+              f.add(c.reference[d]);
+              f.add(c.shear_force[d]);
+            }
+        }
+      if (visited.insert(f.value()).second)
+        return true;
+      reason = "the open-close iteration cycles (iteration "
+               + std::to_string(done) + " returned to an earlier iterate; "
+               + most_changed() + ")";
+      return false;
+    };
+    // The shared driver (dda/open_close.h); this engine's iteration is
+    // assemble, solve, check.
+    const auto solve = [&](const unsigned, std::string &reason) {
         // The contact springs, in chunks of blocks (diagonal blocks and
         // loads) and of pairs (off-diagonal blocks), each adding its
         // contacts in contact order: the serial sums, on any number of
@@ -904,12 +960,22 @@ namespace rockdda::dda3d
           });
         // The upper block K_ij (i < j) of each pair.
         fill_pairs(true);
-        if (!solver.solve(matrix, F, D, !states_changed) || !D.allFinite())
-          return false;
+        if (!solver.solve(matrix, F, D, !states_changed))
+          {
+            reason = "the linear solver failed";
+            return false;
+          }
+        if (!D.allFinite())
+          {
+            reason = "the displacement increment is not finite";
+            return false;
+          }
         solver_iterations += solver.last_iterations();
         for (std::size_t b = 0; b < n; ++b)
           Db[b] = D.segment<12>(12 * b);
-
+        return true;
+    };
+    const auto check = [&](const unsigned) {
         // State check.
         double n_mean   = 0.;
         int    n_closed = 0;
@@ -991,7 +1057,7 @@ namespace rockdda::dda3d
         // the face groups' shared strength (serial, in group order), then
         // the new states are applied (in chunks).
         const std::size_t                grain = 128;
-        std::vector<std::array<char, 2>> flags((contacts.size() + grain - 1)
+        std::vector<std::array<unsigned, 2>> flags((contacts.size() + grain - 1)
                                                / grain);
         dda::for_each_chunk(
           chunks,
@@ -1011,13 +1077,28 @@ namespace rockdda::dda3d
                   K.weight_tolerance,
                   K.force_tolerance,
                   dda::chatter_factor(changes[k], ctrl.law.force_tolerance));
+                // A contact that cycles is held (dda::hold_tolerance(), the
+                // 2D rule).
+                const double hold
+                  = changes[k] >= static_cast<int>(ctrl.hold_after)
+                      ? dda::hold_tolerance(c.state == ContactState::open,
+                                            K.normal_stiffness,
+                                            K.shear_stiffness,
+                                            ctrl.hold_fraction,
+                                            std::min(size[c.geometry.i],
+                                                     size[c.geometry.j]),
+                                            K.weight_tolerance,
+                                            K.force_tolerance,
+                                            ctrl.law.force_tolerance)
+                      : 0.;
                 checks[k] = check_state(c,
                                         K,
                                         dir[k],
                                         gap_after(k),
                                         shear_after(k),
                                         check_tolerance[k],
-                                        system.joints[c.joint]);
+                                        system.joints[c.joint],
+                                        hold);
               }
           });
         if (ctrl.face_group_friction)
@@ -1038,24 +1119,44 @@ namespace rockdda::dda3d
                 auto                  r = checks[k];
                 if (r.changed && r.state == ContactState::sliding)
                   r.direction = group_direction(k, r.direction);
+                bool friction_changed = false;
                 if (r.changed)
                   {
-                    flags[c_k][0] = 1;
+                    ++flags[c_k][0];
                     ++changes[k];
-                    if (c.state == ContactState::sliding
-                        && r.state == ContactState::locked)
-                      {
-                        // Force continuity: the locked spring starts at the
-                        // friction force the contact carried.
-                        const double S = dda::shear_strength(
-                          c, c.normal_force, c.area, system.joints[c.joint]);
-                        const Point d3 = dir[k].x() * K.t1 + dir[k].y() * K.t2;
-                        c.reference
-                          = c.geometry.q - (S / K.shear_stiffness) * d3;
-                        c.has_reference = true;
-                      }
-                    else if (r.state == ContactState::locked)
-                      c.has_reference = false;
+                    // Force continuity at lock (dda::lock_anchor(), the
+                    // rule of both engines): the spring of the step's
+                    // start.
+                    if (r.state == ContactState::locked)
+                      switch (dda::lock_anchor(
+                        c.state_at_start, c.state, false))
+                        {
+                          case dda::LockAnchor::start_spring:
+                            c.reference     = reference_at_start[k];
+                            c.has_reference = has_reference_at_start[k];
+                            break;
+                          case dda::LockAnchor::start_friction:
+                            // The spring carries the start's friction force
+                            // (on block i: -k_s s, s = [t1 t2]^T (p - r)).
+                            c.reference = c.geometry.q
+                                          + shear_at_start[k] / K.shear_stiffness;
+                            c.has_reference = true;
+                            break;
+                          case dda::LockAnchor::current_friction:
+                            {
+                              const double S = dda::shear_strength(
+                                c, c.normal_force, c.area, system.joints[c.joint]);
+                              const Point d3
+                                = dir[k].x() * K.t1 + dir[k].y() * K.t2;
+                              c.reference
+                                = c.geometry.q - (S / K.shear_stiffness) * d3;
+                              c.has_reference = true;
+                            }
+                            break;
+                          case dda::LockAnchor::here:
+                            c.has_reference = false;
+                            break;
+                        }
                     c.state = r.state;
                     set_shear(k);
                   }
@@ -1063,7 +1164,7 @@ namespace rockdda::dda3d
                   {
                     if (std::abs(r.normal_force - c.normal_force)
                         > 1e-3 * (std::abs(r.normal_force) + n_mean) + f)
-                      flags[c_k][1] = 1;
+                      friction_changed = true;
                     // A face group slides along the resultant of its slip in
                     // this step: the direction it started with (the trial
                     // spring forces, which in a wedge include the wedging
@@ -1073,11 +1174,12 @@ namespace rockdda::dda3d
                         const Eigen::Vector2d dn = group_direction(k, dir[k]);
                         if ((dn - dir[k]).norm() > 1e-3)
                           {
-                            r.direction   = dn;
-                            flags[c_k][1] = 1;
+                            r.direction      = dn;
+                            friction_changed = true;
                           }
                       }
                   }
+                flags[c_k][1] += friction_changed;
                 c.normal_force = r.normal_force;
                 dir[k]         = r.direction;
                 const Point fs3
@@ -1085,20 +1187,30 @@ namespace rockdda::dda3d
                 c.shear_force = fs3;
               }
           });
-        bool any_state = false, any_friction = false;
+        dda::OpenCloseCheck r;
         for (const auto &f : flags)
           {
-            any_state    = any_state || f[0];
-            any_friction = any_friction || f[1];
+            r.state_changes += f[0];
+            r.friction_changes += f[1];
           }
-        for (const int ch : changes)
-          if (ch >= 12)
-            return false;
-        if (any_state)
-          ++state_iterations;
-        states_changed = any_state;
-        converged      = !any_state && !any_friction;
-      }
+        states_changed = r.state_changes > 0;
+        r.most_changes     = static_cast<unsigned>(
+          changes.empty() ? 0
+                              : *std::max_element(changes.begin(), changes.end()));
+        return r;
+    };
+    dda::OpenCloseLimits limits;
+    limits.max_iterations = static_cast<unsigned>(ctrl.max_open_close);
+    limits.cycle_limit    = ctrl.cycle_limit;
+    unsigned iterations = 0;
+    if (!dda::run_open_close(limits,
+                             may_continue,
+                             solve,
+                             check,
+                             most_changed,
+                             iterations,
+                             why_))
+      return false;
 
     // Step size: no vertex moves further than the allowed displacement.
     for (std::size_t b = 0; b < n; ++b)
@@ -1109,7 +1221,14 @@ namespace rockdda::dda3d
         for (const auto &v : system.blocks[b].polyhedron.vertices)
           if ((displacement_matrix(moments[b].centroid, v) * Db[b]).norm()
               > limit)
-            return false;
+            {
+              why_ = "block " + std::to_string(system.blocks[b].id)
+                     + " moved more than its allowed "
+                     + io::format_number(limit, 3)
+                     + " m in one step (Maximum displacement ratio x its "
+                       "size)";
+              return false;
+            }
       }
 
     // The end-of-step velocities: Shi's v' = 2 D / h - v (a clamped block's:
@@ -1123,7 +1242,8 @@ namespace rockdda::dda3d
     std::vector<Vector12> v_end(n);
     for (std::size_t b = 0; b < n; ++b)
       v_end[b] = clamped_[b] ? Vector12(Db[b] / h)
-                             : Vector12((2. / h) * Db[b] - v0[b]);
+                             : dda::end_of_step_velocity(
+                                 Db[b], system.blocks[b].velocity, h, ctrl.dynamic);
     double kinetic_removed = 0.;
     if (ctrl.stiff_velocity && ctrl.dynamic > 0.)
       {
@@ -1188,7 +1308,10 @@ namespace rockdda::dda3d
                  * (vg - dug / h);
         fill_pairs(false);
         if (!solver.solve(matrix, F, V, false) || !V.allFinite())
-          return false;
+          {
+            why_ = "the velocity solve of the stiff modes failed";
+            return false;
+          }
         solver_iterations += solver.last_iterations();
         for (std::size_t b = 0; b < n; ++b)
           {
@@ -1218,7 +1341,8 @@ namespace rockdda::dda3d
         // The dashpots' work c v' . d over the step, v' = 2 D / h - v.
         std::vector<Vector12> v1(n);
         for (std::size_t b = 0; b < n; ++b)
-          v1[b] = (2. / h) * Db[b] - v0[b];
+          v1[b] = dda::end_of_step_velocity(
+            Db[b], system.blocks[b].velocity, h, ctrl.dynamic);
         for (std::size_t k = 0; k < contacts.size(); ++k)
           if (contacts[k].state != ContactState::open)
             {
@@ -1264,7 +1388,7 @@ namespace rockdda::dda3d
             if (K.shear_stiffness * s.norm() > K.force_tolerance)
               dir[k] = group_direction(k, s.normalized());
           }
-        c.direction = dir[k].x() * K.t1 + dir[k].y() * K.t2;
+        c.slide_direction = dir[k].x() * K.t1 + dir[k].y() * K.t2;
         if (c.state == ContactState::sliding
             || (c.state == ContactState::open
                 && c.state_at_start != ContactState::open))
@@ -1321,11 +1445,14 @@ namespace rockdda::dda3d
         const Material &mat = system.materials[b.material];
         const auto      m   = b.polyhedron.moments();
         e.kinetic
-          += 0.5 * b.velocity.dot(mass_matrix(m, mat.density) * b.velocity);
-        const Matrix6 C = elasticity_matrix(mat);
-        e.strain += 0.5 * m.volume * b.stress.dot(C.ldlt().solve(b.stress));
-        e.potential -= mat.density * m.volume
-                       * system.gravity.dot(m.centroid - b.initial_centroid);
+          += dda::kinetic_energy_of(b.velocity, mass_matrix(m, mat.density));
+        e.strain
+          += dda::strain_energy_of(m.volume, b.stress, elasticity_matrix(mat));
+        e.potential += dda::gravity_potential_of(mat.density,
+                                                 m.volume,
+                                                 system.gravity,
+                                                 Point(m.centroid
+                                                       - b.initial_centroid));
       }
     // The springs of the fixed points of blocks that are not clamped; the
     // anchors follow the ground.

@@ -61,7 +61,7 @@ namespace rockdda::dda3d
         w.put_fixed(c.reference);
         // Flags: bit 0 broken, bit 1 has a shear reference.
         w.put<std::uint8_t>((c.broken ? 1 : 0) | (c.has_reference ? 2 : 0));
-        w.put_fixed(c.direction);
+        w.put_fixed(c.slide_direction);
         w.put(c.normal_force);
         w.put_fixed(c.shear_force);
         w.put<std::int32_t>(c.joint);
@@ -135,7 +135,7 @@ namespace rockdda::dda3d
         const auto flags = r.get<std::uint8_t>();
         c.broken         = (flags & 1) != 0;
         c.has_reference  = (flags & 2) != 0;
-        c.direction      = r.get_fixed<Point>();
+        c.slide_direction = r.get_fixed<Point>();
         c.normal_force   = r.get<double>();
         c.shear_force    = r.get_fixed<Point>();
         c.joint          = r.get<std::int32_t>();

@@ -265,6 +265,20 @@ namespace rockdda::seismic
 
 
 
+  double
+  GroundMotionInput::single_polarity_sign(const std::string &prm_file,
+                                          const std::string &analysis) const
+  {
+    if (polarity == Polarity::both)
+      throw InputError(prm_file + ": key 'Ground motion/Polarity' = both is not "
+                       "supported by " + analysis
+                       + " (one simulation per file); valid: normal or "
+                         "inverted");
+    return polarity == Polarity::inverted ? -1. : 1.;
+  }
+
+
+
   void
   GroundMotionInput::parse_parameters(dealii::ParameterHandler &prm,
                                       const std::string        &prm_file)

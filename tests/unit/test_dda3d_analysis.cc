@@ -1176,7 +1176,7 @@ TEST(Dda3dCheckpoint, ResumedRunIsIdentical)
       const Contact &x = original.contacts()[k], &y = resumed.contacts()[k];
       EXPECT_EQ(x.state, y.state);
       EXPECT_EQ(x.reference, y.reference);
-      EXPECT_EQ(x.direction, y.direction);
+      EXPECT_EQ(x.slide_direction, y.slide_direction);
       EXPECT_EQ(x.normal_force, y.normal_force);
       EXPECT_EQ(x.shear_force, y.shear_force);
       EXPECT_EQ(x.slip_rate, y.slip_rate);

@@ -115,6 +115,36 @@ namespace rockdda::dda
     std::vector<std::pair<VertexKey, int>> by_vertex;
     std::vector<Key>                       stored_keys;
   };
+
+  /**
+   * What a contact of this step inherits from the stored contact it
+   * continues (ContactHistory::find()), both engines: its state, normal
+   * force, sliding direction, whether its joint broke and its slip rate;
+   * from the same features (@p same_feature) also its shear force and,
+   * through @p same_features(to, from), what belongs to the features: the
+   * shear spring's anchor of a locked contact (and the 2D engine's hold).
+   * A vertex that went round a corner onto another edge or face keeps its
+   * state but starts its spring where it touches now, carrying no shear
+   * force (and no stored spring energy) from the old features.
+   */
+  template <typename Contact, typename SameFeatures>
+  void
+  continue_contact(Contact            &to,
+                   const Contact      &from,
+                   const bool          same_feature,
+                   const SameFeatures &same_features)
+  {
+    to.state           = from.state;
+    to.normal_force    = from.normal_force;
+    to.slide_direction = from.slide_direction;
+    to.broken          = from.broken;
+    to.slip_rate       = from.slip_rate;
+    if (same_feature)
+      {
+        to.shear_force = from.shear_force;
+        same_features(to, from);
+      }
+  }
 } // namespace rockdda::dda
 
 #endif

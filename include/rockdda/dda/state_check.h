@@ -116,6 +116,48 @@ namespace rockdda::dda
   }
 
   /**
+   * The hold tolerance (N; N/m in 2D) of a contact that cycles in the
+   * open-close iteration (it changed state the engine's hold_after times
+   * in the attempt), both engines: it then keeps its state while the force
+   * it would take to change is at most k_s x @p hold_fraction x @p size
+   * (an elastic slip or penetration of that fraction of the smaller
+   * block's size @p size, m) and at most 1 % of the lighter block's weight
+   * (the largest chatter escalation of its @p weight_tolerance, whose
+   * fraction of the weight is @p weight_fraction; @p force_tolerance is its
+   * round-off floor). An @p open contact carries no force, so holding it
+   * open hangs no block: it stays open up to a penetration of
+   * hold_fraction x size and at most the lighter block's weight in force
+   * (the compression its own weight gives one contact spring), not capped
+   * at 1 % of the weight. With that cap the lightly loaded end of a face
+   * contact that rocks (0.01-0.06 of a brick's weight when closed) opened
+   * and closed until the step was cut: 29 of the 53 cuts of wall-25x40
+   * from rest (benchmarks/dda-scaling, section 10).
+   */
+  inline double
+  hold_tolerance(const bool   open,
+                 const double normal_stiffness,
+                 const double shear_stiffness,
+                 const double hold_fraction,
+                 const double size,
+                 const double weight_tolerance,
+                 const double force_tolerance,
+                 const double weight_fraction)
+  {
+    double hold = std::min(shear_stiffness * hold_fraction * size,
+                           escalated_tolerance(weight_tolerance,
+                                               force_tolerance,
+                                               max_chatter_factor(
+                                                 weight_fraction)));
+    if (open)
+      hold = std::max(hold,
+                      std::min(normal_stiffness * hold_fraction * size,
+                               escalated_tolerance(weight_tolerance,
+                                                   force_tolerance,
+                                                   1. / weight_fraction)));
+    return hold;
+  }
+
+  /**
    * The result of checking one contact after a solve: the new state, the
    * normal force (N, compression positive; N/m in 2D), the shear force on
    * block i (the locked spring's -k_s s, or the friction -S d of a sliding
@@ -235,6 +277,63 @@ namespace rockdda::dda
       }
     r.changed = r.state != contact.state;
     return r;
+  }
+  /**
+   * Where the shear spring of a contact that locks during the open-close
+   * iteration is anchored (force continuity at lock, both engines;
+   * doc/theory/dda.md, "Force continuity at lock"):
+   * - start_spring: the spring and anchor of the step's start;
+   * - start_friction: anchored so that the spring carries the friction
+   *   force the contact carried at the step's start;
+   * - current_friction: anchored so that the spring carries the friction
+   *   force of the iteration in which it locks;
+   * - here: anchored where it touches now (no force).
+   */
+  enum class LockAnchor
+  {
+    start_spring,
+    start_friction,
+    current_friction,
+    here
+  };
+
+  /**
+   * The LockAnchor of a contact that locks in the open-close iteration,
+   * whose state at the step's start was @p at_start and in the iteration
+   * before it locks @p before (both engines). The iterations of a step are
+   * not time, so the spring is the one of the step's start: a contact that
+   * was locked then takes back its start spring (start_spring), one that
+   * was sliding the friction force it carried then (start_friction), one
+   * that was open starts where it touches (here). Rebasing on the friction
+   * force of the current iteration pre-stretches the spring by the change
+   * of the normal force within the step, energy that no work paid for
+   * (+864 J/m in one step of a 2D ratchet earthquake episode).
+   *
+   * Without @p start_forces (the 3D engine) a contact that slid in the
+   * iteration before it locks takes the current iteration's friction force
+   * (current_friction), and any other starts where it touches (here). The
+   * 3D engine has no line search: with the start spring, a block on a
+   * shaken plane at the onset of sliding returns exactly to an earlier
+   * iterate (slides, reverses, relocks on the same spring) and the step is
+   * cut below its minimum (6 of its tests); with the start friction force
+   * the velocity-weakening run-out of the shaking-table wedge moves from
+   * 1.5 % to 3.4 % of sliding3d; with the start spring only after an
+   * opening, the shaken stack of test
+   * Dda3dContacts.ShakenStackNeverGainsEnergyAtRelock gains 5.4e-3 of the
+   * energy in play in a step, against 6.7e-5 with this rule (doc/theory/
+   * dda3d.md, "Force continuity at lock").
+   */
+  inline LockAnchor
+  lock_anchor(const ContactState at_start,
+              const ContactState before,
+              const bool         start_forces)
+  {
+    if (!start_forces)
+      return before == ContactState::sliding ? LockAnchor::current_friction
+                                             : LockAnchor::here;
+    return at_start == ContactState::locked    ? LockAnchor::start_spring
+           : at_start == ContactState::sliding ? LockAnchor::start_friction
+                                               : LockAnchor::here;
   }
 } // namespace rockdda::dda
 

@@ -88,13 +88,6 @@ namespace rockdda::dda3d
                         const double p);
 
   /**
-   * Load of the block's accumulated (initial) stress @p sigma (Pa):
-   * -V sigma on the strain unknowns (the derivative of V sigma . eps).
-   */
-  Vector12
-  initial_stress_load(const double volume, const Vector6 &sigma);
-
-  /**
    * Rotate a Voigt stress (@p shear_factor 1) or engineering strain
    * (@p shear_factor 0.5) with the block: R S R^T.
    */

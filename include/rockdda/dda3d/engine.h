@@ -40,7 +40,7 @@ namespace rockdda::dda3d
   /**
    * One contact with its state. The shear reference is a material point of
    * block j (moved with j) that a locked contact's
-   * shear spring is measured from; direction is the sliding direction of
+   * shear spring is measured from; slide_direction is the sliding direction of
    * i relative to j (unit, global) of a sliding contact.
    */
   struct Contact
@@ -53,7 +53,7 @@ namespace rockdda::dda3d
     Point reference     = Point::Zero();
     bool  has_reference = false;
     /// Sliding direction (unit) of a sliding contact.
-    Point direction = Point::Zero();
+    Point slide_direction = Point::Zero();
     /// Normal force (N, compression positive) and shear force on block i
     /// (N, a vector in the contact plane) of the latest solve.
     double normal_force = 0.;
@@ -122,7 +122,8 @@ namespace rockdda::dda3d
    * displacement @p s in the contact plane, sliding along the unit vector
    * @p direction (not changed here: the engine sets it from the resultant
    * of the contact's face group, doc/theory/dda3d.md), with the force
-   * tolerance @p force_tolerance (N) and no hold.
+   * tolerance @p force_tolerance (N) and the hold tolerance @p hold_tolerance
+   * (N; 0: not held).
    */
   StateCheck
   check_state(const Contact           &contact,
@@ -131,7 +132,8 @@ namespace rockdda::dda3d
               const double             g,
               const Eigen::Vector2d   &s,
               const double             force_tolerance,
-              const JointMaterial     &joint);
+              const JointMaterial     &joint,
+              double                   hold_tolerance = 0.);
 
   /// Controls of the 3D engine.
   struct EngineControls
@@ -192,6 +194,15 @@ namespace rockdda::dda3d
     /// Open-close iterations that change a state before the step is cut;
     /// iterations that only update friction may add as many again.
     int max_open_close = 12;
+    /// A contact that changes state this many times within one attempt
+    /// cycles: the step is cut (dda::OpenCloseLimits, as in 2D).
+    unsigned cycle_limit = 12;
+    /// A contact that has changed state this many times in one attempt is
+    /// held with dda::hold_tolerance() (an elastic slip or penetration of
+    /// hold_fraction x the smaller block's size, at most 1 % of the lighter
+    /// block's weight; an open one up to its weight), as in 2D.
+    unsigned hold_after    = 4;
+    double   hold_fraction = 1e-7;
     /// Smallest time step (fraction of dt) before the run stops.
     double min_dt_ratio = 1e-6;
     /// Stop (dda::DdaFailure) after this many steps in one advance_to()
@@ -338,7 +349,8 @@ namespace rockdda::dda3d
     }
 
   private:
-    /// One attempt of a step of length @p h; false if it must be cut.
+    /// One attempt of a step of length @p h; false if it must be cut, with
+    /// the reason in why_.
     bool
     try_step(const double h);
 
@@ -361,6 +373,9 @@ namespace rockdda::dda3d
     /// The displacement increments of the last accepted step (12 per
     /// block; empty before the first): the CG's starting guess.
     Eigen::VectorXd last_solution;
+    /// Why the last attempt was cut (for the diagnosis of a run whose step
+    /// falls below its minimum).
+    std::string why_;
   };
 } // namespace rockdda::dda3d
 

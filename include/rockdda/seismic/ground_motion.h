@@ -52,6 +52,16 @@ namespace rockdda::seismic
     parse_parameters(dealii::ParameterHandler &prm,
                      const std::string        &prm_file);
 
+    /**
+     * The sign of the horizontal records for an analysis that runs one
+     * simulation per parameter file (both DDA engines): +1 normal, -1
+     * inverted. Polarity 'both' throws InputError naming @p prm_file, the
+     * key and @p analysis.
+     */
+    double
+    single_polarity_sign(const std::string &prm_file,
+                         const std::string &analysis) const;
+
     /// The processed and scaled record in normal polarity (g).
     Record record;
     /// The record as read (converted to g), before processing and scaling.
