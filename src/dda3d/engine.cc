@@ -7,6 +7,7 @@
 #include <rockdda/dda/block_step_terms.h>
 #include <rockdda/dda/contact_damping.h>
 #include <rockdda/dda/contact_history.h>
+#include <rockdda/dda/line_search.h>
 #include <rockdda/dda/open_close.h>
 #include <rockdda/dda/state_check.h>
 #include <rockdda/dda/strain_damping.h>
@@ -711,6 +712,9 @@ namespace rockdda::dda3d
     // last solve: an iteration that only updated friction forces reuses
     // the factorisation or preconditioner.
     bool             states_changed    = true;
+    // Whether the latest iteration was a damped step of the line search
+    // after which no state changed (the next one is then a full step).
+    bool damped_last = false;
     int              solver_iterations = 0;
     std::vector<int> changes(contacts.size(), 0);
     // The friction force of each sliding contact in the last solve (N, on
@@ -893,6 +897,7 @@ namespace rockdda::dda3d
               f.add(c.shear_force[d]);
             }
         }
+      f.add(static_cast<std::uint64_t>(damped_last));
       if (visited.insert(f.value()).second)
         return true;
       reason = "the open-close iteration cycles (iteration "
@@ -902,6 +907,93 @@ namespace rockdda::dda3d
     };
     // The shared driver (dda/open_close.h); this engine's iteration is
     // assemble, solve, check.
+    // Contact k's force tolerance in this iteration: chatter
+    // (dda::chatter_factor(), the 2D rule) gives 10 x and 100 x the weight
+    // part after two and three changes, at most 1 % of the weight; the
+    // round-off part stays a floor. A contact that cycles is held
+    // (dda::hold_tolerance(), the 2D rule).
+    auto chatter_tolerance = [&](const std::size_t k) {
+      return dda::escalated_tolerance(
+        kin[k].weight_tolerance,
+        kin[k].force_tolerance,
+        dda::chatter_factor(changes[k], ctrl.law.force_tolerance));
+    };
+    auto held_tolerance = [&](const std::size_t k) {
+      const auto &c = contacts[k];
+      const auto &K = kin[k];
+      return changes[k] >= static_cast<int>(ctrl.hold_after)
+               ? dda::hold_tolerance(c.state == ContactState::open,
+                                     K.normal_stiffness,
+                                     K.shear_stiffness,
+                                     ctrl.hold_fraction,
+                                     std::min(size[c.geometry.i],
+                                              size[c.geometry.j]),
+                                     K.weight_tolerance,
+                                     K.force_tolerance,
+                                     ctrl.law.force_tolerance)
+               : 0.;
+    };
+    // The increments before the latest solve (the line search's x_k).
+    Eigen::VectorXd       D_prev;
+    std::vector<Vector12> Db_prev(n);
+    // The exact line search of the open-close iteration (dda/line_search.h,
+    // the 2D engine's): the step length along D - D_prev.
+    auto line_search = [&]() {
+      const Eigen::VectorXd d = D - D_prev;
+      Eigen::VectorXd       Kd;
+      matrix.vmult(d, Kd);
+      const double a = d.dot(Kd);
+      if (!(a > 0.) || !std::isfinite(a))
+        return 1.;
+      for (std::size_t b = 0; b < n; ++b)
+        Db_prev[b] = D_prev.segment<12>(12 * b);
+      std::vector<dda::LineSearchTerm<Eigen::Vector2d>> terms(contacts.size());
+      dda::for_each_chunk(
+        chunks,
+        contacts.size(),
+        128,
+        [&](const std::size_t lo, const std::size_t hi) {
+          for (std::size_t k = lo; k < hi; ++k)
+            {
+              const auto &c     = contacts[k];
+              const auto &K     = kin[k];
+              const auto &joint = system.joints[c.joint];
+              auto       &t     = terms[k];
+              t.g               = K.g0 + normal_rate(k, Db_prev);
+              t.dg              = gap_after(k) - t.g;
+              t.s  = Eigen::Vector2d(K.s0 + shear_rate(k, Db_prev));
+              t.ds = shear_after(k) - t.s;
+              t.p  = K.normal_stiffness;
+              t.ps = K.shear_stiffness;
+              t.closed       = c.state != ContactState::open;
+              const double f = chatter_tolerance(k);
+              t.f_hold       = std::max(f, held_tolerance(k));
+              t.f_open = c.state == ContactState::locked ? t.f_hold : f;
+              t.linear_normal = t.closed && !c.broken
+                                && c.state == ContactState::locked
+                                && joint.tensile > 0.;
+              // The locked members of a face group are left linear, as in
+              // 2D.
+              t.shear = t.closed && !dda::frictionless(c, joint)
+                        && !(c.state == ContactState::locked && group[k] >= 0);
+              if (t.shear)
+                dda::set_line_search_shear(
+                  t,
+                  c.state,
+                  f,
+                  dir[k],
+                  dda::shear_strength(c, c.normal_force, c.area, joint));
+              t.moves = t.dg != 0. || t.ds.squaredNorm() != 0.;
+            }
+        });
+      return dda::exact_line_search(
+        terms, a, [&](const std::size_t k, const double nf) {
+          return dda::shear_strength(contacts[k],
+                                     nf,
+                                     contacts[k].area,
+                                     system.joints[contacts[k].joint]);
+        });
+    };
     const auto solve = [&](const unsigned, std::string &reason) {
         // The contact springs, in chunks of blocks (diagonal blocks and
         // loads) and of pairs (off-diagonal blocks), each adding its
@@ -960,6 +1052,7 @@ namespace rockdda::dda3d
           });
         // The upper block K_ij (i < j) of each pair.
         fill_pairs(true);
+        D_prev = D;
         if (!solver.solve(matrix, F, D, !states_changed))
           {
             reason = "the linear solver failed";
@@ -975,7 +1068,21 @@ namespace rockdda::dda3d
           Db[b] = D.segment<12>(12 * b);
         return true;
     };
-    const auto check = [&](const unsigned) {
+    const auto check = [&](const unsigned iteration) {
+        // Line search along the Newton direction, from the second iteration
+        // on (the first starts from the previous step's increments, not
+        // from a point of the current states), as in 2D.
+        double alpha = 1.;
+        if (ctrl.line_search && iteration > 1 && !damped_last)
+          {
+            alpha = line_search();
+            if (alpha < 1.)
+              {
+                D = D_prev + alpha * (D - D_prev);
+                for (std::size_t b = 0; b < n; ++b)
+                  Db[b] = D.segment<12>(12 * b);
+              }
+          }
         // State check.
         double n_mean   = 0.;
         int    n_closed = 0;
@@ -1073,24 +1180,8 @@ namespace rockdda::dda3d
                 // after two and three changes, at most 1 %
                 // of the weight; the round-off part stays a
                 // floor.
-                check_tolerance[k] = dda::escalated_tolerance(
-                  K.weight_tolerance,
-                  K.force_tolerance,
-                  dda::chatter_factor(changes[k], ctrl.law.force_tolerance));
-                // A contact that cycles is held (dda::hold_tolerance(), the
-                // 2D rule).
-                const double hold
-                  = changes[k] >= static_cast<int>(ctrl.hold_after)
-                      ? dda::hold_tolerance(c.state == ContactState::open,
-                                            K.normal_stiffness,
-                                            K.shear_stiffness,
-                                            ctrl.hold_fraction,
-                                            std::min(size[c.geometry.i],
-                                                     size[c.geometry.j]),
-                                            K.weight_tolerance,
-                                            K.force_tolerance,
-                                            ctrl.law.force_tolerance)
-                      : 0.;
+                check_tolerance[k] = chatter_tolerance(k);
+                const double hold  = held_tolerance(k);
                 checks[k] = check_state(c,
                                         K,
                                         dir[k],
@@ -1194,6 +1285,11 @@ namespace rockdda::dda3d
             r.friction_changes += f[1];
           }
         states_changed = r.state_changes > 0;
+        // A damped step after which no state changed: the next step is a
+        // full one (the line search stopped at a state's tolerance band).
+        damped_last = alpha < 1. && r.state_changes == 0;
+        if (damped_last)
+          r.friction_changes = std::max(r.friction_changes, 1u);
         r.most_changes     = static_cast<unsigned>(
           changes.empty() ? 0
                               : *std::max_element(changes.begin(), changes.end()));

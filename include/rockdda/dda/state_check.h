@@ -311,11 +311,12 @@ namespace rockdda::dda
    *
    * Without @p start_forces (the 3D engine) a contact that slid in the
    * iteration before it locks takes the current iteration's friction force
-   * (current_friction), and any other starts where it touches (here). The
-   * 3D engine has no line search: with the start spring, a block on a
-   * shaken plane at the onset of sliding returns exactly to an earlier
-   * iterate (slides, reverses, relocks on the same spring) and the step is
-   * cut below its minimum (6 of its tests); with the start friction force
+   * (current_friction), and any other starts where it touches (here).
+   * With the start spring, a block on a shaken plane at the onset of
+   * sliding returns exactly to an earlier iterate (slides, reverses,
+   * relocks on the same spring) and the step is cut below its minimum (6
+   * of the 3D tests; 5 with the line search, EngineControls::line_search);
+   * with the start friction force
    * the velocity-weakening run-out of the shaking-table wedge moves from
    * 1.5 % to 3.4 % of sliding3d; with the start spring only after an
    * opening, the shaken stack of test
