@@ -83,6 +83,19 @@ namespace rockdda::dda3d::test_scenes
   }
 
 
+  /// Appends a box block [@p lo, @p hi] of material 0 to @p s, with the
+  /// next id (1-based).
+  inline void
+  add_box_block(BlockSystem &s, const Point &lo, const Point &hi)
+  {
+    Block b;
+    b.id         = int(s.blocks.size()) + 1;
+    b.material   = 0;
+    b.polyhedron = make_box(lo, hi);
+    s.blocks.push_back(b);
+  }
+
+
   /**
    * A running-bond wall of @p rows x @p columns bricks (2 m long in x, 1 m
    * thick in y, 1 m high in z; odd rows start and end with a half brick)
@@ -98,11 +111,7 @@ namespace rockdda::dda3d::test_scenes
     j.friction_deg = 35.;
     s.joints.push_back(j);
     auto brick = [&](const Point &lo, const Point &hi) {
-      Block b;
-      b.id         = int(s.blocks.size()) + 1;
-      b.material   = 0;
-      b.polyhedron = make_box(lo, hi);
-      s.blocks.push_back(b);
+      add_box_block(s, lo, hi);
     };
     brick(Point(-2., -2., -1.), Point(2. * columns + 2., 3., 0.));
     for (const auto &v : s.blocks[0].polyhedron.vertices)

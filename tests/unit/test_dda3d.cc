@@ -1954,19 +1954,13 @@ TEST(Dda3dContacts, ShakenStackNeverGainsEnergyAtRelock)
       j.friction_deg    = 30.;
       j.shear_stiffness = joint_shear;
       s.joints.push_back(j);
-      auto add = [&](const Point &lo, const Point &hi) {
-        Block b;
-        b.id         = int(s.blocks.size()) + 1;
-        b.material   = 0;
-        b.polyhedron = make_box(lo, hi);
-        s.blocks.push_back(b);
-      };
-      add(Point(-3., -2., -1.), Point(3., 2., 0.));
+      test_scenes::add_box_block(s, Point(-3., -2., -1.), Point(3., 2., 0.));
       for (const auto &v : s.blocks[0].polyhedron.vertices)
         s.fixed_points.push_back({0, v, Point::Zero()});
       for (int k = 0; k < 3; ++k)
-        add(Point(-0.5 + 0.1 * k, -0.5, 0.5 * k),
-            Point(0.5 + 0.1 * k, 0.5, 0.5 * k + 0.5));
+        test_scenes::add_box_block(s,
+                                   Point(-0.5 + 0.1 * k, -0.5, 0.5 * k),
+                                   Point(0.5 + 0.1 * k, 0.5, 0.5 * k + 0.5));
       s.gravity = Point(0., 0., -9.80665);
       EngineControls c;
       c.dt                  = dt;
