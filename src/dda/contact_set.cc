@@ -67,10 +67,9 @@ namespace rockdda::dda
             // corner) starts open: it closes when it crosses the edge's
             // line.
             const bool beyond = g.projection < 0. || g.projection > 1.;
-            r.state           = !beyond && g.gap <= closed_gap(g)
-                                  ? ContactState::locked
-                                  : ContactState::open;
-            r.broken          = !intact;
+            r.state  = !beyond && g.gap <= closed_gap(g) ? ContactState::locked
+                                                         : ContactState::open;
+            r.broken = !intact;
           }
         r.state_at_start = r.state;
       }

@@ -266,10 +266,10 @@ namespace rockdda::dda
               for (auto &a : motion.record.acceleration)
                 a = -a;
             // ('loading' is the thesis's and the dda3d analysis's name.)
-            scene.seismic.mode = mode == "inertial" || mode == "loading"
-                                              ? SeismicInput::Mode::inertial
-                                              : SeismicInput::Mode::displacement;
-            scene.seismic.record          = motion.record;
+            scene.seismic.mode   = mode == "inertial" || mode == "loading"
+                                     ? SeismicInput::Mode::inertial
+                                     : SeismicInput::Mode::displacement;
+            scene.seismic.record = motion.record;
             scene.seismic.vertical_record = motion.vertical_record;
             scene.seismic.g               = gravity > 0. ? gravity : 9.80665;
             motion_text                   = motion.description;

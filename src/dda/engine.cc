@@ -450,15 +450,15 @@ namespace rockdda::dda
               // under 1e-13 perturbations.)
               const auto &g   = contacts[c].geometry;
               const auto &kin = assembler.kinematics()[c];
-              hold[c]         = hold_tolerance(
-                contacts[c].state == ContactState::open,
-                kin.normal_stiffness,
-                kin.shear_stiffness,
-                ctrl.hold_fraction,
-                std::min(block_size[g.block_i], block_size[g.block_j]),
-                kin.weight_tolerance,
-                kin.force_tolerance,
-                ctrl.law.force_tolerance);
+              hold[c] = hold_tolerance(contacts[c].state == ContactState::open,
+                                       kin.normal_stiffness,
+                                       kin.shear_stiffness,
+                                       ctrl.hold_fraction,
+                                       std::min(block_size[g.block_i],
+                                                block_size[g.block_j]),
+                                       kin.weight_tolerance,
+                                       kin.force_tolerance,
+                                       ctrl.law.force_tolerance);
             }
         }
     };
@@ -586,11 +586,10 @@ namespace rockdda::dda
                   // ratchet (issue 15).
                   // (lock_anchor(): the rule of both engines.)
                   const Contact   &at_start = start[c];
-                  const LockAnchor anchor   = r.state == ContactState::locked
-                                                ? lock_anchor(at_start.state,
-                                                              old,
-                                                              true)
-                                                : LockAnchor::here;
+                  const LockAnchor anchor
+                    = r.state == ContactState::locked
+                        ? lock_anchor(at_start.state, old, true)
+                        : LockAnchor::here;
                   if (anchor == LockAnchor::start_spring)
                     ct.xi_ref = at_start.xi_ref;
                   else
@@ -657,7 +656,7 @@ namespace rockdda::dda
     };
     // The shared driver (dda/open_close.h) with this engine's exact-cycle
     // cut, inexact solves, line search and holds.
-    bool       loose = false;
+    bool       loose        = false;
     const auto may_continue = [&](const unsigned done, std::string &reason) {
       // (From the fourth iteration on: most steps converge before, and a
       // cycle that began earlier repeats an iterate recorded after it.)
@@ -747,7 +746,8 @@ namespace rockdda::dda
     OpenCloseLimits limits;
     limits.max_iterations = ctrl.max_iterations;
     limits.cycle_limit    = ctrl.cycle_limit;
-    if (!run_open_close(limits, may_continue, solve, check, most_changed, it, why))
+    if (!run_open_close(
+          limits, may_continue, solve, check, most_changed, it, why))
       return false;
 
     // No contact beyond its strength by more than its tolerance, whatever
@@ -1293,9 +1293,10 @@ namespace rockdda::dda
     double e = 0.;
     for (const auto &b : scene.blocks)
       {
-        e += kinetic_energy_of(b.velocity,
-                               mass_matrix(block_moments(b.polygon),
-                                           scene.materials[b.material].density));
+        e += kinetic_energy_of(
+          b.velocity,
+          mass_matrix(block_moments(b.polygon),
+                      scene.materials[b.material].density));
       }
     return e;
   }

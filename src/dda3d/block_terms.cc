@@ -29,7 +29,7 @@ namespace rockdda::dda3d
         const Block    &block = system.blocks[b];
         const Material &mat   = system.materials[block.material];
         r.moments[b]          = block.polyhedron.moments();
-        const auto    &m      = r.moments[b];
+        const auto &m         = r.moments[b];
         // (dda/block_step_terms.h, shared with 2D.) The loading-mode
         // ground acceleration is a body force: its part is also kept as
         // the external load whose work the ledger books.

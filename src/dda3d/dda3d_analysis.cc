@@ -438,7 +438,7 @@ namespace rockdda::dda3d
       return in;
     in.mode = mode == "loading" || mode == "inertial"
                 ? SeismicInput3d::Mode::loading
-                                : SeismicInput3d::Mode::displacement;
+                : SeismicInput3d::Mode::displacement;
     // The three components as records (g): x, y, z.
     std::array<seismic::Record, 3> records;
     if (source == "expression")
@@ -477,9 +477,9 @@ namespace rockdda::dda3d
         seismic::GroundMotionInput motion;
         motion.parse_parameters(prm, prm_file);
         const double sign = motion.single_polarity_sign(prm_file, "dda3d");
-        const double a  = azimuth * M_PI / 180.;
-        const Point  e1 = sign * Point(std::sin(a), std::cos(a), 0.);
-        const Point  e2 = sign * Point(std::cos(a), -std::sin(a), 0.);
+        const double a    = azimuth * M_PI / 180.;
+        const Point  e1   = sign * Point(std::sin(a), std::cos(a), 0.);
+        const Point  e2   = sign * Point(std::cos(a), -std::sin(a), 0.);
         const auto add = [&](const seismic::Record &r, const Point &direction) {
           if (r.acceleration.empty())
             return;

@@ -218,13 +218,13 @@ namespace rockdda::dda3d
         damping_work  = saved_damping;
         ++cuts;
         if (!steps_.cut(h))
-          throw dda::DdaFailure(
-            "3D DDA: the time step fell below "
-            + io::format_number(steps_.current(), 3)
-            + " s (Minimum time step ratio "
-            + io::format_number(ctrl.min_dt_ratio, 3) + " x "
-            + io::format_number(ctrl.dt, 3)
-            + " s) at t = " + io::format_number(t, 8) + " s: " + why_);
+          throw dda::DdaFailure("3D DDA: the time step fell below "
+                                + io::format_number(steps_.current(), 3)
+                                + " s (Minimum time step ratio "
+                                + io::format_number(ctrl.min_dt_ratio, 3)
+                                + " x " + io::format_number(ctrl.dt, 3)
+                                + " s) at t = " + io::format_number(t, 8)
+                                + " s: " + why_);
         h = steps_.attempt(max_length);
       }
     t += h;
@@ -711,10 +711,10 @@ namespace rockdda::dda3d
     // Whether the contact states (hence the matrix) changed since the
     // last solve: an iteration that only updated friction forces reuses
     // the factorisation or preconditioner.
-    bool             states_changed    = true;
+    bool states_changed = true;
     // Whether the latest iteration was a damped step of the line search
     // after which no state changed (the next one is then a full step).
-    bool damped_last = false;
+    bool             damped_last       = false;
     int              solver_iterations = 0;
     std::vector<int> changes(contacts.size(), 0);
     // The friction force of each sliding contact in the last solve (N, on
@@ -869,11 +869,11 @@ namespace rockdda::dda3d
     // for good (dda::IterateFingerprint, as in 2D): cut the attempt now.
     // Each contact's change count enters up to where its chatter
     // tolerance stops growing.
-    const int flip_cap = std::max(
-      static_cast<int>(ctrl.hold_after),
-      2
-        + static_cast<int>(std::ceil(
-          std::log10(dda::max_chatter_factor(ctrl.law.force_tolerance)))));
+    const int flip_cap
+      = std::max(static_cast<int>(ctrl.hold_after),
+                 2
+                   + static_cast<int>(std::ceil(std::log10(
+                     dda::max_chatter_factor(ctrl.law.force_tolerance)))));
     std::set<std::pair<std::uint64_t, std::uint64_t>> visited;
     const auto may_continue = [&](const unsigned done, std::string &reason) {
       if (done < 3 || contacts.empty())
@@ -961,14 +961,14 @@ namespace rockdda::dda3d
               auto       &t     = terms[k];
               t.g               = K.g0 + normal_rate(k, Db_prev);
               t.dg              = gap_after(k) - t.g;
-              t.s  = Eigen::Vector2d(K.s0 + shear_rate(k, Db_prev));
-              t.ds = shear_after(k) - t.s;
-              t.p  = K.normal_stiffness;
-              t.ps = K.shear_stiffness;
-              t.closed       = c.state != ContactState::open;
-              const double f = chatter_tolerance(k);
-              t.f_hold       = std::max(f, held_tolerance(k));
-              t.f_open = c.state == ContactState::locked ? t.f_hold : f;
+              t.s             = Eigen::Vector2d(K.s0 + shear_rate(k, Db_prev));
+              t.ds            = shear_after(k) - t.s;
+              t.p             = K.normal_stiffness;
+              t.ps            = K.shear_stiffness;
+              t.closed        = c.state != ContactState::open;
+              const double f  = chatter_tolerance(k);
+              t.f_hold        = std::max(f, held_tolerance(k));
+              t.f_open        = c.state == ContactState::locked ? t.f_hold : f;
               t.linear_normal = t.closed && !c.broken
                                 && c.state == ContactState::locked
                                 && joint.tensile > 0.;
@@ -995,317 +995,312 @@ namespace rockdda::dda3d
         });
     };
     const auto solve = [&](const unsigned, std::string &reason) {
-        // The contact springs, in chunks of blocks (diagonal blocks and
-        // loads) and of pairs (off-diagonal blocks), each adding its
-        // contacts in contact order: the serial sums, on any number of
-        // threads.
-        Eigen::VectorXd F(N);
-        dda::for_each_chunk(
-          chunks, n, 8, [&](const std::size_t lo, const std::size_t hi) {
-            for (std::size_t b = lo; b < hi; ++b)
-              {
-                auto &Kb = matrix.diag[b];
-                auto  Fb = F.segment<12>(12 * b);
-                Kb       = K0[b];
-                Fb       = F0[b];
-                for_closed_contacts_of(
-                  b, [&](const std::size_t k, const int side) {
-                    const auto  &c = contacts[k];
-                    const auto  &K = kin[k];
-                    const double S
-                      = c.state == ContactState::sliding ? dda::shear_strength(
-                          c, c.normal_force, c.area, system.joints[c.joint])
-                                                         : 0.;
-                    if (side == 0 && c.state == ContactState::sliding)
-                      friction_applied[k] = -S * dir[k];
-                    if (clamped_[b])
-                      return;
-                    const Vector12   &e_n = side == 0 ? K.en : K.hn;
-                    const Matrix12x2 &e_s = side == 0 ? K.Es : K.Hs;
-                    Kb += spring_block(k, side, side);
-                    // Stacked unknowns (D_i, D_j): gap g = g0 + [en; hn] . x.
-                    Vector12 f = -K.normal_stiffness * K.g0 * e_n;
-                    if (c.state == ContactState::locked)
-                      f -= K.shear_stiffness * e_s * K.s0;
-                    else // sliding: friction against the sliding direction
-                      f -= S * e_s * dir[k];
-                    // The dashpots' c v terms.
-                    if (dashpots.active())
-                      {
-                        f += K.normal_dashpot * normal_rate(k, v0) * e_n;
-                        if (c.state == ContactState::locked)
-                          f += K.shear_dashpot * e_s * shear_rate(k, v0);
-                      }
-                    Fb += f;
-                    // A clamped partner's prescribed motion moves to the
-                    // right side.
-                    const int other = side == 0 ? c.geometry.j : c.geometry.i;
-                    if (clamped_[other])
-                      Fb -= spring_block(k, side, 1 - side) * prescribed[other];
-                  });
-                if (clamped_[b])
-                  {
-                    Kb.setIdentity();
-                    Fb = prescribed[b];
-                  }
-              }
-          });
-        // The upper block K_ij (i < j) of each pair.
-        fill_pairs(true);
-        D_prev = D;
-        if (!solver.solve(matrix, F, D, !states_changed))
-          {
-            reason = "the linear solver failed";
-            return false;
-          }
-        if (!D.allFinite())
-          {
-            reason = "the displacement increment is not finite";
-            return false;
-          }
-        solver_iterations += solver.last_iterations();
-        for (std::size_t b = 0; b < n; ++b)
-          Db[b] = D.segment<12>(12 * b);
-        return true;
+      // The contact springs, in chunks of blocks (diagonal blocks and
+      // loads) and of pairs (off-diagonal blocks), each adding its
+      // contacts in contact order: the serial sums, on any number of
+      // threads.
+      Eigen::VectorXd F(N);
+      dda::for_each_chunk(
+        chunks, n, 8, [&](const std::size_t lo, const std::size_t hi) {
+          for (std::size_t b = lo; b < hi; ++b)
+            {
+              auto &Kb = matrix.diag[b];
+              auto  Fb = F.segment<12>(12 * b);
+              Kb       = K0[b];
+              Fb       = F0[b];
+              for_closed_contacts_of(
+                b, [&](const std::size_t k, const int side) {
+                  const auto  &c = contacts[k];
+                  const auto  &K = kin[k];
+                  const double S
+                    = c.state == ContactState::sliding ? dda::shear_strength(
+                        c, c.normal_force, c.area, system.joints[c.joint])
+                                                       : 0.;
+                  if (side == 0 && c.state == ContactState::sliding)
+                    friction_applied[k] = -S * dir[k];
+                  if (clamped_[b])
+                    return;
+                  const Vector12   &e_n = side == 0 ? K.en : K.hn;
+                  const Matrix12x2 &e_s = side == 0 ? K.Es : K.Hs;
+                  Kb += spring_block(k, side, side);
+                  // Stacked unknowns (D_i, D_j): gap g = g0 + [en; hn] . x.
+                  Vector12 f = -K.normal_stiffness * K.g0 * e_n;
+                  if (c.state == ContactState::locked)
+                    f -= K.shear_stiffness * e_s * K.s0;
+                  else // sliding: friction against the sliding direction
+                    f -= S * e_s * dir[k];
+                  // The dashpots' c v terms.
+                  if (dashpots.active())
+                    {
+                      f += K.normal_dashpot * normal_rate(k, v0) * e_n;
+                      if (c.state == ContactState::locked)
+                        f += K.shear_dashpot * e_s * shear_rate(k, v0);
+                    }
+                  Fb += f;
+                  // A clamped partner's prescribed motion moves to the
+                  // right side.
+                  const int other = side == 0 ? c.geometry.j : c.geometry.i;
+                  if (clamped_[other])
+                    Fb -= spring_block(k, side, 1 - side) * prescribed[other];
+                });
+              if (clamped_[b])
+                {
+                  Kb.setIdentity();
+                  Fb = prescribed[b];
+                }
+            }
+        });
+      // The upper block K_ij (i < j) of each pair.
+      fill_pairs(true);
+      D_prev = D;
+      if (!solver.solve(matrix, F, D, !states_changed))
+        {
+          reason = "the linear solver failed";
+          return false;
+        }
+      if (!D.allFinite())
+        {
+          reason = "the displacement increment is not finite";
+          return false;
+        }
+      solver_iterations += solver.last_iterations();
+      for (std::size_t b = 0; b < n; ++b)
+        Db[b] = D.segment<12>(12 * b);
+      return true;
     };
     const auto check = [&](const unsigned iteration) {
-        // Line search along the Newton direction, from the second iteration
-        // on (the first starts from the previous step's increments, not
-        // from a point of the current states), as in 2D.
-        double alpha = 1.;
-        if (ctrl.line_search && iteration > 1 && !damped_last)
-          {
-            alpha = line_search();
-            if (alpha < 1.)
-              {
-                D = D_prev + alpha * (D - D_prev);
-                for (std::size_t b = 0; b < n; ++b)
-                  Db[b] = D.segment<12>(12 * b);
-              }
-          }
-        // State check.
-        double n_mean   = 0.;
-        int    n_closed = 0;
-        for (const auto &c : contacts)
-          if (c.state != ContactState::open)
+      // Line search along the Newton direction, from the second iteration
+      // on (the first starts from the previous step's increments, not
+      // from a point of the current states), as in 2D.
+      double alpha = 1.;
+      if (ctrl.line_search && iteration > 1 && !damped_last)
+        {
+          alpha = line_search();
+          if (alpha < 1.)
             {
-              n_mean += std::abs(c.normal_force);
-              ++n_closed;
+              D = D_prev + alpha * (D - D_prev);
+              for (std::size_t b = 0; b < n; ++b)
+                Db[b] = D.segment<12>(12 * b);
             }
-        n_mean = n_closed ? n_mean / n_closed : 0.;
-        std::fill(resultant.begin(), resultant.end(), Point::Zero());
-        std::fill(slip_sum.begin(), slip_sum.end(), 0.);
-        std::fill(spin.begin(), spin.end(), 0.);
-        std::fill(group_i.begin(), group_i.end(), -1);
-        std::fill(members.begin(), members.end(), 0);
-        std::fill(centroid.begin(), centroid.end(), Point::Zero());
-        std::fill(block_normal.begin(), block_normal.end(), Point::Zero());
-        std::fill(planar.begin(), planar.end(), 1);
-        for (std::size_t k = 0; k < contacts.size(); ++k)
-          if (contacts[k].state != ContactState::open)
+        }
+      // State check.
+      double n_mean   = 0.;
+      int    n_closed = 0;
+      for (const auto &c : contacts)
+        if (c.state != ContactState::open)
+          {
+            n_mean += std::abs(c.normal_force);
+            ++n_closed;
+          }
+      n_mean = n_closed ? n_mean / n_closed : 0.;
+      std::fill(resultant.begin(), resultant.end(), Point::Zero());
+      std::fill(slip_sum.begin(), slip_sum.end(), 0.);
+      std::fill(spin.begin(), spin.end(), 0.);
+      std::fill(group_i.begin(), group_i.end(), -1);
+      std::fill(members.begin(), members.end(), 0);
+      std::fill(centroid.begin(), centroid.end(), Point::Zero());
+      std::fill(block_normal.begin(), block_normal.end(), Point::Zero());
+      std::fill(planar.begin(), planar.end(), 1);
+      for (std::size_t k = 0; k < contacts.size(); ++k)
+        if (contacts[k].state != ContactState::open)
+          {
+            const auto &geo = contacts[k].geometry;
+            for (const int b : {geo.i, geo.j})
+              if (block_normal[b].squaredNorm() == 0.)
+                block_normal[b] = geo.normal;
+              else if (std::abs(block_normal[b].dot(geo.normal))
+                       < std::cos(0.1))
+                planar[b] = 0;
+            if (group[k] < 0)
+              continue;
+            const int gk = group[k];
+            if (group_i[gk] < 0)
+              {
+                group_i[gk]      = geo.i;
+                group_j[gk]      = geo.j;
+                group_normal[gk] = geo.normal;
+              }
+            const Point sk = slip3(k);
+            resultant[gk] += orientation(k) * sk;
+            slip_sum[gk] += sk.norm();
+            centroid[gk] += geo.p;
+            ++members[gk];
+          }
+      for (int gk = 0; gk < n_groups; ++gk)
+        if (members[gk] > 0)
+          centroid[gk] /= members[gk];
+      std::fill(radius2.begin(), radius2.end(), 0.);
+      std::fill(elastic.begin(), elastic.end(), 0.);
+      for (std::size_t k = 0; k < contacts.size(); ++k)
+        if (group[k] >= 0 && contacts[k].state != ContactState::open
+            && planar[group_i[group[k]]] && planar[group_j[group[k]]])
+          {
+            const auto  &c   = contacts[k];
+            const int    gk  = group[k];
+            const Point &nrm = group_normal[gk];
+            const Point  r   = c.geometry.p - centroid[gk];
+            radius2[gk] += (r - r.dot(nrm) * nrm).squaredNorm();
+            elastic[gk] += dda::shear_strength(c,
+                                               c.normal_force,
+                                               c.area,
+                                               system.joints[c.joint])
+                           / kin[k].shear_stiffness;
+          }
+      for (int gk = 0; gk < n_groups; ++gk)
+        if (radius2[gk] > 0.)
+          {
+            const double omega
+              = group_normal[gk].dot(rotation_vector(Db[group_i[gk]])
+                                     - rotation_vector(Db[group_j[gk]]));
+            const double R = std::sqrt(radius2[gk] / members[gk]);
+            spin[gk]       = std::copysign(
+              std::max(0., std::abs(omega) * R - elastic[gk] / members[gk]) / R,
+              omega);
+          }
+      // Each contact's check writes only its own contact, direction,
+      // kinematics and change count; the chunks' flags are joined after.
+      // First every contact against its own strength (in chunks), then
+      // the face groups' shared strength (serial, in group order), then
+      // the new states are applied (in chunks).
+      const std::size_t                    grain = 128;
+      std::vector<std::array<unsigned, 2>> flags((contacts.size() + grain - 1)
+                                                 / grain);
+      dda::for_each_chunk(chunks,
+                          contacts.size(),
+                          grain,
+                          [&](const std::size_t lo, const std::size_t hi) {
+                            for (std::size_t k = lo; k < hi; ++k)
+                              {
+                                const auto &c = contacts[k];
+                                const auto &K = kin[k];
+                                // Chatter (dda::chatter_factor(), the 2D
+                                // rule): 10 x and 100 x the weight part
+                                // after two and three changes, at most 1 %
+                                // of the weight; the round-off part stays a
+                                // floor.
+                                check_tolerance[k] = chatter_tolerance(k);
+                                const double hold  = held_tolerance(k);
+                                checks[k]          = check_state(c,
+                                                        K,
+                                                        dir[k],
+                                                        gap_after(k),
+                                                        shear_after(k),
+                                                        check_tolerance[k],
+                                                        system.joints[c.joint],
+                                                        hold);
+                              }
+                          });
+      if (ctrl.face_group_friction)
+        for (int gk = 0; gk < n_groups; ++gk)
+          decide_group(gk);
+      dda::for_each_chunk(
+        chunks,
+        contacts.size(),
+        grain,
+        [&](const std::size_t lo, const std::size_t hi) {
+          const std::size_t c_k = lo / grain;
+          for (std::size_t k = lo; k < hi; ++k)
             {
-              const auto &geo = contacts[k].geometry;
-              for (const int b : {geo.i, geo.j})
-                if (block_normal[b].squaredNorm() == 0.)
-                  block_normal[b] = geo.normal;
-                else if (std::abs(block_normal[b].dot(geo.normal))
-                         < std::cos(0.1))
-                  planar[b] = 0;
-              if (group[k] < 0)
-                continue;
-              const int gk = group[k];
-              if (group_i[gk] < 0)
+              auto                 &c = contacts[k];
+              const auto           &K = kin[k];
+              const Eigen::Vector2d s = shear_after(k);
+              const double          f = check_tolerance[k];
+              auto                  r = checks[k];
+              if (r.changed && r.state == ContactState::sliding)
+                r.direction = group_direction(k, r.direction);
+              bool friction_changed = false;
+              if (r.changed)
                 {
-                  group_i[gk]      = geo.i;
-                  group_j[gk]      = geo.j;
-                  group_normal[gk] = geo.normal;
-                }
-              const Point sk = slip3(k);
-              resultant[gk] += orientation(k) * sk;
-              slip_sum[gk] += sk.norm();
-              centroid[gk] += geo.p;
-              ++members[gk];
-            }
-        for (int gk = 0; gk < n_groups; ++gk)
-          if (members[gk] > 0)
-            centroid[gk] /= members[gk];
-        std::fill(radius2.begin(), radius2.end(), 0.);
-        std::fill(elastic.begin(), elastic.end(), 0.);
-        for (std::size_t k = 0; k < contacts.size(); ++k)
-          if (group[k] >= 0 && contacts[k].state != ContactState::open
-              && planar[group_i[group[k]]] && planar[group_j[group[k]]])
-            {
-              const auto  &c   = contacts[k];
-              const int    gk  = group[k];
-              const Point &nrm = group_normal[gk];
-              const Point  r   = c.geometry.p - centroid[gk];
-              radius2[gk] += (r - r.dot(nrm) * nrm).squaredNorm();
-              elastic[gk] += dda::shear_strength(c,
-                                                 c.normal_force,
-                                                 c.area,
-                                                 system.joints[c.joint])
-                             / kin[k].shear_stiffness;
-            }
-        for (int gk = 0; gk < n_groups; ++gk)
-          if (radius2[gk] > 0.)
-            {
-              const double omega
-                = group_normal[gk].dot(rotation_vector(Db[group_i[gk]])
-                                       - rotation_vector(Db[group_j[gk]]));
-              const double R = std::sqrt(radius2[gk] / members[gk]);
-              spin[gk]       = std::copysign(
-                std::max(0., std::abs(omega) * R - elastic[gk] / members[gk])
-                  / R,
-                omega);
-            }
-        // Each contact's check writes only its own contact, direction,
-        // kinematics and change count; the chunks' flags are joined after.
-        // First every contact against its own strength (in chunks), then
-        // the face groups' shared strength (serial, in group order), then
-        // the new states are applied (in chunks).
-        const std::size_t                grain = 128;
-        std::vector<std::array<unsigned, 2>> flags((contacts.size() + grain - 1)
-                                               / grain);
-        dda::for_each_chunk(
-          chunks,
-          contacts.size(),
-          grain,
-          [&](const std::size_t lo, const std::size_t hi) {
-            for (std::size_t k = lo; k < hi; ++k)
-              {
-                const auto &c = contacts[k];
-                const auto &K = kin[k];
-                // Chatter (dda::chatter_factor(), the 2D
-                // rule): 10 x and 100 x the weight part
-                // after two and three changes, at most 1 %
-                // of the weight; the round-off part stays a
-                // floor.
-                check_tolerance[k] = chatter_tolerance(k);
-                const double hold  = held_tolerance(k);
-                checks[k] = check_state(c,
-                                        K,
-                                        dir[k],
-                                        gap_after(k),
-                                        shear_after(k),
-                                        check_tolerance[k],
-                                        system.joints[c.joint],
-                                        hold);
-              }
-          });
-        if (ctrl.face_group_friction)
-          for (int gk = 0; gk < n_groups; ++gk)
-            decide_group(gk);
-        dda::for_each_chunk(
-          chunks,
-          contacts.size(),
-          grain,
-          [&](const std::size_t lo, const std::size_t hi) {
-            const std::size_t c_k = lo / grain;
-            for (std::size_t k = lo; k < hi; ++k)
-              {
-                auto                 &c = contacts[k];
-                const auto           &K = kin[k];
-                const Eigen::Vector2d s = shear_after(k);
-                const double          f = check_tolerance[k];
-                auto                  r = checks[k];
-                if (r.changed && r.state == ContactState::sliding)
-                  r.direction = group_direction(k, r.direction);
-                bool friction_changed = false;
-                if (r.changed)
-                  {
-                    ++flags[c_k][0];
-                    ++changes[k];
-                    // Force continuity at lock (dda::lock_anchor(), the
-                    // rule of both engines): the spring of the step's
-                    // start.
-                    if (r.state == ContactState::locked)
-                      switch (dda::lock_anchor(
-                        c.state_at_start, c.state, false))
-                        {
-                          case dda::LockAnchor::start_spring:
-                            c.reference     = reference_at_start[k];
-                            c.has_reference = has_reference_at_start[k];
-                            break;
-                          case dda::LockAnchor::start_friction:
-                            // The spring carries the start's friction force
-                            // (on block i: -k_s s, s = [t1 t2]^T (p - r)).
-                            c.reference = c.geometry.q
-                                          + shear_at_start[k] / K.shear_stiffness;
-                            c.has_reference = true;
-                            break;
-                          case dda::LockAnchor::current_friction:
-                            {
-                              const double S = dda::shear_strength(
-                                c, c.normal_force, c.area, system.joints[c.joint]);
-                              const Point d3
-                                = dir[k].x() * K.t1 + dir[k].y() * K.t2;
-                              c.reference
-                                = c.geometry.q - (S / K.shear_stiffness) * d3;
-                              c.has_reference = true;
-                            }
-                            break;
-                          case dda::LockAnchor::here:
-                            c.has_reference = false;
-                            break;
-                        }
-                    c.state = r.state;
-                    set_shear(k);
-                  }
-                else if (c.state == ContactState::sliding)
-                  {
-                    if (std::abs(r.normal_force - c.normal_force)
-                        > 1e-3 * (std::abs(r.normal_force) + n_mean) + f)
-                      friction_changed = true;
-                    // A face group slides along the resultant of its slip in
-                    // this step: the direction it started with (the trial
-                    // spring forces, which in a wedge include the wedging
-                    // across the axis) is corrected within the step.
-                    if (group[k] >= 0 && K.shear_stiffness * s.norm() > f)
+                  ++flags[c_k][0];
+                  ++changes[k];
+                  // Force continuity at lock (dda::lock_anchor(), the
+                  // rule of both engines): the spring of the step's
+                  // start.
+                  if (r.state == ContactState::locked)
+                    switch (dda::lock_anchor(c.state_at_start, c.state, false))
                       {
-                        const Eigen::Vector2d dn = group_direction(k, dir[k]);
-                        if ((dn - dir[k]).norm() > 1e-3)
+                        case dda::LockAnchor::start_spring:
+                          c.reference     = reference_at_start[k];
+                          c.has_reference = has_reference_at_start[k];
+                          break;
+                        case dda::LockAnchor::start_friction:
+                          // The spring carries the start's friction force
+                          // (on block i: -k_s s, s = [t1 t2]^T (p - r)).
+                          c.reference = c.geometry.q
+                                        + shear_at_start[k] / K.shear_stiffness;
+                          c.has_reference = true;
+                          break;
+                        case dda::LockAnchor::current_friction:
                           {
-                            r.direction      = dn;
-                            friction_changed = true;
+                            const double S
+                              = dda::shear_strength(c,
+                                                    c.normal_force,
+                                                    c.area,
+                                                    system.joints[c.joint]);
+                            const Point d3
+                              = dir[k].x() * K.t1 + dir[k].y() * K.t2;
+                            c.reference
+                              = c.geometry.q - (S / K.shear_stiffness) * d3;
+                            c.has_reference = true;
                           }
+                          break;
+                        case dda::LockAnchor::here:
+                          c.has_reference = false;
+                          break;
                       }
-                  }
-                flags[c_k][1] += friction_changed;
-                c.normal_force = r.normal_force;
-                dir[k]         = r.direction;
-                const Point fs3
-                  = r.shear_force.x() * K.t1 + r.shear_force.y() * K.t2;
-                c.shear_force = fs3;
-              }
-          });
-        dda::OpenCloseCheck r;
-        for (const auto &f : flags)
-          {
-            r.state_changes += f[0];
-            r.friction_changes += f[1];
-          }
-        states_changed = r.state_changes > 0;
-        // A damped step after which no state changed: the next step is a
-        // full one (the line search stopped at a state's tolerance band).
-        damped_last = alpha < 1. && r.state_changes == 0;
-        if (damped_last)
-          r.friction_changes = std::max(r.friction_changes, 1u);
-        r.most_changes     = static_cast<unsigned>(
-          changes.empty() ? 0
-                              : *std::max_element(changes.begin(), changes.end()));
-        return r;
+                  c.state = r.state;
+                  set_shear(k);
+                }
+              else if (c.state == ContactState::sliding)
+                {
+                  if (std::abs(r.normal_force - c.normal_force)
+                      > 1e-3 * (std::abs(r.normal_force) + n_mean) + f)
+                    friction_changed = true;
+                  // A face group slides along the resultant of its slip in
+                  // this step: the direction it started with (the trial
+                  // spring forces, which in a wedge include the wedging
+                  // across the axis) is corrected within the step.
+                  if (group[k] >= 0 && K.shear_stiffness * s.norm() > f)
+                    {
+                      const Eigen::Vector2d dn = group_direction(k, dir[k]);
+                      if ((dn - dir[k]).norm() > 1e-3)
+                        {
+                          r.direction      = dn;
+                          friction_changed = true;
+                        }
+                    }
+                }
+              flags[c_k][1] += friction_changed;
+              c.normal_force = r.normal_force;
+              dir[k]         = r.direction;
+              const Point fs3
+                = r.shear_force.x() * K.t1 + r.shear_force.y() * K.t2;
+              c.shear_force = fs3;
+            }
+        });
+      dda::OpenCloseCheck r;
+      for (const auto &f : flags)
+        {
+          r.state_changes += f[0];
+          r.friction_changes += f[1];
+        }
+      states_changed = r.state_changes > 0;
+      // A damped step after which no state changed: the next step is a
+      // full one (the line search stopped at a state's tolerance band).
+      damped_last = alpha < 1. && r.state_changes == 0;
+      if (damped_last)
+        r.friction_changes = std::max(r.friction_changes, 1u);
+      r.most_changes = static_cast<unsigned>(
+        changes.empty() ? 0
+                        : *std::max_element(changes.begin(), changes.end()));
+      return r;
     };
     dda::OpenCloseLimits limits;
     limits.max_iterations = static_cast<unsigned>(ctrl.max_open_close);
     limits.cycle_limit    = ctrl.cycle_limit;
-    unsigned iterations = 0;
-    if (!dda::run_open_close(limits,
-                             may_continue,
-                             solve,
-                             check,
-                             most_changed,
-                             iterations,
-                             why_))
+    unsigned iterations   = 0;
+    if (!dda::run_open_close(
+          limits, may_continue, solve, check, most_changed, iterations, why_))
       return false;
 
     // Step size: no vertex moves further than the allowed displacement.
@@ -1337,9 +1332,12 @@ namespace rockdda::dda3d
     // 2 M / h^2. Clamped blocks move with the ground: its exact velocity.
     std::vector<Vector12> v_end(n);
     for (std::size_t b = 0; b < n; ++b)
-      v_end[b] = clamped_[b] ? Vector12(Db[b] / h)
-                             : dda::end_of_step_velocity(
-                                 Db[b], system.blocks[b].velocity, h, ctrl.dynamic);
+      v_end[b] = clamped_[b]
+                   ? Vector12(Db[b] / h)
+                   : dda::end_of_step_velocity(Db[b],
+                                               system.blocks[b].velocity,
+                                               h,
+                                               ctrl.dynamic);
     double kinetic_removed = 0.;
     if (ctrl.stiff_velocity && ctrl.dynamic > 0.)
       {
@@ -1437,8 +1435,10 @@ namespace rockdda::dda3d
         // The dashpots' work c v' . d over the step, v' = 2 D / h - v.
         std::vector<Vector12> v1(n);
         for (std::size_t b = 0; b < n; ++b)
-          v1[b] = dda::end_of_step_velocity(
-            Db[b], system.blocks[b].velocity, h, ctrl.dynamic);
+          v1[b] = dda::end_of_step_velocity(Db[b],
+                                            system.blocks[b].velocity,
+                                            h,
+                                            ctrl.dynamic);
         for (std::size_t k = 0; k < contacts.size(); ++k)
           if (contacts[k].state != ContactState::open)
             {
@@ -1544,11 +1544,11 @@ namespace rockdda::dda3d
           += dda::kinetic_energy_of(b.velocity, mass_matrix(m, mat.density));
         e.strain
           += dda::strain_energy_of(m.volume, b.stress, elasticity_matrix(mat));
-        e.potential += dda::gravity_potential_of(mat.density,
-                                                 m.volume,
-                                                 system.gravity,
-                                                 Point(m.centroid
-                                                       - b.initial_centroid));
+        e.potential
+          += dda::gravity_potential_of(mat.density,
+                                       m.volume,
+                                       system.gravity,
+                                       Point(m.centroid - b.initial_centroid));
       }
     // The springs of the fixed points of blocks that are not clamped; the
     // anchors follow the ground.

@@ -131,16 +131,16 @@ namespace rockdda::dda3d
         c.state = static_cast<ContactState>(r.get_index(2, "contact state"));
         c.state_at_start
           = static_cast<ContactState>(r.get_index(2, "contact state"));
-        c.reference      = r.get_fixed<Point>();
-        const auto flags = r.get<std::uint8_t>();
-        c.broken         = (flags & 1) != 0;
-        c.has_reference  = (flags & 2) != 0;
+        c.reference       = r.get_fixed<Point>();
+        const auto flags  = r.get<std::uint8_t>();
+        c.broken          = (flags & 1) != 0;
+        c.has_reference   = (flags & 2) != 0;
         c.slide_direction = r.get_fixed<Point>();
-        c.normal_force   = r.get<double>();
-        c.shear_force    = r.get_fixed<Point>();
-        c.joint          = r.get<std::int32_t>();
-        c.area           = r.get<double>();
-        c.slip_rate      = r.get<double>();
+        c.normal_force    = r.get<double>();
+        c.shear_force     = r.get_fixed<Point>();
+        c.joint           = r.get<std::int32_t>();
+        c.area            = r.get<double>();
+        c.slip_rate       = r.get<double>();
         if (g.i < 0 || g.i >= n_blocks || g.j < 0 || g.j >= n_blocks
             || c.joint < 0 || c.joint >= static_cast<int>(s.joints.size()))
           throw InputError(source

@@ -270,8 +270,10 @@ namespace rockdda::seismic
                                           const std::string &analysis) const
   {
     if (polarity == Polarity::both)
-      throw InputError(prm_file + ": key 'Ground motion/Polarity' = both is not "
-                       "supported by " + analysis
+      throw InputError(prm_file
+                       + ": key 'Ground motion/Polarity' = both is not "
+                         "supported by "
+                       + analysis
                        + " (one simulation per file); valid: normal or "
                          "inverted");
     return polarity == Polarity::inverted ? -1. : 1.;

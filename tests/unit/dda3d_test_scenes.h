@@ -110,9 +110,8 @@ namespace rockdda::dda3d::test_scenes
     dda::JointMaterial j;
     j.friction_deg = 35.;
     s.joints.push_back(j);
-    auto brick = [&](const Point &lo, const Point &hi) {
-      add_box_block(s, lo, hi);
-    };
+    auto brick
+      = [&](const Point &lo, const Point &hi) { add_box_block(s, lo, hi); };
     brick(Point(-2., -2., -1.), Point(2. * columns + 2., 3., 0.));
     for (const auto &v : s.blocks[0].polyhedron.vertices)
       s.fixed_points.push_back({0, v, Point::Zero()});

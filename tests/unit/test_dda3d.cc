@@ -1100,9 +1100,9 @@ TEST(Dda3dContacts, LineSearchKeepsTheInclineSolutions)
   const double exact
     = 0.5 * 9.80665 * (std::sin(a) - std::cos(a) * std::tan(phi));
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-  const auto   slides = run_incline(30., 20., 1., 0.005, I, Point::Zero(), true);
-  const auto   stays  = run_incline(20., 30., 1., 0.005, I, Point::Zero(), true);
-  const double e      = std::abs(slides.along - exact) / exact;
+  const auto slides = run_incline(30., 20., 1., 0.005, I, Point::Zero(), true);
+  const auto stays  = run_incline(20., 30., 1., 0.005, I, Point::Zero(), true);
+  const double e    = std::abs(slides.along - exact) / exact;
   std::printf("line search: incline 30/20 slide %.9f m (exact %.9f m, error "
               "%.2e, %d cuts), 20/30 %.2e m\n",
               slides.along,
@@ -1980,7 +1980,7 @@ TEST(Dda3dContacts, ShakenStackNeverGainsEnergyAtRelock)
           const double before = engine.energy().balance();
           engine.advance_to(engine.time() + dt);
           const auto e = engine.energy();
-          worst_gain   = std::max(worst_gain, (e.balance() - before) / e.scale());
+          worst_gain = std::max(worst_gain, (e.balance() - before) / e.scale());
           for (const auto &ct : engine.contacts())
             relocks += ct.state_at_start == ContactState::sliding
                        && ct.state == ContactState::locked;

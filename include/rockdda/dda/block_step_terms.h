@@ -38,10 +38,10 @@ namespace rockdda::dda
                    const Eigen::Matrix<double, n_dofs, 1>          &velocity,
                    const double                                     dynamic,
                    const double                                     h,
-                   const double                            elastic_factor,
-                   const Eigen::Matrix<double, dim, 1>    &acceleration,
-                   Eigen::Matrix<double, n_dofs, n_dofs>  &K,
-                   Eigen::Matrix<double, n_dofs, 1>       &F)
+                   const double                           elastic_factor,
+                   const Eigen::Matrix<double, dim, 1>   &acceleration,
+                   Eigen::Matrix<double, n_dofs, n_dofs> &K,
+                   Eigen::Matrix<double, n_dofs, 1>      &F)
   {
     constexpr int s = n_dofs - n_strain;
     K               = (2. / (h * h)) * M;

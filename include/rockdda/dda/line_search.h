@@ -165,11 +165,12 @@ namespace rockdda::dda
               const double S = t.lin_shear_k == 0.
                                  ? t.S_sliding
                                  : strength(c, -std::min(p * g, t.f_open));
-              const Shear o = t.lin_shear_k == 0.
-                                ? Shear(t.o + t.slide_direction * S)
-                                : zero_shear(s);
-              const Shear f_true = clip_shear(Shear(t.ps * s + o), S + t.S_extra);
-              const Shear f_lin  = t.lin_shear_k * s + t.lin_shear_f;
+              const Shear  o = t.lin_shear_k == 0.
+                                 ? Shear(t.o + t.slide_direction * S)
+                                 : zero_shear(s);
+              const Shear  f_true
+                = clip_shear(Shear(t.ps * s + o), S + t.S_extra);
+              const Shear f_lin = t.lin_shear_k * s + t.lin_shear_f;
               v += shear_along(t.ds, Shear(f_true - f_lin));
             }
         }

@@ -143,11 +143,11 @@ namespace rockdda::dda
                  const double force_tolerance,
                  const double weight_fraction)
   {
-    double hold = std::min(shear_stiffness * hold_fraction * size,
-                           escalated_tolerance(weight_tolerance,
-                                               force_tolerance,
-                                               max_chatter_factor(
-                                                 weight_fraction)));
+    double hold
+      = std::min(shear_stiffness * hold_fraction * size,
+                 escalated_tolerance(weight_tolerance,
+                                     force_tolerance,
+                                     max_chatter_factor(weight_fraction)));
     if (open)
       hold = std::max(hold,
                       std::min(normal_stiffness * hold_fraction * size,
