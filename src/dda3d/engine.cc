@@ -568,14 +568,6 @@ namespace rockdda::dda3d
             c.state_at_start  = c.state;
           }
       });
-    // The shear springs' anchors at the step's start (dda::lock_anchor()).
-    std::vector<Point> reference_at_start(contacts.size());
-    std::vector<char>  has_reference_at_start(contacts.size());
-    for (std::size_t k = 0; k < contacts.size(); ++k)
-      {
-        reference_at_start[k]     = contacts[k].reference;
-        has_reference_at_start[k] = contacts[k].has_reference;
-      }
     // Sliding directions in each contact's tangent basis.
     std::vector<Eigen::Vector2d> dir(contacts.size(), Eigen::Vector2d::Zero());
     for (std::size_t k = 0; k < contacts.size(); ++k)
@@ -1214,40 +1206,26 @@ namespace rockdda::dda3d
                   ++flags[c_k][0];
                   ++changes[k];
                   // Force continuity at lock (dda::lock_anchor(), the
-                  // rule of both engines): the spring of the step's
-                  // start.
+                  // rule of both engines, with the 3D variant).
                   if (r.state == ContactState::locked)
-                    switch (dda::lock_anchor(c.state_at_start, c.state, false))
-                      {
-                        case dda::LockAnchor::start_spring:
-                          c.reference     = reference_at_start[k];
-                          c.has_reference = has_reference_at_start[k];
-                          break;
-                        case dda::LockAnchor::start_friction:
-                          // The spring carries the start's friction force
-                          // (on block i: -k_s s, s = [t1 t2]^T (p - r)).
-                          c.reference = c.geometry.q
-                                        + shear_at_start[k] / K.shear_stiffness;
+                    {
+                      // The 3D variant (start_forces false) anchors at the
+                      // current iteration's friction force or where the
+                      // contact touches; never at the step's start.
+                      if (dda::lock_anchor(c.state_at_start, c.state, false)
+                          == dda::LockAnchor::current_friction)
+                        {
+                          const double S = dda::shear_strength(
+                            c, c.normal_force, c.area, system.joints[c.joint]);
+                          const Point d3
+                            = dir[k].x() * K.t1 + dir[k].y() * K.t2;
+                          c.reference
+                            = c.geometry.q - (S / K.shear_stiffness) * d3;
                           c.has_reference = true;
-                          break;
-                        case dda::LockAnchor::current_friction:
-                          {
-                            const double S
-                              = dda::shear_strength(c,
-                                                    c.normal_force,
-                                                    c.area,
-                                                    system.joints[c.joint]);
-                            const Point d3
-                              = dir[k].x() * K.t1 + dir[k].y() * K.t2;
-                            c.reference
-                              = c.geometry.q - (S / K.shear_stiffness) * d3;
-                            c.has_reference = true;
-                          }
-                          break;
-                        case dda::LockAnchor::here:
-                          c.has_reference = false;
-                          break;
-                      }
+                        }
+                      else // LockAnchor::here
+                        c.has_reference = false;
+                    }
                   c.state = r.state;
                   set_shear(k);
                 }
