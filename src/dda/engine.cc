@@ -11,6 +11,7 @@
 #include <rockdda/dda/logarithmic_strain.h>
 #include <rockdda/dda/open_close.h>
 #include <rockdda/dda/state_check.h>
+#include <rockdda/dda/step_driver.h>
 #include <rockdda/dda/strain_damping.h>
 #include <rockdda/io/error.h>
 #include <rockdda/io/output.h>
@@ -160,24 +161,17 @@ namespace rockdda::dda
     const auto   mode    = scene.seismic.mode;
     ctrl.dynamic         = 0.;
     scene.seismic.mode   = SeismicInput::Mode::none;
-    try
-      {
-        for (unsigned int k = 0; k < steps; ++k)
-          {
-            advance(std::numeric_limits<double>::infinity());
-            t = 0.;
-            if (after_step && !after_step(k + 1))
-              break;
-          }
-      }
-    catch (...)
-      {
+    static_steps(
+      steps,
+      after_step,
+      [&]() {
+        advance(std::numeric_limits<double>::infinity());
+        t = 0.;
+      },
+      [&]() {
         ctrl.dynamic       = dynamic;
         scene.seismic.mode = mode;
-        throw;
-      }
-    ctrl.dynamic        = dynamic;
-    scene.seismic.mode  = mode;
+      });
     t                   = 0.;
     n_steps             = 0;
     n_iterations        = 0;
@@ -224,19 +218,15 @@ namespace rockdda::dda
   {
     StepReport report;
     report.time = t;
-    const unsigned long limit
-      = step_control.step_limit(end_time - t, ctrl.max_steps);
-    unsigned long steps = 0;
-    while (step_control.before(t, end_time))
-      {
-        if (++steps > limit)
-          throw DdaFailure(
-            "stopped at t = " + num(t) + " s after " + std::to_string(limit)
-            + " steps (step limit): the time step stayed at "
-            + num(step_control.current()) + " s, far below the requested "
-            + num(ctrl.time_step) + " s");
-        report = advance(end_time - t);
-      }
+    run_to(
+      step_control,
+      t,
+      end_time,
+      ctrl.max_steps,
+      ctrl.time_step,
+      [&](const double max_length) { report = advance(max_length); },
+      "",
+      last_cut);
     return report;
   }
 
@@ -315,27 +305,22 @@ namespace rockdda::dda
           = ctrl.dynamic == 0. ? no_slip_rate : std::max(c.slip_rate, 0.);
       }
 
-    StepReport  report;
-    std::string why;
-    unsigned    cuts = 0;
-    for (;;)
-      {
-        const double h = step_control.attempt(max_length);
-        if (try_step(h, start, report, why))
-          break;
-        ++cuts;
-        ++n_cuts;
-        if (!step_control.cut(h))
-          throw DdaFailure("step " + std::to_string(n_steps + 1)
-                           + " at t = " + num(t) + " s: " + why
-                           + "; cutting the time step further would go below "
-                             "the minimum "
-                           + num(step_control.minimum())
-                           + " s. Check the penalty, the time "
-                             "step and the geometry.");
-      }
-    report.cuts = cuts;
-    step_control.accept(cuts, report.iterations, ctrl.max_iterations);
+    StepReport report;
+    report.cuts = take_step(
+      step_control,
+      max_length,
+      ctrl.max_iterations,
+      [&](const double h, unsigned &iterations) {
+        const bool accepted = try_step(h, start, report, last_cut);
+        iterations          = report.iterations;
+        return accepted;
+      },
+      [&]() { ++n_cuts; },
+      "",
+      n_steps + 1,
+      t,
+      last_cut,
+      "");
     return report;
   }
 

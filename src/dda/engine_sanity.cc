@@ -168,93 +168,45 @@ namespace rockdda::dda
   DdaSystem::implausible_state(const double energy_before,
                                double      &balance) const
   {
-    const auto at = [&]() { return " at t = " + num(t) + " s"; };
-    // Energy: the ledger may only lose energy (the time integration
-    // dissipates); a gain beyond the tolerance is energy created by the
-    // contact treatment (a penalty spring fired from a deep penetration,
-    // a sliver, a time step too long for the contact stiffness).
+    // (dda::implausible_state(), the check of both engines.)
+    PlausibilityInput in;
+    in.time        = t;
+    in.energy_unit = "J/m";
     if (scene.seismic.mode != SeismicInput::Mode::displacement)
       {
         const EnergyLedger e = energy();
         balance              = e.balance();
-        const double gain    = balance - energy_before;
-        const double allow   = ctrl.energy_tolerance * e.scale();
-        if (gain > allow && gain > 0.)
-          {
-            // The block that gained most kinetic energy.
-            int    block = 0;
-            double most  = -1.;
-            for (std::size_t b = 0; b < scene.blocks.size(); ++b)
-              {
-                const auto  &blk = scene.blocks[b];
-                const double m
-                  = scene.materials[blk.material].density * blk.polygon.area();
-                const double k = 0.5 * m * blk.velocity.head<2>().squaredNorm();
-                if (k > most)
-                  {
-                    most  = k;
-                    block = static_cast<int>(b);
-                  }
-              }
-            return "the energy ledger gained " + num(gain) + " J/m" + at()
-                   + " (allowed " + num(allow) + " J/m), fastest block "
-                   + std::to_string(scene.blocks[block].id)
-                   + ": energy created by the contacts (penalty too low or "
-                     "too high for the time step, or a sliver block)";
-          }
+        in.check_energy      = true;
+        in.energy_gain       = balance - energy_before;
+        in.energy_scale      = e.scale();
       }
-    // Penetration of closed contacts: only the numerical part of the
-    // closure, N / p. With a joint stiffness the penalty is in series with
-    // the joint and carries the same force N; the joint's share N / (k_n l)
-    // is the physical closure of the joint, not a penetration.
+    in.normal_penalty = ctrl.law.normal_penalty;
+    in.motion_bound   = scene.gravity.norm() * t + speed_bound
+                      + 2. * eigenstrain_motion / attempt_length;
+    in.speed_floor = 1e-9 * domain / ctrl.time_step;
+    in.blocks.reserve(scene.blocks.size());
+    for (const auto &blk : scene.blocks)
+      {
+        const double m
+          = scene.materials[blk.material].density * blk.polygon.area();
+        const double v = blk.velocity.head<2>().norm();
+        in.blocks.push_back({blk.id,
+                             0.5 * m * blk.velocity.head<2>().squaredNorm(),
+                             v,
+                             blk.strain.cwiseAbs().maxCoeff(),
+                             scene.materials[blk.material].young});
+      }
     for (const auto &c : current_contacts)
-      {
-        if (c.state == ContactState::open)
-          continue;
-        const int    i = c.geometry.block_i;
-        const int    j = c.geometry.block_j;
-        const double depth
-          = std::max(0., c.normal_force) / ctrl.law.normal_penalty;
-        const double size = std::min(block_size[i], block_size[j]);
-        if (depth > ctrl.penetration_ratio * size)
-          return "block " + std::to_string(scene.blocks[i].id)
-                 + " penetrates block " + std::to_string(scene.blocks[j].id)
-                 + " by " + num(depth) + " m" + at() + ", more than "
-                 + num(ctrl.penetration_ratio) + " x the block size "
-                 + num(size) + " m: the contact penalty "
-                 + num(ctrl.law.normal_penalty)
-                 + " N/m is too low for the load";
-      }
-    // Strain (DDA blocks are small-strain).
-    for (const auto &b : scene.blocks)
-      {
-        const double e = b.strain.cwiseAbs().maxCoeff();
-        if (e > ctrl.strain_limit)
-          return "block " + std::to_string(b.id) + " is strained by " + num(e)
-                 + at() + ", beyond the small strains of DDA ("
-                 + num(ctrl.strain_limit) + "): Young's modulus "
-                 + num(scene.materials[b.material].young)
-                 + " Pa is too low for the load (check its units)";
-      }
-    // Speed.
-    const double bound = ctrl.speed_factor
-                           * (scene.gravity.norm() * t + speed_bound
-                              + 2. * eigenstrain_motion / attempt_length)
-                         + 1e-9 * domain / ctrl.time_step;
-    for (const auto &b : scene.blocks)
-      {
-        const double v = b.velocity.head<2>().norm();
-        if (v > bound)
-          return "block " + std::to_string(b.id) + " moves at " + num(v)
-                 + " m/s" + at()
-                 + ", faster than anything the scene can "
-                   "produce ("
-                 + num(bound)
-                 + " m/s: free fall since t = 0, the ground velocity, "
-                   "the initial speeds and the eigenstrain change): a "
-                   "contact released energy";
-      }
-    return "";
+      if (c.state != ContactState::open)
+        {
+          const int i = c.geometry.block_i;
+          const int j = c.geometry.block_j;
+          in.contacts.push_back({scene.blocks[i].id,
+                                 scene.blocks[j].id,
+                                 c.normal_force,
+                                 std::min(block_size[i], block_size[j])});
+        }
+    return dda::implausible_state(ctrl.plausibility, in);
   }
 } // namespace rockdda::dda
 

@@ -10,6 +10,7 @@
 #include <rockdda/dda/line_search.h>
 #include <rockdda/dda/open_close.h>
 #include <rockdda/dda/state_check.h>
+#include <rockdda/dda/step_driver.h>
 #include <rockdda/dda/strain_damping.h>
 #include <rockdda/dda3d/block_terms.h>
 #include <rockdda/dda3d/engine.h>
@@ -173,6 +174,8 @@ namespace rockdda::dda3d
     check_overlaps(system, 1e-6, origin_);
     // Clamped blocks: 3 or more non-collinear fixed points.
     clamped_.assign(system.blocks.size(), 0);
+    for (const auto &b : system.blocks)
+      initial_speed_ = std::max(initial_speed_, b.velocity.head<3>().norm());
     for (std::size_t b = 0; b < system.blocks.size(); ++b)
       {
         std::vector<Point> pts;
@@ -203,40 +206,46 @@ namespace rockdda::dda3d
   void
   Engine::advance(const double max_length)
   {
+    // (dda::take_step(), the loop of both engines.) A failed attempt
+    // restores what it changed.
     const BlockSystem          saved_system   = system;
     const std::vector<Contact> saved_contacts = stored;
+    const Eigen::VectorXd      saved_solution = last_solution;
     const double saved_friction = friction_work, saved_load = load_work,
-                 saved_damping = damping_work;
-    double h                   = steps_.attempt(max_length);
-    int    cuts                = 0;
-    while (!try_step(h))
-      {
-        system        = saved_system;
-        stored        = saved_contacts;
-        friction_work = saved_friction;
-        load_work     = saved_load;
-        damping_work  = saved_damping;
-        ++cuts;
-        if (!steps_.cut(h))
-          throw dda::DdaFailure("3D DDA: the time step fell below "
-                                + io::format_number(steps_.current(), 3)
-                                + " s (Minimum time step ratio "
-                                + io::format_number(ctrl.min_dt_ratio, 3)
-                                + " x " + io::format_number(ctrl.dt, 3)
-                                + " s) at t = " + io::format_number(t, 8)
-                                + " s: " + why_);
-        h = steps_.attempt(max_length);
-      }
-    t += h;
+                 saved_damping = damping_work, saved_contact = contact_energy;
+    double     h_taken = 0.;
+    const auto cuts    = dda::take_step(
+      steps_,
+      max_length,
+      static_cast<unsigned>(ctrl.max_open_close),
+      [&](const double h, unsigned &iterations) {
+        h_taken             = h;
+        const bool accepted = try_step(h);
+        iterations          = static_cast<unsigned>(stats.iterations);
+        return accepted;
+      },
+      [&]() {
+        system         = saved_system;
+        stored         = saved_contacts;
+        last_solution  = saved_solution;
+        friction_work  = saved_friction;
+        load_work      = saved_load;
+        damping_work   = saved_damping;
+        contact_energy = saved_contact;
+      },
+      "3D DDA: ",
+      n_steps + 1,
+      t,
+      why_,
+      " (Minimum time step ratio " + io::format_number(ctrl.min_dt_ratio, 3)
+        + " x " + io::format_number(ctrl.dt, 3) + " s)");
+    t += h_taken;
     ++n_steps;
     n_cuts += cuts;
     n_iterations += stats.iterations;
-    stats.cuts      = cuts;
-    stats.dt        = h;
+    stats.cuts      = static_cast<int>(cuts);
+    stats.dt        = h_taken;
     first_detection = false;
-    steps_.accept(static_cast<unsigned>(cuts),
-                  static_cast<unsigned>(stats.iterations),
-                  static_cast<unsigned>(ctrl.max_open_close));
   }
 
 
@@ -244,23 +253,15 @@ namespace rockdda::dda3d
   void
   Engine::advance_to(const double t_end)
   {
-    const double        t0    = t;
-    const unsigned long limit = steps_.step_limit(t_end - t0, ctrl.max_steps);
-    unsigned long       steps = 0;
-    while (steps_.before(t, t_end))
-      {
-        if (steps++ >= limit)
-          throw dda::DdaFailure(
-            "3D DDA: " + std::to_string(limit) + " steps from t = "
-            + io::format_number(t0, 8) + " s reached only t = "
-            + io::format_number(t, 8) + " s of " + io::format_number(t_end, 8)
-            + " s (the time step stays cut to " + io::format_number(stats.dt, 3)
-            + " s of " + io::format_number(ctrl.dt, 3)
-            + " s: the open-close iteration does not converge, or blocks move "
-              "too far per step"
-            + (why_.empty() ? std::string(")") : "; last cut: " + why_ + ")"));
-        advance(t_end - t);
-      }
+    dda::run_to(
+      steps_,
+      t,
+      t_end,
+      ctrl.max_steps,
+      ctrl.dt,
+      [&](const double max_length) { advance(max_length); },
+      "3D DDA: ",
+      why_);
   }
 
 
@@ -274,22 +275,9 @@ namespace rockdda::dda3d
     ctrl.dynamic               = 0.;
     ctrl.ground_acceleration   = nullptr;
     ctrl.ground_displacement   = nullptr;
-    try
-      {
-        for (unsigned int k = 0; k < n; ++k)
-          {
-            step();
-            if (after_step && !after_step(k + 1))
-              break;
-          }
-      }
-    catch (...)
-      {
-        ctrl = saved;
-        throw;
-      }
-    ctrl = saved;
-    t    = t0;
+    dda::static_steps(
+      n, after_step, [&]() { step(); }, [&]() { ctrl = saved; });
+    t = t0;
     steps_.reset();
     for (auto &b : system.blocks)
       {
@@ -310,9 +298,11 @@ namespace rockdda::dda3d
   bool
   Engine::try_step(const double h)
   {
-    const std::size_t n  = system.blocks.size();
-    Point             a  = system.gravity;
-    Point             ag = Point::Zero();
+    const std::size_t n = system.blocks.size();
+    // The ledger at the start of the step (the sanity check's reference).
+    const double balance_before = energy().balance();
+    Point        a              = system.gravity;
+    Point        ag             = Point::Zero();
     if (ctrl.ground_acceleration)
       {
         ag = ctrl.ground_acceleration(t + 0.5 * h);
@@ -1505,6 +1495,58 @@ namespace rockdda::dda3d
                             + stored[k].shear_force.squaredNorm()
                                 / (2. * kin[k].shear_stiffness);
         }
+
+    // No physically impossible state (dda::implausible_state(), the check
+    // of both engines): energy created, a contact penetrated deeper than a
+    // fraction of its blocks, a block strained beyond small strain or
+    // faster than the scene can make it. advance() restores the state and
+    // cuts the step.
+    {
+      // The ground's speed so far: the integral of |a_g| (loading mode),
+      // or the fastest step of the prescribed motion (displacement mode).
+      const double ground_speed
+        = ctrl.ground_displacement
+            ? std::max(ground_speed_,
+                       (ug - ctrl.ground_displacement(t)).norm() / h)
+            : ground_speed_ + ag.norm() * h;
+      dda::PlausibilityInput in;
+      in.time = t + h;
+      if (!ctrl.ground_displacement)
+        {
+          const Energy e  = energy();
+          in.check_energy = true;
+          in.energy_gain  = e.balance() - balance_before;
+          in.energy_scale = e.scale();
+        }
+      in.normal_penalty = ctrl.law.normal_penalty;
+      in.motion_bound
+        = system.gravity.norm() * (t + h) + initial_speed_ + ground_speed;
+      double largest = 0.;
+      in.blocks.reserve(n);
+      for (std::size_t b = 0; b < n; ++b)
+        {
+          const auto &blk = system.blocks[b];
+          largest         = std::max(largest, size[b]);
+          in.blocks.push_back(
+            {blk.id,
+             0.5 * mass[b] * blk.velocity.head<3>().squaredNorm(),
+             blk.velocity.head<3>().norm(),
+             blk.strain.cwiseAbs().maxCoeff(),
+             system.materials[blk.material].young});
+        }
+      in.speed_floor = 1e-9 * largest / ctrl.dt;
+      for (const auto &c : stored)
+        if (c.state != ContactState::open)
+          in.contacts.push_back(
+            {system.blocks[c.geometry.i].id,
+             system.blocks[c.geometry.j].id,
+             c.normal_force,
+             std::min(size[c.geometry.i], size[c.geometry.j])});
+      why_ = dda::implausible_state(ctrl.plausibility, in);
+      if (!why_.empty())
+        return false;
+      ground_speed_ = ground_speed;
+    }
     return true;
   }
 

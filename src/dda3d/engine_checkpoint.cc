@@ -19,7 +19,7 @@ namespace rockdda::dda3d
   {
     constexpr char magic[] = "rockdda DDA 3d checkpoint";
     // 3: the strain damping's dissipated energy.
-    constexpr std::uint32_t format_version = 3;
+    constexpr std::uint32_t format_version = 4;
     /// Bytes of one contact in the file (a larger count is a damaged file).
     constexpr std::size_t contact_bytes = 217;
     using io::BinaryReader;
@@ -77,6 +77,8 @@ namespace rockdda::dda3d
     w.put(load_work);
     w.put(contact_energy);
     w.put(damping_work);
+    w.put(initial_speed_);
+    w.put(ground_speed_);
     w.put<std::uint8_t>(first_detection ? 1 : 0);
     for (const int i : {stats.iterations,
                         stats.cuts,
@@ -158,6 +160,8 @@ namespace rockdda::dda3d
     const double   loads      = r.get<double>();
     const double   contact    = r.get<double>();
     const double   damped     = r.get<double>();
+    const double   speed0     = r.get<double>();
+    const double   ground     = r.get<double>();
     const bool     first      = r.get<std::uint8_t>() != 0;
     StepStatistics st;
     for (int *i : {&st.iterations, &st.cuts, &st.open, &st.sliding, &st.locked})
@@ -182,6 +186,8 @@ namespace rockdda::dda3d
     load_work       = loads;
     contact_energy  = contact;
     damping_work    = damped;
+    initial_speed_  = speed0;
+    ground_speed_   = ground;
     first_detection = first;
     stats           = st;
     last_solution   = std::move(x);

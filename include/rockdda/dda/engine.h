@@ -14,6 +14,7 @@
 #include <rockdda/dda/energy_ledger.h>
 #include <rockdda/dda/failure.h>
 #include <rockdda/dda/linear_solver.h>
+#include <rockdda/dda/plausibility.h>
 #include <rockdda/dda/state_check.h>
 #include <rockdda/dda/time_step_control.h>
 
@@ -100,21 +101,9 @@ namespace rockdda::dda
     double growth = 1.3;
     /// Factor by which a step is cut (> 1).
     double cut_factor = 3.;
-    /// Physical sanity checks of every step (engine_sanity.cc): a step is
-    /// cut when the energy ledger gains more than energy_tolerance x the
-    /// energy in play (1: the ledger is not exact across lock/slide
-    /// changes; a settling block at a penalty of 0.1 E gains 25 % of the
-    /// energy in play in one legitimate step, while a blow-up creates
-    /// hundreds of times it), a closed contact penetrates deeper than
-    /// penetration_ratio x the smaller block's size, a block strains by more
-    /// than strain_limit, or a block moves faster than speed_factor x the
-    /// fastest motion the scene can produce (free fall since t = 0 plus the
-    /// ground velocity plus the initial speeds). If cutting does not help,
-    /// the run stops with a diagnosis.
-    double energy_tolerance  = 1.;
-    double penetration_ratio = 0.01;
-    double strain_limit      = 0.05;
-    double speed_factor      = 2.;
+    /// Physical sanity checks of every step (dda::implausible_state()).
+    /// If cutting does not help, the run stops with a diagnosis.
+    PlausibilityLimits plausibility;
     /// Stop (DdaFailure) after this many steps in one run_until() call;
     /// 0 = 100 * (duration / time_step) + 1000.
     unsigned long max_steps = 0;
@@ -570,6 +559,8 @@ namespace rockdda::dda
     /// Contacts found by the first detection are intact joints (cohesion
     /// and tensile strength); contacts that form later are not bonded.
     bool first_detection = true;
+    /// Why the latest attempt was cut (for the diagnoses).
+    std::string last_cut;
     /// Blocks of the scene at construction; those after them were added
     /// by add_block() (their definitions go into checkpoints).
     std::size_t n_scene_blocks = 0;

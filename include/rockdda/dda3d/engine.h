@@ -14,6 +14,7 @@
 #include <rockdda/dda/energy_ledger.h>
 #include <rockdda/dda/failure.h>
 #include <rockdda/dda/linear_solver.h>
+#include <rockdda/dda/plausibility.h>
 #include <rockdda/dda/state_check.h>
 #include <rockdda/dda/time_step_control.h>
 #include <rockdda/dda3d/block_matrices.h>
@@ -191,6 +192,9 @@ namespace rockdda::dda3d
     /// size (-): a step that moves a vertex further is cut. The contact
     /// distance is 2.5 x this (DetectionTolerances::distance_factor).
     double max_displacement_ratio = 0.01;
+    /// The sanity check of every step (dda::implausible_state(), the 2D
+    /// engine's limits).
+    dda::PlausibilityLimits plausibility;
     /// Open-close iterations that change a state before the step is cut;
     /// iterations that only update friction may add as many again.
     int max_open_close = 12;
@@ -383,6 +387,9 @@ namespace rockdda::dda3d
     /// Why the last attempt was cut (for the diagnosis of a run whose step
     /// falls below its minimum).
     std::string why_;
+    /// The fastest translation at construction (m/s) and a bound on the
+    /// ground's speed so far (m/s), for the sanity check's speed bound.
+    double initial_speed_ = 0., ground_speed_ = 0.;
   };
 } // namespace rockdda::dda3d
 
