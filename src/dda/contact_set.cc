@@ -57,7 +57,6 @@ namespace rockdda::dda
                            stored[m.index],
                            m.same_feature,
                            [](Contact &to, const Contact &from) {
-                             to.held = from.held;
                              if (from.state == ContactState::locked)
                                to.xi_ref = from.xi_ref;
                            });

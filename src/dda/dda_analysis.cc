@@ -133,20 +133,6 @@ namespace rockdda::dda
                     "cannot create energy. 0: no "
                     "holding.");
         io::declare(prm,
-                    "Inexact solve factor",
-                    "1",
-                    Double(1., 1e6),
-                    "-",
-                    "While the contact states settle, CG solves to this "
-                    "factor x Solver tolerance (inexact Newton); the settled "
-                    "states are then confirmed by a solve to Solver "
-                    "tolerance, so the accepted step is unchanged. 1 (the "
-                    "default): every solve to Solver tolerance; 1000 halved "
-                    "the CG iterations on a wall from rest but, once the "
-                    "first solve of each step is exact, no longer saves "
-                    "time and costs extra iterations on large walls. No "
-                    "effect with the direct solver.");
-        io::declare(prm,
                     "Contact penalty",
                     "auto",
                     dealii::Patterns::Anything(),
@@ -219,7 +205,7 @@ namespace rockdda::dda
         c.max_iterations         = shared.max_open_close;
         c.line_search            = prm.get_bool("Line search");
         c.hold_fraction          = prm.get_double("Hold fraction");
-        c.inexact_factor         = prm.get_double("Inexact solve factor");
+        c.inexact_factor         = shared.inexact_factor;
         c.max_displacement_ratio = shared.max_displacement_ratio;
         {
           const std::string p   = prm.get("Contact penalty");

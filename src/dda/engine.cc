@@ -8,6 +8,7 @@
 #include <rockdda/dda/block_step_terms.h>
 #include <rockdda/dda/contact_law.h>
 #include <rockdda/dda/engine.h>
+#include <rockdda/dda/friction_relaxation.h>
 #include <rockdda/dda/logarithmic_strain.h>
 #include <rockdda/dda/open_close.h>
 #include <rockdda/dda/state_check.h>
@@ -401,19 +402,9 @@ namespace rockdda::dda
     // strength audit of the converged state).
     std::vector<double> assembled_normal(contacts.size(), 0.);
     double              mean_normal = 0.;
-    // Relaxed friction iteration (Irons & Tuck 1969; Kuttler & Wall 2008):
-    // once the states have settled, the friction of each sliding contact
-    // whose force has not converged is assembled with N_a + omega (N - N_a),
-    // N_a the normal force it was assembled with and N the force the solve
-    // produced. omega follows Aitken's rule over the residuals N - N_a of
-    // successive friction-only iterations. A wedge of small taper couples its
-    // friction to its normal force with a gain of about -mu / taper: the plain
-    // fixed point (omega = 1) can then oscillate with growing amplitude; the
-    // relaxed one converges (omega ~ 1 / (1 + mu / taper)).
-    std::vector<double> residual(contacts.size(), 0.),
-      previous_residual(contacts.size(), 0.);
-    double     omega          = 1.;
-    bool       have_residual  = false;
+    // Relaxed friction iteration (dda::FrictionRelaxation, both engines'):
+    // Aitken's relaxation of the unconverged sliding contacts' friction.
+    FrictionRelaxation relaxation(contacts.size());
     const auto update_factors = [&]() {
       for (std::size_t c = 0; c < contacts.size(); ++c)
         {
@@ -446,33 +437,6 @@ namespace rockdda::dda
                                        ctrl.law.force_tolerance);
             }
         }
-    };
-    // Aitken's relaxation of the unconverged sliding contacts' friction
-    // (see above); a state change restarts it from omega = 1.
-    const auto relax_friction = [&]() {
-      if (changes > 0 || friction_changes == 0)
-        {
-          omega         = 1.;
-          have_residual = false;
-          return;
-        }
-      if (have_residual)
-        {
-          double dot = 0., den = 0.;
-          for (std::size_t c = 0; c < contacts.size(); ++c)
-            {
-              const double d = residual[c] - previous_residual[c];
-              dot += previous_residual[c] * d;
-              den += d * d;
-            }
-          if (den > 0.)
-            omega = std::clamp(-omega * dot / den, 0.01, 2.);
-        }
-      for (std::size_t c = 0; c < contacts.size(); ++c)
-        if (residual[c] != 0.)
-          contacts[c].normal_force = assembled_normal[c] + omega * residual[c];
-      std::swap(previous_residual, residual);
-      have_residual = true;
     };
     // Checks every contact against the increments x: new states, forces
     // and the counts of state and friction changes.
@@ -541,9 +505,11 @@ namespace rockdda::dda
           assembled_normal[c] = ct.normal_force;
           // Only the unconverged contacts are relaxed (and define omega):
           // the others take their new force as it is.
-          residual[c] = unconverged && !frictionless(ct, scene.joints[ct.joint])
-                          ? r.normal_force - ct.normal_force
-                          : 0.;
+          relaxation.set_residual(
+            c,
+            unconverged && !frictionless(ct, scene.joints[ct.joint])
+              ? r.normal_force - ct.normal_force
+              : 0.);
           ct.normal_force = r.normal_force;
           ct.shear_force  = r.shear_force;
           if (r.changed)
@@ -590,7 +556,10 @@ namespace rockdda::dda
           if (r.state == ContactState::sliding)
             ct.slide_direction = r.slide_direction;
         }
-      relax_friction();
+      relaxation.relax(changes > 0 || friction_changes == 0,
+                       [&](const std::size_t c, const double d) {
+                         contacts[c].normal_force = assembled_normal[c] + d;
+                       });
     };
     // The iteration is a deterministic map of its state: the increments,
     // each contact's state, slide direction, shear reference and forces,
@@ -619,10 +588,10 @@ namespace rockdda::dda
           f.add(ct.xi_ref);
           f.add(ct.normal_force);
           f.add(ct.shear_force);
-          f.add(previous_residual[c]);
+          f.add(relaxation.previous_residual(c));
         }
-      f.add(omega);
-      f.add(static_cast<std::uint64_t>(have_residual)
+      f.add(relaxation.omega());
+      f.add(static_cast<std::uint64_t>(relaxation.has_residual())
             | static_cast<std::uint64_t>(damped_last) << 1
             | static_cast<std::uint64_t>(confirming) << 2
             | static_cast<std::uint64_t>(changes == 0) << 3

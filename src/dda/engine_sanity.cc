@@ -10,6 +10,7 @@
  */
 #include <rockdda/dda/block_matrices.h>
 #include <rockdda/dda/engine.h>
+#include <rockdda/dda/strength_audit.h>
 #include <rockdda/io/output.h>
 
 #include <algorithm>
@@ -225,31 +226,7 @@ namespace rockdda::dda
   {
     const auto &kinematics = assembler.kinematics();
     const auto &group      = assembler.groups();
-    ratio                  = 0.;
-    // The worst check so far: contact (or first member of a group), what
-    // it carries, its limit and its tolerance (N/m).
-    struct Worst
-    {
-      int         contact = -1;
-      std::string what;
-      double      force = 0., limit = 0., tolerance = 0.;
-    } worst;
-    const auto judge = [&](const int    c,
-                           const char  *what,
-                           const double force,
-                           const double limit,
-                           const double tolerance) {
-      const double excess = force - limit;
-      const double r      = excess <= 0. ? 0.
-                            : tolerance > 0.
-                              ? excess / tolerance
-                              : std::numeric_limits<double>::infinity();
-      if (r > ratio)
-        {
-          ratio = r;
-          worst = {c, what, force, limit, tolerance};
-        }
-    };
+    StrengthAudit audit;
     // The iteration's tolerances of contact c (check_state): f escalated by
     // its chatter factor for a sliding contact, max(that, its hold) for an
     // open or a locked one; never more than max_tolerance_factor() x the
@@ -274,49 +251,42 @@ namespace rockdda::dda
         const JointMaterial     &joint = scene.joints[ct.joint];
         const auto [f, f_hold]         = tolerances(c);
         const double n = -kin.normal_stiffness * assembler.gap(c, x);
-        if (ct.state == ContactState::open)
+        // (StrengthAudit::judge_contact(), the checks of both engines.) A
+        // held open contact may carry up to its penetration bound, capped
+        // at the lighter block's weight rather than at 1 % of it
+        // (update_factors in try_step).
+        AuditedContact a;
+        a.state          = ct.state;
+        a.normal_force   = n;
+        a.tolerance      = f;
+        a.hold_tolerance = f_hold;
+        a.open_tolerance = std::max(f_hold, hold[c]);
+        if (ct.state != ContactState::open)
           {
-            // A held open contact: up to its penetration bound, capped at
-            // the lighter block's weight rather than at 1 % of it
-            // (update_factors in try_step).
-            judge(
-              c, "compression while open", n, 0., std::max(f_hold, hold[c]));
-            continue;
+            const bool locked = ct.state == ContactState::locked;
+            a.tensile_limit
+              = locked && !ct.broken ? joint.tensile * kin.length : 0.;
+            a.strength     = shear_strength(ct, n, kin.length, joint);
+            const double s = assembler.shear_displacement(c, x);
+            a.locked_shear = std::abs(kin.shear_stiffness * s);
+            a.in_group     = group[k] >= 0;
+            a.frictionless = frictionless(ct, joint);
+            if (!locked && !a.frictionless)
+              {
+                // The friction assembled from the normal force of the
+                // previous iteration.
+                a.friction_carried
+                  = shear_strength(ct, assembled_normal[k], kin.length, joint);
+                a.friction_tolerance
+                  = friction_coefficient(joint, ct.slip_rate)
+                    * (1e-3 * (std::abs(n) + mean_normal)
+                       + kin.force_tolerance);
+                a.slip_against
+                  = -kin.shear_stiffness * s * ct.slide_direction;
+              }
           }
-        const bool   locked = ct.state == ContactState::locked;
-        const double tensile
-          = locked && !ct.broken ? joint.tensile * kin.length : 0.;
-        judge(c, "tension", -n, tensile, locked ? f_hold : f);
-        const double strength = shear_strength(ct, n, kin.length, joint);
-        const double s        = assembler.shear_displacement(c, x);
-        if (locked)
-          {
-            const double shear = std::abs(kin.shear_stiffness * s);
-            if (group[k] >= 0 && shear > strength + f_hold)
-              suspect.push_back(group[k]);
-            else
-              judge(c, "shear while locked", shear, strength, f_hold);
-            continue;
-          }
-        if (frictionless(ct, joint))
-          continue;
-        // Sliding: the friction assembled (from the normal force of the
-        // previous iteration) is the strength at the accepted normal force
-        // within the friction tolerance of the iteration, and it opposes
-        // the slip (a reversal beyond f / k_s locks the contact).
-        const double carried
-          = shear_strength(ct, assembled_normal[k], kin.length, joint);
-        const double mu = friction_coefficient(joint, ct.slip_rate);
-        judge(c,
-              "friction off its strength",
-              std::abs(carried - strength),
-              0.,
-              mu * (1e-3 * (std::abs(n) + mean_normal) + kin.force_tolerance));
-        judge(c,
-              "slip against its friction",
-              -kin.shear_stiffness * s * ct.slide_direction,
-              0.,
-              f);
+        if (!audit.judge_contact(c, a))
+          suspect.push_back(group[k]);
       }
     std::sort(suspect.begin(), suspect.end());
     suspect.erase(std::unique(suspect.begin(), suspect.end()), suspect.end());
@@ -344,7 +314,7 @@ namespace rockdda::dda
           for (const int c : members)
             {
               const auto &kin = kinematics[c];
-              judge(c,
+              audit.judge(c,
                     "shear while locked",
                     std::abs(kin.shear_stiffness
                              * assembler.shear_displacement(c, x)),
@@ -355,20 +325,18 @@ namespace rockdda::dda
                     tolerances(c).second);
             }
         else
-          judge(members[0],
+          audit.judge(members[0],
                 "resultant shear of its locked face group",
                 std::abs(gs.resultant),
                 gs.strength,
                 gs.tolerance);
       }
-    if (ratio <= 1.)
+    ratio = audit.ratio();
+    if (audit.worst_contact() < 0)
       return std::string();
-    const auto &g = contacts[worst.contact].geometry;
-    return "strength audit: the contact of block "
-           + std::to_string(scene.blocks[g.block_i].id) + " on block "
-           + std::to_string(scene.blocks[g.block_j].id) + " (" + worst.what
-           + ") carries " + num(worst.force) + " N/m against a limit of "
-           + num(worst.limit) + " N/m, beyond its tolerance of "
-           + num(worst.tolerance) + " N/m (" + num(ratio) + " x)";
+    const auto &g = contacts[audit.worst_contact()].geometry;
+    return audit.diagnosis(scene.blocks[g.block_i].id,
+                           scene.blocks[g.block_j].id,
+                           "N/m");
   }
 } // namespace rockdda::dda

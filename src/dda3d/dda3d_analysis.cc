@@ -194,6 +194,7 @@ namespace rockdda::dda3d
         c.contact_damping         = shared.contact_damping;
         c.contact_step_damping    = shared.contact_step_damping;
         c.max_open_close          = shared.max_open_close;
+        c.inexact_factor          = shared.inexact_factor;
         c.max_displacement_ratio  = shared.max_displacement_ratio;
         c.law.shear_ratio         = shared.shear_ratio;
         c.law.fixed_shear_penalty = shared.shear_penalty;
@@ -382,6 +383,7 @@ namespace rockdda::dda3d
                  ? created_max / loop.progress.energy_in_play
                  : 0.,
                "-");
+        sm.add("contact_strength_ratio_max", engine->worst_strength_ratio, "-");
         sm.add("contacts_final", double(engine->contacts().size()), "-");
         double max_disp = 0.;
         for (std::size_t b = 0; b < sys.blocks.size(); ++b)

@@ -7,11 +7,13 @@
 #include <rockdda/dda/block_step_terms.h>
 #include <rockdda/dda/contact_damping.h>
 #include <rockdda/dda/contact_history.h>
+#include <rockdda/dda/friction_relaxation.h>
 #include <rockdda/dda/line_search.h>
 #include <rockdda/dda/open_close.h>
 #include <rockdda/dda/state_check.h>
 #include <rockdda/dda/step_driver.h>
 #include <rockdda/dda/strain_damping.h>
+#include <rockdda/dda/strength_audit.h>
 #include <rockdda/dda3d/block_terms.h>
 #include <rockdda/dda3d/engine.h>
 #include <rockdda/io/error.h>
@@ -703,7 +705,18 @@ namespace rockdda::dda3d
     // block i, in the tangent basis): the energy ledger books its work.
     std::vector<Eigen::Vector2d> friction_applied(contacts.size(),
                                                   Eigen::Vector2d::Zero());
-    std::vector<Vector12>        Db(n);
+    // The normal force each sliding contact's friction was assembled with
+    // in the latest solve (N), and the mean normal force of the closed
+    // contacts then (the friction iteration's force scale, N).
+    std::vector<double> assembled_normal(contacts.size(), 0.);
+    double              n_mean = 0.;
+    // The relaxed friction iteration (dda::FrictionRelaxation, the 2D
+    // engine's).
+    dda::FrictionRelaxation relaxation(contacts.size());
+    // Whether the latest solve was inexact, and whether the states settled
+    // on it (a solve to the solver's tolerance confirms them).
+    bool                  loose = false, confirming = false;
+    std::vector<Vector12> Db(n);
     // Contact k's gap and shear displacement at the end of the step of the
     // last solve.
     auto gap_after
@@ -879,7 +892,12 @@ namespace rockdda::dda3d
               f.add(c.shear_force[d]);
             }
         }
-      f.add(static_cast<std::uint64_t>(damped_last));
+      for (std::size_t k = 0; k < contacts.size(); ++k)
+        f.add(relaxation.previous_residual(k));
+      f.add(relaxation.omega());
+      f.add(static_cast<std::uint64_t>(damped_last)
+            | static_cast<std::uint64_t>(relaxation.has_residual()) << 1
+            | static_cast<std::uint64_t>(confirming) << 2);
       if (visited.insert(f.value()).second)
         return true;
       reason = "the open-close iteration cycles (iteration "
@@ -903,7 +921,7 @@ namespace rockdda::dda3d
     auto held_tolerance = [&](const std::size_t k) {
       const auto &c = contacts[k];
       const auto &K = kin[k];
-      return changes[k] >= static_cast<int>(ctrl.hold_after)
+      return changes[k] >= static_cast<int>(ctrl.hold_after) || c.held
                ? dda::hold_tolerance(c.state == ContactState::open,
                                      K.normal_stiffness,
                                      K.shear_stiffness,
@@ -976,7 +994,7 @@ namespace rockdda::dda3d
                                      system.joints[contacts[k].joint]);
         });
     };
-    const auto solve = [&](const unsigned, std::string &reason) {
+    const auto solve = [&](const unsigned iteration, std::string &reason) {
       // The contact springs, in chunks of blocks (diagonal blocks and
       // loads) and of pairs (off-diagonal blocks), each adding its
       // contacts in contact order: the serial sums, on any number of
@@ -1035,7 +1053,17 @@ namespace rockdda::dda3d
       // The upper block K_ij (i < j) of each pair.
       fill_pairs(true);
       D_prev = D;
-      if (!solver.solve(matrix, F, D, !states_changed))
+      // While the states settle, CG solves to a looser tolerance (inexact
+      // Newton, as in 2D); the first solve of a step is exact (on a settled
+      // scene usually the only one).
+      loose = ctrl.inexact_factor > 1. && iteration > 1 && !confirming
+              && solver.type() != dda::SolverType::direct;
+      if (!solver.solve(matrix,
+                        F,
+                        D,
+                        !states_changed,
+                        loose ? ctrl.inexact_factor * ctrl.solver.tolerance
+                              : 0.))
         {
           reason = "the linear solver failed";
           return false;
@@ -1066,8 +1094,8 @@ namespace rockdda::dda3d
             }
         }
       // State check.
-      double n_mean   = 0.;
-      int    n_closed = 0;
+      n_mean       = 0.;
+      int n_closed = 0;
       for (const auto &c : contacts)
         if (c.state != ContactState::open)
           {
@@ -1219,11 +1247,18 @@ namespace rockdda::dda3d
                   c.state = r.state;
                   set_shear(k);
                 }
-              else if (c.state == ContactState::sliding)
+              double residual = 0.;
+              if (!r.changed && c.state == ContactState::sliding)
                 {
+                  // Only the unconverged contacts are relaxed (and define
+                  // omega): the others take their new force as it is.
                   if (std::abs(r.normal_force - c.normal_force)
                       > 1e-3 * (std::abs(r.normal_force) + n_mean) + f)
-                    friction_changed = true;
+                    {
+                      friction_changed = true;
+                      if (!dda::frictionless(c, system.joints[c.joint]))
+                        residual = r.normal_force - c.normal_force;
+                    }
                   // A face group slides along the resultant of its slip in
                   // this step: the direction it started with (the trial
                   // spring forces, which in a wedge include the wedging
@@ -1239,7 +1274,9 @@ namespace rockdda::dda3d
                     }
                 }
               flags[c_k][1] += friction_changed;
-              c.normal_force = r.normal_force;
+              relaxation.set_residual(k, residual);
+              assembled_normal[k] = c.normal_force;
+              c.normal_force      = r.normal_force;
               dir[k]         = r.direction;
               const Point fs3
                 = r.shear_force.x() * K.t1 + r.shear_force.y() * K.t2;
@@ -1253,11 +1290,20 @@ namespace rockdda::dda3d
           r.friction_changes += f[1];
         }
       states_changed = r.state_changes > 0;
+      relaxation.relax(!ctrl.friction_relaxation || r.state_changes > 0
+                         || r.friction_changes == 0,
+                       [&](const std::size_t k, const double d) {
+                         contacts[k].normal_force = assembled_normal[k] + d;
+                       });
       // A damped step after which no state changed: the next step is a
       // full one (the line search stopped at a state's tolerance band).
       damped_last = alpha < 1. && r.state_changes == 0;
       if (damped_last)
         r.friction_changes = std::max(r.friction_changes, 1u);
+      // Settled on an inexact solve: confirm with a solve to the solver
+      // tolerance.
+      confirming = r.state_changes == 0 && r.friction_changes == 0 && loose;
+      r.confirm  = confirming;
       r.most_changes = static_cast<unsigned>(
         changes.empty() ? 0
                         : *std::max_element(changes.begin(), changes.end()));
@@ -1270,6 +1316,89 @@ namespace rockdda::dda3d
     if (!dda::run_open_close(
           limits, may_continue, solve, check, most_changed, iterations, why_))
       return false;
+
+    // The strength audit (dda::StrengthAudit, the checks of both engines):
+    // no contact beyond its strength by more than its tolerance, whatever
+    // path (chatter, hold, face group, friction relaxation) accepted it.
+    double strength_ratio = 0.;
+    {
+      dda::StrengthAudit audit;
+      std::vector<int>   suspect;
+      for (std::size_t k = 0; k < contacts.size(); ++k)
+        {
+          const auto          &c     = contacts[k];
+          const auto          &K     = kin[k];
+          const auto          &joint = system.joints[c.joint];
+          const Eigen::Vector2d s    = shear_after(k);
+          dda::AuditedContact   a;
+          a.state          = c.state;
+          a.normal_force   = -K.normal_stiffness * gap_after(k);
+          a.tolerance      = check_tolerance[k];
+          a.hold_tolerance = std::max(a.tolerance, held_tolerance(k));
+          a.open_tolerance = a.hold_tolerance;
+          if (c.state != ContactState::open)
+            {
+              const bool locked = c.state == ContactState::locked;
+              a.tensile_limit
+                = locked && !c.broken ? joint.tensile * c.area : 0.;
+              a.strength
+                = dda::shear_strength(c, a.normal_force, c.area, joint);
+              a.locked_shear = K.shear_stiffness * s.norm();
+              a.in_group     = ctrl.face_group_friction && group[k] >= 0;
+              a.frictionless = dda::frictionless(c, joint);
+              if (!locked && !a.frictionless)
+                {
+                  a.friction_carried = friction_applied[k].norm();
+                  a.friction_tolerance
+                    = dda::friction_coefficient(joint, c.slip_rate)
+                      * (1e-3 * (std::abs(a.normal_force) + n_mean)
+                         + a.tolerance);
+                  a.slip_against = -K.shear_stiffness * s.dot(dir[k]);
+                }
+            }
+          if (!audit.judge_contact(static_cast<int>(k), a))
+            suspect.push_back(group[k]);
+        }
+      std::sort(suspect.begin(), suspect.end());
+      suspect.erase(std::unique(suspect.begin(), suspect.end()),
+                    suspect.end());
+      // A face group that shares its strength (decide_group): the sum of its
+      // locked members' shear spring forces against the sum of their
+      // strengths and tolerances.
+      for (const int gk : suspect)
+        {
+          double demand = 0., strength = 0., tolerance = 0.;
+          int    first  = -1;
+          for (const std::size_t k : group_members[gk])
+            {
+              const auto &c = contacts[k];
+              if (c.state != ContactState::locked)
+                continue;
+              first = first < 0 ? static_cast<int>(k) : first;
+              demand += kin[k].shear_stiffness * shear_after(k).norm();
+              strength += dda::shear_strength(c,
+                                              -kin[k].normal_stiffness
+                                                * gap_after(k),
+                                              c.area,
+                                              system.joints[c.joint]);
+              tolerance += std::max(check_tolerance[k], held_tolerance(k));
+            }
+          audit.judge(first,
+                      "shear of its locked face group",
+                      demand,
+                      strength,
+                      tolerance);
+        }
+      if (audit.ratio() > 1.)
+        {
+          const auto &g = contacts[audit.worst_contact()].geometry;
+          why_          = audit.diagnosis(system.blocks[g.i].id,
+                                 system.blocks[g.j].id,
+                                 "N");
+          return false;
+        }
+      strength_ratio = audit.ratio();
+    }
 
     // Step size: no vertex moves further than the allowed displacement.
     for (std::size_t b = 0; b < n; ++b)
@@ -1469,6 +1598,13 @@ namespace rockdda::dda3d
         // The next step's slip rate (dda::friction_coefficient()): the
         // shear displacement increment of this step over its length.
         c.slip_rate = shear_rate(k, Db).norm() / h;
+        // Static steps (dynamic control 0) are an iteration towards
+        // equilibrium: a contact held in one stays held in the next until it
+        // changes state beyond its hold (the 2D rule). Dynamic steps carry
+        // their history in the velocities, and no hold.
+        c.held = ctrl.dynamic == 0.
+                 && (changes[k] >= static_cast<int>(ctrl.hold_after)
+                     || (c.held && c.state == c.state_at_start));
       }
     for (std::size_t b = 0; b < n; ++b)
       {
@@ -1479,6 +1615,8 @@ namespace rockdda::dda3d
     last_solution           = D;
     stats.iterations        = iterations;
     stats.solver_iterations = solver_iterations;
+    stats.strength_ratio    = strength_ratio;
+    worst_strength_ratio    = std::max(worst_strength_ratio, strength_ratio);
     stats.open = stats.sliding = stats.locked = 0;
     for (const auto &c : stored)
       (c.state == ContactState::open      ? stats.open

@@ -19,7 +19,7 @@ namespace rockdda::dda3d
   {
     constexpr char magic[] = "rockdda DDA 3d checkpoint";
     // 3: the strain damping's dissipated energy.
-    constexpr std::uint32_t format_version = 4;
+    constexpr std::uint32_t format_version = 5;
     /// Bytes of one contact in the file (a larger count is a damaged file).
     constexpr std::size_t contact_bytes = 217;
     using io::BinaryReader;
@@ -59,8 +59,10 @@ namespace rockdda::dda3d
         w.put<std::int32_t>(static_cast<std::int32_t>(c.state));
         w.put<std::int32_t>(static_cast<std::int32_t>(c.state_at_start));
         w.put_fixed(c.reference);
-        // Flags: bit 0 broken, bit 1 has a shear reference.
-        w.put<std::uint8_t>((c.broken ? 1 : 0) | (c.has_reference ? 2 : 0));
+        // Flags: bit 0 broken, bit 1 has a shear reference, bit 2 held
+        // (older checkpoints: 0).
+        w.put<std::uint8_t>((c.broken ? 1 : 0) | (c.has_reference ? 2 : 0)
+                            | (c.held ? 4 : 0));
         w.put_fixed(c.slide_direction);
         w.put(c.normal_force);
         w.put_fixed(c.shear_force);
@@ -79,6 +81,7 @@ namespace rockdda::dda3d
     w.put(damping_work);
     w.put(initial_speed_);
     w.put(ground_speed_);
+    w.put(worst_strength_ratio);
     w.put<std::uint8_t>(first_detection ? 1 : 0);
     for (const int i : {stats.iterations,
                         stats.cuts,
@@ -137,6 +140,7 @@ namespace rockdda::dda3d
         const auto flags  = r.get<std::uint8_t>();
         c.broken          = (flags & 1) != 0;
         c.has_reference   = (flags & 2) != 0;
+        c.held            = (flags & 4) != 0;
         c.slide_direction = r.get_fixed<Point>();
         c.normal_force    = r.get<double>();
         c.shear_force     = r.get_fixed<Point>();
@@ -162,6 +166,7 @@ namespace rockdda::dda3d
     const double   damped     = r.get<double>();
     const double   speed0     = r.get<double>();
     const double   ground     = r.get<double>();
+    const double   strength   = r.get<double>();
     const bool     first      = r.get<std::uint8_t>() != 0;
     StepStatistics st;
     for (int *i : {&st.iterations, &st.cuts, &st.open, &st.sliding, &st.locked})
@@ -188,6 +193,7 @@ namespace rockdda::dda3d
     damping_work    = damped;
     initial_speed_  = speed0;
     ground_speed_   = ground;
+    worst_strength_ratio = strength;
     first_detection = first;
     stats           = st;
     last_solution   = std::move(x);

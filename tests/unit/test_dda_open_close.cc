@@ -10,6 +10,7 @@
  */
 #include <rockdda/dda/block_matrices.h>
 #include <rockdda/dda/engine.h>
+#include <rockdda/dda/friction_relaxation.h>
 
 #include <gtest/gtest.h>
 
@@ -19,6 +20,7 @@
 #include <cstdio>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 using namespace rockdda;
 using namespace rockdda::dda;
@@ -363,3 +365,66 @@ INSTANTIATE_TEST_SUITE_P(GainsFromOneToTwenty,
                                            std::make_tuple(10., 35.),
                                            std::make_tuple(5., 30.),
                                            std::make_tuple(3., 45.)));
+
+
+
+TEST(DdaOpenClose, RelaxedFrictionIterationConvergesWhereThePlainOneDiverges)
+{
+  // The friction-normal coupling of a wedge of small taper (the reason for
+  // dda::FrictionRelaxation, both engines): the normal force a solve
+  // produces from the force its friction was assembled with is
+  // N = N* + gain (N_a - N*), gain = -mu / taper. Two contacts with gains
+  // -3 and -1.5 (mu = 0.6, tapers 0.2 and 0.4): the plain fixed point
+  // (omega = 1) multiplies the error by |gain| >= 1.5 per iteration;
+  // Aitken's rule finds the secant factor of the coupled map and converges
+  // to N* within round-off in a few iterations. A state change restarts it
+  // (omega = 1), and an iteration without residuals relaxes nothing.
+  const std::vector<double> target{1000., 400.}, gain{-3., -1.5};
+  auto                      iterate = [&](const bool relaxed) {
+    std::vector<double> assembled{0., 0.};
+    FrictionRelaxation  relaxation(2);
+    int                 k = 0;
+    for (; k < 60; ++k)
+      {
+        double worst = 0.;
+        std::vector<double> produced(2);
+        for (std::size_t c = 0; c < 2; ++c)
+          {
+            produced[c] = target[c] + gain[c] * (assembled[c] - target[c]);
+            worst       = std::max(worst, std::abs(produced[c] - assembled[c]));
+            relaxation.set_residual(c, produced[c] - assembled[c]);
+          }
+        if (worst < 1e-9 * target[0])
+          break;
+        const std::vector<double> before = assembled;
+        assembled                        = produced;
+        relaxation.relax(!relaxed, [&](const std::size_t c, const double d) {
+          assembled[c] = before[c] + d;
+        });
+        if (!std::isfinite(assembled[0]) || std::abs(assembled[0]) > 1e12)
+          return 1000;
+      }
+    return k;
+  };
+  const int plain = iterate(false), aitken = iterate(true);
+  std::printf("friction iteration with gains -3 and -1.5: plain fixed point "
+              "%s, Aitken converged in %d iterations\n",
+              plain >= 60 ? "diverged" : "converged",
+              aitken);
+  EXPECT_GE(plain, 60);
+  EXPECT_LE(aitken, 30);
+
+  // A restart and an iteration without residuals leave omega at 1.
+  FrictionRelaxation r(1);
+  r.set_residual(0, 5.);
+  r.relax(false, [](std::size_t, double) {});
+  r.set_residual(0, -10.);
+  r.relax(false, [](std::size_t, double) {});
+  EXPECT_NE(r.omega(), 1.);
+  r.set_residual(0, 0.);
+  bool called = false;
+  r.relax(false, [&](std::size_t, double) { called = true; });
+  EXPECT_FALSE(called);
+  EXPECT_EQ(r.omega(), 1.);
+  EXPECT_FALSE(r.has_residual());
+}

@@ -14,6 +14,7 @@
  * accepted with shear 100x beyond their strength.
  */
 #include <rockdda/dda/engine.h>
+#include <rockdda/dda/strength_audit.h>
 
 #include <gtest/gtest.h>
 
@@ -139,4 +140,103 @@ TEST(DdaStrengthAudit, CohesiveJointPulledNearItsStrength)
         EXPECT_FALSE(ct.broken) << "phi " << phi;
       EXPECT_LT(std::abs(dda.centroid_displacement(b).x()), 1e-5);
     }
+}
+
+
+
+// The checks themselves (dda::StrengthAudit, both engines), on one contact
+// with a Mohr-Coulomb strength of 100 N and tolerances f = 1 N, hold 5 N:
+// each excess is measured in units of the tolerance the iteration allowed,
+// and only beyond it (ratio > 1) does the audit fail with a diagnosis
+// naming the contact, the check and its numbers.
+TEST(DdaStrengthAudit, JudgesEachCheckInUnitsOfItsTolerance)
+{
+  AuditedContact locked;
+  locked.state          = ContactState::locked;
+  locked.normal_force   = 200.;
+  locked.strength       = 100.;
+  locked.tolerance      = 1.;
+  locked.hold_tolerance = 5.;
+  {
+    StrengthAudit a;
+    locked.locked_shear = 104.;
+    EXPECT_TRUE(a.judge_contact(0, locked));
+    EXPECT_NEAR(a.ratio(), 0.8, 1e-12);
+    EXPECT_TRUE(a.diagnosis(1, 2, "N").empty());
+    locked.locked_shear = 110.;
+    EXPECT_TRUE(a.judge_contact(3, locked));
+    EXPECT_NEAR(a.ratio(), 2., 1e-12);
+    EXPECT_EQ(a.worst_contact(), 3);
+    const std::string d = a.diagnosis(7, 9, "N");
+    EXPECT_NE(d.find("block 7 on block 9"), std::string::npos) << d;
+    EXPECT_NE(d.find("shear while locked"), std::string::npos) << d;
+  }
+  {
+    // A locked face-group member beyond its own strength + hold: its group
+    // decides (the caller), not the member alone.
+    StrengthAudit a;
+    locked.in_group = true;
+    EXPECT_FALSE(a.judge_contact(0, locked));
+    EXPECT_EQ(a.ratio(), 0.);
+    locked.in_group = false;
+  }
+  {
+    // Tension: a sliding contact may carry f, a locked one its hold, an
+    // intact locked joint its tensile strength on top.
+    StrengthAudit  a;
+    AuditedContact t = locked;
+    t.locked_shear   = 0.;
+    t.normal_force   = -4.;
+    a.judge_contact(0, t);
+    EXPECT_NEAR(a.ratio(), 0.8, 1e-12);
+    t.tensile_limit = 10.;
+    t.normal_force  = -12.;
+    StrengthAudit b;
+    b.judge_contact(0, t);
+    EXPECT_NEAR(b.ratio(), 0.4, 1e-12);
+    t.state         = ContactState::sliding;
+    t.tensile_limit = 0.;
+    t.normal_force  = -4.;
+    t.strength      = 0.;
+    StrengthAudit s;
+    s.judge_contact(0, t);
+    EXPECT_NEAR(s.ratio(), 4., 1e-12);
+    EXPECT_NE(s.diagnosis(1, 2, "N").find("tension"), std::string::npos);
+  }
+  {
+    // Sliding: the friction assembled against the strength at the accepted
+    // normal force, and a slip against the friction beyond f.
+    StrengthAudit  a;
+    AuditedContact s     = locked;
+    s.state              = ContactState::sliding;
+    s.friction_carried   = 103.;
+    s.friction_tolerance = 2.;
+    a.judge_contact(0, s);
+    EXPECT_NEAR(a.ratio(), 1.5, 1e-12);
+    EXPECT_NE(a.diagnosis(1, 2, "N/m").find("friction off its strength"),
+              std::string::npos);
+    StrengthAudit b;
+    s.friction_carried = 100.;
+    s.slip_against     = 0.5;
+    b.judge_contact(0, s);
+    EXPECT_NEAR(b.ratio(), 0.5, 1e-12);
+    // A frictionless contact has no friction to audit.
+    StrengthAudit c;
+    s.frictionless     = true;
+    s.friction_carried = 0.;
+    c.judge_contact(0, s);
+    EXPECT_EQ(c.ratio(), 0.);
+  }
+  {
+    // Open: compression up to its open tolerance.
+    StrengthAudit  a;
+    AuditedContact o;
+    o.state          = ContactState::open;
+    o.normal_force   = 30.;
+    o.open_tolerance = 20.;
+    a.judge_contact(0, o);
+    EXPECT_NEAR(a.ratio(), 1.5, 1e-12);
+    EXPECT_NE(a.diagnosis(1, 2, "N").find("compression while open"),
+              std::string::npos);
+  }
 }

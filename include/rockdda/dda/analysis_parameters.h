@@ -60,6 +60,9 @@ namespace rockdda::dda
     /// Force tolerance of the contact conditions, fraction of the lighter
     /// block's weight (dda::ContactLaw::force_tolerance).
     double force_tolerance = 1e-4;
+    /// CG tolerance while the contact states settle / the solver
+    /// tolerance (-), in [1, 1e6] (inexact Newton; 1: off).
+    double inexact_factor = 1.;
     /// Spring of fixed points (N/m), >= 0; 0: 10 x the contact penalty.
     double fixed_penalty = 0.;
     /// Static steps under gravity before t = 0, in [0, 100000].

@@ -122,7 +122,8 @@ namespace rockdda::dda
    * force, sliding direction, whether its joint broke and its slip rate;
    * from the same features (@p same_feature) also its shear force and,
    * through @p same_features(to, from), what belongs to the features: the
-   * shear spring's anchor of a locked contact (and the 2D engine's hold).
+   * shear spring's anchor of a locked contact; and from the same features
+   * its hold across static steps (held).
    * A vertex that went round a corner onto another edge or face keeps its
    * state but starts its spring where it touches now, carrying no shear
    * force (and no stored spring energy) from the old features.
@@ -142,6 +143,7 @@ namespace rockdda::dda
     if (same_feature)
       {
         to.shear_force = from.shear_force;
+        to.held        = from.held;
         same_features(to, from);
       }
   }

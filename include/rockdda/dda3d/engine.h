@@ -74,6 +74,12 @@ namespace rockdda::dda3d
     /// length, 0 for a new contact (the floor V_min), dda::no_slip_rate in
     /// a static step (dynamic control 0: constant friction).
     double slip_rate = 0.;
+    /// Held across static steps (dynamic control 0), as in 2D
+    /// (dda::Contact::held): the contact cycled in the open-close iteration
+    /// of an accepted static step and was held there; it keeps the hold in
+    /// the following static steps until a force beyond the hold tolerance
+    /// changes its state.
+    bool held = false;
   };
 
   /**
@@ -214,6 +220,19 @@ namespace rockdda::dda3d
     /// sliding3d and the 1:1000 column of Dda3dStability takes 17 s
     /// instead of 2 s (doc/theory/dda3d.md).
     bool line_search = false;
+    /// The relaxed friction iteration (dda::FrictionRelaxation, the 2D
+    /// engine's Aitken relaxation of unconverged sliding contacts). Off by
+    /// default in 3D, by measurement: with it the box sliding through the
+    /// concave valley of Dda3dConcave takes 131 step cuts instead of 56
+    /// (the relaxed normal forces push contacts across their state
+    /// thresholds and the iteration returns to earlier iterates), and the
+    /// Hoek-Bray bisection of Dda3dContacts 3.4 x the time.
+    bool friction_relaxation = false;
+    /// CG tolerance while the contact states settle = inexact_factor x the
+    /// solver tolerance (inexact Newton, as in 2D); the settled states are
+    /// confirmed by one solve to the solver tolerance (<= 1: every solve to
+    /// the solver tolerance; ignored by the direct solver).
+    double inexact_factor = 1.;
     /// Smallest time step (fraction of dt) before the run stops.
     double min_dt_ratio = 1e-6;
     /// Stop (dda::DdaFailure) after this many steps in one advance_to()
@@ -247,6 +266,10 @@ namespace rockdda::dda3d
     int    iterations = 0, cuts = 0, solver_iterations = 0;
     double dt   = 0.;
     int    open = 0, sliding = 0, locked = 0;
+    /// The strength audit's worst excess over a contact's strength in
+    /// units of its tolerance (dda::StrengthAudit; <= 1, or the step is
+    /// cut).
+    double strength_ratio = 0.;
   };
 
   /**
@@ -317,6 +340,9 @@ namespace rockdda::dda3d
     /// accepted steps so far (settling steps excluded, their cuts
     /// included, as in 2D).
     unsigned long n_steps = 0, n_cuts = 0, n_iterations = 0;
+    /// Largest StepStatistics::strength_ratio of the accepted steps so far
+    /// (kept in checkpoints; <= 1).
+    double worst_strength_ratio = 0.;
 
 
     /// The contacts at the end of the last accepted step.
