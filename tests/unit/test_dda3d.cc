@@ -22,11 +22,14 @@
 #include "dda3d_test_scenes.h"
 #include "vtu_reader.h"
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <cstdio>
 #include <random>
 #include <set>
 #include <sstream>
+#include <utility>
+#include <vector>
 #include <string>
 
 using namespace rockdda;
@@ -896,8 +899,8 @@ namespace
               const double           t_end,
               const double           dt,
               const Eigen::Matrix3d &R           = Eigen::Matrix3d::Identity(),
-              const Point           &shift       = Point::Zero(),
-              const bool             line_search = false)
+              const Point           &shift = Point::Zero(),
+              const std::function<void(EngineControls &)> &tune = {})
   {
     const auto             Sc = slider_scene(alpha_deg, phi_deg, R, shift);
     const Eigen::Matrix3d &Q  = Sc.frame;
@@ -905,7 +908,8 @@ namespace
     EngineControls         c;
     c.dt                 = dt;
     c.law.normal_penalty = 1e11;
-    c.line_search        = line_search;
+    if (tune)
+      tune(c);
     Engine     engine(s, c);
     InclineRun out;
     out.weight       = 2700. * 9.80665;
@@ -1089,31 +1093,48 @@ TEST(Dda3dContacts, BlockOnInclineBelowTheFrictionAngleSlides)
 
 
 
-TEST(Dda3dContacts, LineSearchKeepsTheInclineSolutions)
+TEST(Dda3dContacts, IterationKnobsKeepTheInclineSolutions)
 {
-  // The exact line search of the open-close iteration, written once for
-  // both engines (dda/line_search.h; off by default in 3D): with it the
-  // block on the incline still slides by 1/2 g (sin a - cos a tan phi) t^2
-  // within 1 % below the friction angle and stays within 1e-6 m above it,
-  // and the ledger never gains energy.
+  // The optional parts of the open-close iteration, written once for both
+  // engines and off by default in 3D: the exact line search
+  // (dda/line_search.h), the relaxed friction iteration
+  // (dda::FrictionRelaxation) and inexact CG solves confirmed by an exact
+  // one (Inexact solve factor 1000). With each, the block on the incline
+  // still slides by 1/2 g (sin a - cos a tan phi) t^2 within 1 % below the
+  // friction angle and stays within 1e-6 m above it, and the ledger never
+  // gains energy.
   const double a = 30. * pi / 180., phi = 20. * pi / 180.;
   const double exact
     = 0.5 * 9.80665 * (std::sin(a) - std::cos(a) * std::tan(phi));
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-  const auto slides = run_incline(30., 20., 1., 0.005, I, Point::Zero(), true);
-  const auto stays  = run_incline(20., 30., 1., 0.005, I, Point::Zero(), true);
-  const double e    = std::abs(slides.along - exact) / exact;
-  std::printf("line search: incline 30/20 slide %.9f m (exact %.9f m, error "
-              "%.2e, %d cuts), 20/30 %.2e m\n",
-              slides.along,
-              exact,
-              e,
-              slides.cuts,
-              stays.along);
-  EXPECT_LT(e, 1e-2);
-  EXPECT_LT(std::abs(stays.along), 1e-6);
-  EXPECT_LT(slides.max_balance, 1e-6 * slides.energy_scale);
-  EXPECT_LT(stays.max_balance, 1e-6 * stays.energy_scale);
+  const std::vector<
+    std::pair<const char *, std::function<void(EngineControls &)>>>
+    knobs{{"line search", [](EngineControls &c) { c.line_search = true; }},
+          {"friction relaxation",
+           [](EngineControls &c) { c.friction_relaxation = true; }},
+          {"inexact CG", [](EngineControls &c) {
+             c.solver.type    = dda::SolverType::iterative;
+             c.inexact_factor = 1000.;
+           }}};
+  for (const auto &[name, tune] : knobs)
+    {
+      SCOPED_TRACE(name);
+      const auto   slides = run_incline(30., 20., 1., 0.005, I, Point::Zero(), tune);
+      const auto   stays  = run_incline(20., 30., 1., 0.005, I, Point::Zero(), tune);
+      const double e      = std::abs(slides.along - exact) / exact;
+      std::printf("%s: incline 30/20 slide %.9f m (exact %.9f m, error "
+                  "%.2e, %d cuts), 20/30 %.2e m\n",
+                  name,
+                  slides.along,
+                  exact,
+                  e,
+                  slides.cuts,
+                  stays.along);
+      EXPECT_LT(e, 1e-2);
+      EXPECT_LT(std::abs(stays.along), 1e-6);
+      EXPECT_LT(slides.max_balance, 1e-6 * slides.energy_scale);
+      EXPECT_LT(stays.max_balance, 1e-6 * stays.energy_scale);
+    }
 }
 
 
