@@ -405,7 +405,7 @@ namespace rockdda::dda
     // Relaxed friction iteration (dda::FrictionRelaxation, both engines'):
     // Aitken's relaxation of the unconverged sliding contacts' friction.
     FrictionRelaxation relaxation(contacts.size());
-    const auto update_factors = [&]() {
+    const auto         update_factors = [&]() {
       for (std::size_t c = 0; c < contacts.size(); ++c)
         {
           factor[c] = chatter_factor(flips[c], ctrl.law.force_tolerance);
@@ -505,11 +505,12 @@ namespace rockdda::dda
           assembled_normal[c] = ct.normal_force;
           // Only the unconverged contacts are relaxed (and define omega):
           // the others take their new force as it is.
-          relaxation.set_residual(
-            c,
-            unconverged && !frictionless(ct, scene.joints[ct.joint])
-              ? r.normal_force - ct.normal_force
-              : 0.);
+          relaxation.set_residual(c,
+                                  unconverged
+                                      && !frictionless(ct,
+                                                       scene.joints[ct.joint])
+                                    ? r.normal_force - ct.normal_force
+                                    : 0.);
           ct.normal_force = r.normal_force;
           ct.shear_force  = r.shear_force;
           if (r.changed)

@@ -224,8 +224,8 @@ namespace rockdda::dda
                             const double                mean_normal,
                             double                     &ratio) const
   {
-    const auto &kinematics = assembler.kinematics();
-    const auto &group      = assembler.groups();
+    const auto   &kinematics = assembler.kinematics();
+    const auto   &group      = assembler.groups();
     StrengthAudit audit;
     // The iteration's tolerances of contact c (check_state): f escalated by
     // its chatter factor for a sliding contact, max(that, its hold) for an
@@ -277,12 +277,10 @@ namespace rockdda::dda
                 // previous iteration.
                 a.friction_carried
                   = shear_strength(ct, assembled_normal[k], kin.length, joint);
-                a.friction_tolerance
-                  = friction_coefficient(joint, ct.slip_rate)
-                    * (1e-3 * (std::abs(n) + mean_normal)
-                       + kin.force_tolerance);
-                a.slip_against
-                  = -kin.shear_stiffness * s * ct.slide_direction;
+                a.friction_tolerance = friction_coefficient(joint, ct.slip_rate)
+                                       * (1e-3 * (std::abs(n) + mean_normal)
+                                          + kin.force_tolerance);
+                a.slip_against = -kin.shear_stiffness * s * ct.slide_direction;
               }
           }
         if (!audit.judge_contact(c, a))
@@ -315,21 +313,21 @@ namespace rockdda::dda
             {
               const auto &kin = kinematics[c];
               audit.judge(c,
-                    "shear while locked",
-                    std::abs(kin.shear_stiffness
-                             * assembler.shear_displacement(c, x)),
-                    shear_strength(contacts[c],
-                                   normal(c),
-                                   kin.length,
-                                   scene.joints[contacts[c].joint]),
-                    tolerances(c).second);
+                          "shear while locked",
+                          std::abs(kin.shear_stiffness
+                                   * assembler.shear_displacement(c, x)),
+                          shear_strength(contacts[c],
+                                         normal(c),
+                                         kin.length,
+                                         scene.joints[contacts[c].joint]),
+                          tolerances(c).second);
             }
         else
           audit.judge(members[0],
-                "resultant shear of its locked face group",
-                std::abs(gs.resultant),
-                gs.strength,
-                gs.tolerance);
+                      "resultant shear of its locked face group",
+                      std::abs(gs.resultant),
+                      gs.strength,
+                      gs.tolerance);
       }
     ratio = audit.ratio();
     if (audit.worst_contact() < 0)

@@ -22,7 +22,7 @@ namespace rockdda::dda
     const double excess = force - limit;
     const double r      = excess <= 0.     ? 0.
                           : tolerance > 0. ? excess / tolerance
-                                      : std::numeric_limits<double>::infinity();
+                                           : std::numeric_limits<double>::infinity();
     if (r > worst_ratio)
       {
         worst_ratio = r;
@@ -68,7 +68,8 @@ namespace rockdda::dda
           std::abs(a.friction_carried - a.strength),
           0.,
           a.friction_tolerance);
-    judge(contact, "slip against its friction", a.slip_against, 0., a.tolerance);
+    judge(
+      contact, "slip against its friction", a.slip_against, 0., a.tolerance);
     return true;
   }
 

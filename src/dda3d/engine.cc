@@ -1277,7 +1277,7 @@ namespace rockdda::dda3d
               relaxation.set_residual(k, residual);
               assembled_normal[k] = c.normal_force;
               c.normal_force      = r.normal_force;
-              dir[k]         = r.direction;
+              dir[k]              = r.direction;
               const Point fs3
                 = r.shear_force.x() * K.t1 + r.shear_force.y() * K.t2;
               c.shear_force = fs3;
@@ -1302,8 +1302,8 @@ namespace rockdda::dda3d
         r.friction_changes = std::max(r.friction_changes, 1u);
       // Settled on an inexact solve: confirm with a solve to the solver
       // tolerance.
-      confirming = r.state_changes == 0 && r.friction_changes == 0 && loose;
-      r.confirm  = confirming;
+      confirming     = r.state_changes == 0 && r.friction_changes == 0 && loose;
+      r.confirm      = confirming;
       r.most_changes = static_cast<unsigned>(
         changes.empty() ? 0
                         : *std::max_element(changes.begin(), changes.end()));
@@ -1326,10 +1326,10 @@ namespace rockdda::dda3d
       std::vector<int>   suspect;
       for (std::size_t k = 0; k < contacts.size(); ++k)
         {
-          const auto          &c     = contacts[k];
-          const auto          &K     = kin[k];
-          const auto          &joint = system.joints[c.joint];
-          const Eigen::Vector2d s    = shear_after(k);
+          const auto           &c     = contacts[k];
+          const auto           &K     = kin[k];
+          const auto           &joint = system.joints[c.joint];
+          const Eigen::Vector2d s     = shear_after(k);
           dda::AuditedContact   a;
           a.state          = c.state;
           a.normal_force   = -K.normal_stiffness * gap_after(k);
@@ -1360,15 +1360,14 @@ namespace rockdda::dda3d
             suspect.push_back(group[k]);
         }
       std::sort(suspect.begin(), suspect.end());
-      suspect.erase(std::unique(suspect.begin(), suspect.end()),
-                    suspect.end());
+      suspect.erase(std::unique(suspect.begin(), suspect.end()), suspect.end());
       // A face group that shares its strength (decide_group): the sum of its
       // locked members' shear spring forces against the sum of their
       // strengths and tolerances.
       for (const int gk : suspect)
         {
           double demand = 0., strength = 0., tolerance = 0.;
-          int    first  = -1;
+          int    first = -1;
           for (const std::size_t k : group_members[gk])
             {
               const auto &c = contacts[k];
@@ -1376,11 +1375,11 @@ namespace rockdda::dda3d
                 continue;
               first = first < 0 ? static_cast<int>(k) : first;
               demand += kin[k].shear_stiffness * shear_after(k).norm();
-              strength += dda::shear_strength(c,
-                                              -kin[k].normal_stiffness
-                                                * gap_after(k),
-                                              c.area,
-                                              system.joints[c.joint]);
+              strength
+                += dda::shear_strength(c,
+                                       -kin[k].normal_stiffness * gap_after(k),
+                                       c.area,
+                                       system.joints[c.joint]);
               tolerance += std::max(check_tolerance[k], held_tolerance(k));
             }
           audit.judge(first,

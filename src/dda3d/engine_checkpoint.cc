@@ -184,18 +184,18 @@ namespace rockdda::dda3d
     stored = std::move(contacts);
     t      = time;
     steps_.restore(step);
-    n_steps         = steps;
-    n_cuts          = cuts;
-    n_iterations    = iterations;
-    friction_work   = friction;
-    load_work       = loads;
-    contact_energy  = contact;
-    damping_work    = damped;
-    initial_speed_  = speed0;
-    ground_speed_   = ground;
+    n_steps              = steps;
+    n_cuts               = cuts;
+    n_iterations         = iterations;
+    friction_work        = friction;
+    load_work            = loads;
+    contact_energy       = contact;
+    damping_work         = damped;
+    initial_speed_       = speed0;
+    ground_speed_        = ground;
     worst_strength_ratio = strength;
-    first_detection = first;
-    stats           = st;
-    last_solution   = std::move(x);
+    first_detection      = first;
+    stats                = st;
+    last_solution        = std::move(x);
   }
 } // namespace rockdda::dda3d

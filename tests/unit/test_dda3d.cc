@@ -22,15 +22,15 @@
 #include "dda3d_test_scenes.h"
 #include "vtu_reader.h"
 #include <chrono>
-#include <functional>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <set>
 #include <sstream>
+#include <string>
 #include <utility>
 #include <vector>
-#include <string>
 
 using namespace rockdda;
 using namespace rockdda::dda3d;
@@ -898,7 +898,7 @@ namespace
               const double           phi_deg,
               const double           t_end,
               const double           dt,
-              const Eigen::Matrix3d &R           = Eigen::Matrix3d::Identity(),
+              const Eigen::Matrix3d &R     = Eigen::Matrix3d::Identity(),
               const Point           &shift = Point::Zero(),
               const std::function<void(EngineControls &)> &tune = {})
   {
@@ -1119,9 +1119,11 @@ TEST(Dda3dContacts, IterationKnobsKeepTheInclineSolutions)
   for (const auto &[name, tune] : knobs)
     {
       SCOPED_TRACE(name);
-      const auto   slides = run_incline(30., 20., 1., 0.005, I, Point::Zero(), tune);
-      const auto   stays  = run_incline(20., 30., 1., 0.005, I, Point::Zero(), tune);
-      const double e      = std::abs(slides.along - exact) / exact;
+      const auto slides
+        = run_incline(30., 20., 1., 0.005, I, Point::Zero(), tune);
+      const auto stays
+        = run_incline(20., 30., 1., 0.005, I, Point::Zero(), tune);
+      const double e = std::abs(slides.along - exact) / exact;
       std::printf("%s: incline 30/20 slide %.9f m (exact %.9f m, error "
                   "%.2e, %d cuts), 20/30 %.2e m\n",
                   name,

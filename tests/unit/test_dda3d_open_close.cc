@@ -110,8 +110,8 @@ TEST(Dda3dOpenClose, ShakenWallStaysWithinStrengthAtEveryAcceptedStep)
               const double strength
                 = dda::shear_strength(ct, ct.normal_force, ct.area, joint);
               if (!groups)
-                worst = std::max(worst,
-                                 (ct.shear_force.norm() - strength) / bound);
+                worst
+                  = std::max(worst, (ct.shear_force.norm() - strength) / bound);
               else
                 {
                   auto &[resultant, sum, allowed]
@@ -157,12 +157,13 @@ TEST(Dda3dOpenClose, AcceptedStepsDoNotDependOnTheInexactSolves)
   // contact closes in the first steps and the wall settles on its springs.
   // Solving to 1000 x the solver tolerance while the contact states settle,
   // the settled states confirmed by a solve to the tolerance (inexact
-  // Newton, as in 2D: DdaOpenClose.AcceptedStepDoesNotDependOnTheInexactSolves),
-  // must accept the physics of exact solves: the settlement within 1 % (the
-  // 2D test's bound), every vertex within 1 % of the largest displacement.
-  // The paths may differ where a contact near zero force is decided within
-  // its tolerance (a state that flips differently moves a brick by up to
-  // its elastic slip), so not bit for bit.
+  // Newton, as in 2D:
+  // DdaOpenClose.AcceptedStepDoesNotDependOnTheInexactSolves), must accept the
+  // physics of exact solves: the settlement within 1 % (the 2D test's bound),
+  // every vertex within 1 % of the largest displacement. The paths may differ
+  // where a contact near zero force is decided within its tolerance (a state
+  // that flips differently moves a brick by up to its elastic slip), so not bit
+  // for bit.
   const BlockSystem wall = test_scenes::brick_wall(4, 4);
   auto              run  = [&](const double inexact) {
     EngineControls c         = shaken_wall_controls();
@@ -186,8 +187,8 @@ TEST(Dda3dOpenClose, AcceptedStepsDoNotDependOnTheInexactSolves)
     for (std::size_t b = 0; b < wall.blocks.size(); ++b)
       moved = std::max(moved, engine.displacement(b).norm());
     std::printf("inexact factor %g: largest displacement %.5e m, %lu steps, "
-                "%lu cuts, %.2f open-close iterations per step, %lu CG "
-                "iterations, audit ratio %.3f\n",
+                              "%lu cuts, %.2f open-close iterations per step, %lu CG "
+                              "iterations, audit ratio %.3f\n",
                 inexact,
                 moved,
                 engine.n_steps,
@@ -200,7 +201,7 @@ TEST(Dda3dOpenClose, AcceptedStepsDoNotDependOnTheInexactSolves)
   };
   const auto [exact, moved_exact]     = run(1.);
   const auto [inexact, moved_inexact] = run(1000.);
-  double d = 0.;
+  double d                            = 0.;
   for (std::size_t k = 0; k < exact.size(); ++k)
     d = std::max(d, (exact[k] - inexact[k]).norm());
   std::printf("exact vs inexact solves: max vertex difference %.3e m (%.3f "

@@ -386,12 +386,12 @@ TEST(DdaOpenClose, RelaxedFrictionIterationConvergesWhereThePlainOneDiverges)
     int                 k = 0;
     for (; k < 60; ++k)
       {
-        double worst = 0.;
+        double              worst = 0.;
         std::vector<double> produced(2);
         for (std::size_t c = 0; c < 2; ++c)
           {
             produced[c] = target[c] + gain[c] * (assembled[c] - target[c]);
-            worst       = std::max(worst, std::abs(produced[c] - assembled[c]));
+            worst = std::max(worst, std::abs(produced[c] - assembled[c]));
             relaxation.set_residual(c, produced[c] - assembled[c]);
           }
         if (worst < 1e-9 * target[0])

@@ -31,8 +31,8 @@ namespace rockdda::dda
   public:
     /// For an attempt with @p n contacts, from omega = 1.
     explicit FrictionRelaxation(const std::size_t n)
-      : current(n, 0.)
-      , previous(n, 0.)
+        : current(n, 0.)
+        , previous(n, 0.)
     {}
 
     /// Contact @p c's residual N - N_a in this iteration (0: not relaxed,
@@ -46,10 +46,10 @@ namespace rockdda::dda
     /**
      * After an iteration's state check. With @p restart (a state changed,
      * or no friction force changed), or without any residual, omega returns
-     * to 1 and nothing is relaxed. Otherwise omega takes Aitken's step over the residuals of
-     * this and the previous iteration, and @p relaxed(c, omega x r_c) is
-     * called for each contact c with a residual r_c: its normal force for
-     * the next assembly is N_a + that.
+     * to 1 and nothing is relaxed. Otherwise omega takes Aitken's step over the
+     * residuals of this and the previous iteration, and @p relaxed(c, omega x
+     * r_c) is called for each contact c with a residual r_c: its normal force
+     * for the next assembly is N_a + that.
      */
     template <typename Relaxed>
     void
@@ -62,9 +62,9 @@ namespace rockdda::dda
       // crept at 4e-5 s steps, whose face groups change direction without a
       // force residual).
       if (!restart)
-        restart = std::all_of(current.begin(), current.end(), [](const double r) {
-          return r == 0.;
-        });
+        restart = std::all_of(current.begin(),
+                              current.end(),
+                              [](const double r) { return r == 0.; });
       if (restart)
         {
           w    = 1.;

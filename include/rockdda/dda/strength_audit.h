@@ -39,14 +39,13 @@ namespace rockdda::dda
     double locked_shear = 0.;
     /// Locked and the member of a face group that shares its strength: a
     /// shear beyond its own strength is judged on the group (the caller).
-    bool in_group = false;
+    bool in_group     = false;
     bool frictionless = false;
     /// A sliding contact: the friction force assembled (from the normal
     /// force of the previous iteration), the tolerance of the friction
     /// iteration on it, and the spring force against its sliding direction
     /// -k_s s . d (a reversal beyond f relocks it).
-    double friction_carried = 0., friction_tolerance = 0.,
-           slip_against = 0.;
+    double friction_carried = 0., friction_tolerance = 0., slip_against = 0.;
   };
 
   /**
