@@ -2,8 +2,8 @@
 """Layering study of thesis Chapter 3.4-3.5 (issue 16, items 1 and 2).
 
 usage: study.py ROCKDDA [--end-time T] [--jobs J] [--models NAME ...]
-                [--work FOLDER] [--timeout S] [--retry-failed] [--out DIR]
-                [--collect-only]
+                [--seeds N] [--work FOLDER] [--timeout S] [--retry-failed]
+                [--out DIR] [--collect-only]
 
 Runs the 16 models of thesis Table 3-1 (parameter-files/layering: FMML and
 DL01-DL15, and with --models also FMML-wide, the boundary check) through
@@ -25,6 +25,16 @@ this folder):
   fig-3-9.png       final displacement of points 3, 4, 5 against b/L for
                     each L, FMML for reference
   deformed-*.png    the deformed roof zone of FMML, DL02, DL07 (Fig. 3-8)
+
+With --seeds N each model also runs on the realizations of random seeds 2
+.. N of its structure ('Random seed' of its cut; model folder NAME-sK),
+the tables above stay those of seed 1, and
+
+  seeds.csv         one row per model and seed (the columns of models.csv)
+  seeds.md          per model: mean, smallest and largest over the seeds of
+                    the final vertical displacement at points 3-5 and of
+                    the loosened-zone height / B
+  fig-3-9-seeds.png Fig. 3-9 with the mean over the seeds and the range
 
 Each model's DDA also writes WORK/NAME/dda/measurement_points.h5, the
 time series of points 1-5 in HDF5 (time; ux, uy, sigma_x, sigma_y, tau_xy
@@ -76,6 +86,13 @@ LOOSE_THRESHOLDS = (0.05, 0.1, 0.2)   # downward displacement (m)
 STOP = threading.Event()
 RUNNING = {}
 RUNNING_LOCK = threading.Lock()
+
+
+def split_seed(name):
+    """(base model name, seed) of a model folder name: NAME-sK is model
+    NAME on the realization of random seed K; NAME is seed 1."""
+    m = re.fullmatch(r"(.+)-s(\d+)", name)
+    return (m.group(1), int(m.group(2))) if m else (name, 1)
 
 
 def model_list():
@@ -246,8 +263,11 @@ def prepare_model(rockdda, folder, name):
     # 1. cut (once).
     blocks = os.path.join(folder, "cut", "blocks.dda")
     if not os.path.exists(blocks):
-        text = open(os.path.join(LAYERING, name + ".prm")).read()
+        base, seed = split_seed(name)
+        text = open(os.path.join(LAYERING, base + ".prm")).read()
         text = set_key(text, "Output directory", os.path.join(folder, "cut"))
+        if seed != 1:
+            text = set_key(text, "Random seed", str(seed))
         prm = os.path.join(folder, "cut.prm")
         with open(prm, "w") as f:
             f.write(text)
@@ -388,7 +408,8 @@ def collect(work, names, end_time):
         width = 100.0 if name.endswith("-wide") else 60.0
         out = os.path.join(folder, "dda")
         s = summary(os.path.join(out, "summary.csv"))
-        length, b = table.get(name, (None, None))
+        base, seed = split_seed(name)
+        length, b = table.get(base, (None, None))
         row = {"model": name, "L_m": length or "", "b_m": b or "",
                "b_over_L": "%.1f" % (b / length) if length else ""}
         fail = os.path.join(folder, "FAILED")
@@ -616,12 +637,98 @@ def deformed_plot(vtu, title, path, xlim=(15, 45), ylim=(4, 40)):
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
+def seed_summary(rows):
+    """Per base model (in order): the seeds and, for the final vertical
+    displacement at points 3-5 (m) and the loosened zone (0.2 m, / B), the
+    mean, the smallest and the largest over the models that are done."""
+    out, order = {}, []
+    for r in rows:
+        base, seed = split_seed(r["model"])
+        if base not in out:
+            out[base] = {"model": base, "L_m": r.get("L_m", ""),
+                         "b_over_L": r.get("b_over_L", ""), "seeds": [],
+                         "values": {}}
+            order.append(base)
+        if r["status"] != "done":
+            continue
+        out[base]["seeds"].append(seed)
+        for k in ("uy3_m", "uy4_m", "uy5_m", "loose_0.2m_over_B"):
+            if r.get(k, "") != "":
+                out[base]["values"].setdefault(k, []).append(float(r[k]))
+    return [out[b] for b in order]
+
+
+def seeds_markdown(summary_rows, end_time):
+    out = ["Layering study over realizations (random seeds of the "
+           "structure), end time %g s: mean [smallest, largest] over the "
+           "seeds of the final vertical displacement (mm) at points 3-5 and "
+           "of the loosened-zone height / B (0.2 m)." % end_time, "",
+           "| model | L (m) | b/L | seeds | uy3 | uy4 | uy5 | loose/B |",
+           "|---|---:|---:|---|---|---|---|---|"]
+    for r in summary_rows:
+        cells = [r["model"], str(r["L_m"]) or "-", r["b_over_L"] or "-",
+                 ",".join(str(k) for k in sorted(r["seeds"])) or "-"]
+        for k, scale in (("uy3_m", 1e3), ("uy4_m", 1e3), ("uy5_m", 1e3),
+                         ("loose_0.2m_over_B", 1.0)):
+            v = r["values"].get(k, [])
+            if not v:
+                cells.append("-")
+                continue
+            cells.append("%s [%s, %s]" % (fmt(sum(v) / len(v), scale),
+                                          fmt(min(v), scale),
+                                          fmt(max(v), scale)))
+        out.append("| " + " | ".join(cells) + " |")
+    return "\n".join(out) + "\n"
+
+
+def seeds_plot(path, summary_rows):
+    """Fig. 3-9 over the seeds: the mean final vertical displacement at
+    points 3, 4, 5 against b/L for each L, the range as error bars, FMML's
+    mean and range as a band."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.2), sharey=True)
+    for ax, p in zip(axes, (3, 4, 5)):
+        k = "uy%d_m" % p
+        for length, marker in ((5, "o"), (10, "s"), (15, "^")):
+            pts = [(float(r["b_over_L"]), r["values"][k]) for r in
+                   summary_rows if r["L_m"] == length and
+                   r["values"].get(k)]
+            if not pts:
+                continue
+            x = [a for a, _ in pts]
+            mean = [1e3 * sum(v) / len(v) for _, v in pts]
+            lo = [m - 1e3 * min(v) for m, (_, v) in zip(mean, pts)]
+            hi = [1e3 * max(v) - m for m, (_, v) in zip(mean, pts)]
+            ax.errorbar(x, mean, yerr=[lo, hi], marker=marker, capsize=3,
+                        label="DL, L = %d m" % length)
+        fm = [r for r in summary_rows if r["model"] == "FMML"]
+        if fm and fm[0]["values"].get(k):
+            v = [1e3 * u for u in fm[0]["values"][k]]
+            ax.axhspan(min(v), max(v), color="k", alpha=0.15)
+            ax.axhline(sum(v) / len(v), color="k", ls="--",
+                       label="FMML (mean, range)")
+        ax.set_yscale("symlog", linthresh=100)
+        ax.set_xlabel("b / L")
+        ax.set_title("point %d" % p)
+    axes[0].set_ylabel("final vertical displacement (mm, symlog)")
+    axes[0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path + ".tmp.png", dpi=110)
+    plt.close(fig)
+    os.replace(path + ".tmp.png", path)
+
+
 def main():
     p = argparse.ArgumentParser(description="layering study (issue 16)")
     p.add_argument("rockdda")
     p.add_argument("--end-time", type=float, default=5.0)
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--models", nargs="*")
+    p.add_argument("--seeds", type=int, default=1,
+                   help="also run random seeds 2..N of each model's "
+                        "structure (folders NAME-sK)")
     p.add_argument("--work")
     p.add_argument("--timeout", type=float)
     p.add_argument("--retry-failed", action="store_true")
@@ -630,6 +737,8 @@ def main():
                    help="only write the tables and plots from WORK")
     a = p.parse_args()
     names = a.models or [n for n, _, _ in model_list()]
+    seeded = names + ["%s-s%d" % (n, k) for k in range(2, a.seeds + 1)
+                      for n in names]
     work = os.path.abspath(a.work or os.path.join(
         os.path.dirname(os.path.abspath(a.rockdda)), "layering-chapter-3"))
     os.makedirs(work, exist_ok=True)
@@ -648,7 +757,7 @@ def main():
         if a.collect_only:
             names_to_run = []
         else:
-            names_to_run = names
+            names_to_run = seeded
         futures = {pool.submit(run_model, binary, work, n, a.end_time,
                                a.timeout, a.retry_failed, a.jobs): n
                    for n in names_to_run}
@@ -670,6 +779,16 @@ def main():
         f.write(markdown(rows, a.end_time))
     os.replace(md + ".tmp", md)
     plots(a.out, rows, series, work, a.end_time)
+    if a.seeds > 1:
+        all_rows = rows + collect(work, seeded[len(names):], a.end_time)[0]
+        write_csv(os.path.join(a.out, "seeds.csv"), all_rows)
+        summary_rows = seed_summary(all_rows)
+        sm = os.path.join(a.out, "seeds.md")
+        with open(sm + ".tmp", "w") as f:
+            f.write(seeds_markdown(summary_rows, a.end_time))
+        os.replace(sm + ".tmp", sm)
+        seeds_plot(os.path.join(a.out, "fig-3-9-seeds.png"), summary_rows)
+        rows = all_rows
     return 0 if all(r["status"] == "done" for r in rows) else 1
 
 
