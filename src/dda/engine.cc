@@ -410,7 +410,7 @@ namespace rockdda::dda
         {
           factor[c] = chatter_factor(flips[c], ctrl.law.force_tolerance);
           hold[c]   = 0.;
-          if (flips[c] >= static_cast<int>(ctrl.hold_after) || contacts[c].held)
+          if (is_held(flips[c], ctrl.hold_after, contacts[c].held))
             {
               // (dda::hold_tolerance(), the rule of both engines.) At most
               // 1 % of the lighter block's weight: a light block between
@@ -499,8 +499,9 @@ namespace rockdda::dda
           const bool unconverged
             = keeps_sliding
               && std::abs(r.normal_force - ct.normal_force)
-                   > 1e-3 * (std::abs(r.normal_force) + mean_force)
-                       + kin.force_tolerance;
+                   > friction_tolerance(r.normal_force,
+                                        mean_force,
+                                        kin.force_tolerance);
           friction_changes += unconverged;
           assembled_normal[c] = ct.normal_force;
           // Only the unconverged contacts are relaxed (and define omega):
@@ -776,9 +777,11 @@ namespace rockdda::dda
         // equilibrium: a contact held in one stays held in the next (its
         // hold ends when it changes state beyond it). Dynamic steps carry
         // their history in the velocities, and no hold.
-        ct.held = ctrl.dynamic == 0.
-                  && (flips[c] >= static_cast<int>(ctrl.hold_after)
-                      || (ct.held && ct.state == ct.state_at_start));
+        ct.held = stays_held(ctrl.dynamic,
+                             flips[c],
+                             ctrl.hold_after,
+                             ct.held,
+                             ct.state == ct.state_at_start);
         if (ct.state == ContactState::sliding)
           {
             // The joint is elastic-plastic: a sliding contact's shear spring

@@ -277,9 +277,9 @@ namespace rockdda::dda
                 // previous iteration.
                 a.friction_carried
                   = shear_strength(ct, assembled_normal[k], kin.length, joint);
-                a.friction_tolerance = friction_coefficient(joint, ct.slip_rate)
-                                       * (1e-3 * (std::abs(n) + mean_normal)
-                                          + kin.force_tolerance);
+                a.friction_tolerance
+                  = friction_coefficient(joint, ct.slip_rate)
+                    * friction_tolerance(n, mean_normal, kin.force_tolerance);
                 a.slip_against = -kin.shear_stiffness * s * ct.slide_direction;
               }
           }

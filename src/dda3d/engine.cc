@@ -921,7 +921,7 @@ namespace rockdda::dda3d
     auto held_tolerance = [&](const std::size_t k) {
       const auto &c = contacts[k];
       const auto &K = kin[k];
-      return changes[k] >= static_cast<int>(ctrl.hold_after) || c.held
+      return dda::is_held(changes[k], ctrl.hold_after, c.held)
                ? dda::hold_tolerance(c.state == ContactState::open,
                                      K.normal_stiffness,
                                      K.shear_stiffness,
@@ -1253,7 +1253,7 @@ namespace rockdda::dda3d
                   // Only the unconverged contacts are relaxed (and define
                   // omega): the others take their new force as it is.
                   if (std::abs(r.normal_force - c.normal_force)
-                      > 1e-3 * (std::abs(r.normal_force) + n_mean) + f)
+                      > dda::friction_tolerance(r.normal_force, n_mean, f))
                     {
                       friction_changed = true;
                       if (!dda::frictionless(c, system.joints[c.joint]))
@@ -1351,8 +1351,9 @@ namespace rockdda::dda3d
                   a.friction_carried = friction_applied[k].norm();
                   a.friction_tolerance
                     = dda::friction_coefficient(joint, c.slip_rate)
-                      * (1e-3 * (std::abs(a.normal_force) + n_mean)
-                         + a.tolerance);
+                      * dda::friction_tolerance(a.normal_force,
+                                                n_mean,
+                                                a.tolerance);
                   a.slip_against = -K.shear_stiffness * s.dot(dir[k]);
                 }
             }
@@ -1601,9 +1602,11 @@ namespace rockdda::dda3d
         // equilibrium: a contact held in one stays held in the next until it
         // changes state beyond its hold (the 2D rule). Dynamic steps carry
         // their history in the velocities, and no hold.
-        c.held = ctrl.dynamic == 0.
-                 && (changes[k] >= static_cast<int>(ctrl.hold_after)
-                     || (c.held && c.state == c.state_at_start));
+        c.held = dda::stays_held(ctrl.dynamic,
+                                 changes[k],
+                                 ctrl.hold_after,
+                                 c.held,
+                                 c.state == c.state_at_start);
       }
     for (std::size_t b = 0; b < n; ++b)
       {

@@ -158,6 +158,54 @@ namespace rockdda::dda
   }
 
   /**
+   * Whether a contact that has changed state @p changes times in this
+   * attempt is held (hold_tolerance()), both engines: from @p hold_after
+   * changes on, or if it was @p held at the step's start (a hold carried
+   * across static steps).
+   */
+  inline bool
+  is_held(const int changes, const unsigned hold_after, const bool held)
+  {
+    return changes >= static_cast<int>(hold_after) || held;
+  }
+
+  /**
+   * Whether an accepted step leaves a contact held for the next step, both
+   * engines: only in static steps (@p dynamic control 0: an iteration
+   * towards equilibrium; dynamic steps carry their history in the
+   * velocities), if it cycled in this step (@p changes >= @p hold_after)
+   * or was @p held and kept its state (@p kept_state: its state at the end
+   * equals its state at the start).
+   */
+  inline bool
+  stays_held(const double   dynamic,
+             const int      changes,
+             const unsigned hold_after,
+             const bool     held,
+             const bool     kept_state)
+  {
+    return dynamic == 0.
+           && (changes >= static_cast<int>(hold_after) || (held && kept_state));
+  }
+
+  /**
+   * The normal-force tolerance of the friction iteration, both engines: a
+   * sliding contact's friction has converged when the normal force N of
+   * the solve differs from the one its friction was assembled with by at
+   * most 1e-3 (|N| + @p mean_normal) + @p f (@p mean_normal the mean
+   * normal force of the closed contacts, @p f the contact's force
+   * tolerance). The strength audit allows the friction the same, times
+   * the friction coefficient.
+   */
+  inline double
+  friction_tolerance(const double normal,
+                     const double mean_normal,
+                     const double f)
+  {
+    return 1e-3 * (std::abs(normal) + mean_normal) + f;
+  }
+
+  /**
    * The result of checking one contact after a solve: the new state, the
    * normal force (N, compression positive; N/m in 2D), the shear force on
    * block i (the locked spring's -k_s s, or the friction -S d of a sliding
