@@ -2,7 +2,8 @@
 """Layering study of thesis Chapter 3.4-3.5 (issue 16, items 1 and 2).
 
 usage: study.py ROCKDDA [--end-time T] [--jobs J] [--models NAME ...]
-                [--seeds N] [--work FOLDER] [--timeout S] [--retry-failed]
+                [--seeds N] [--runs NAME-sK ...] [--set KEY=VALUE ...]
+                [--work FOLDER] [--timeout S] [--retry-failed]
                 [--out DIR] [--collect-only]
 
 Runs the 16 models of thesis Table 3-1 (parameter-files/layering: FMML and
@@ -35,6 +36,13 @@ the tables above stay those of seed 1, and
                     the final vertical displacement at points 3-5 and of
                     the loosened-zone height / B
   fig-3-9-seeds.png Fig. 3-9 with the mean over the seeds and the range
+
+--runs NAME-sK ... runs only those realizations (e.g. the ones a first
+pass reported failed) and tabulates them in seeds.csv / seeds.md with the
+seed-1 rows of models in WORK. --set KEY=VALUE (repeatable) overrides a key
+of the DDA section of table-3-2.prm in every run (e.g. --set "Penetration
+limit=0.05" or --set "Contact penalty=1e9"): give it its own --work and
+--out, as the runs' checkpoints hold the old values.
 
 Each model's DDA also writes WORK/NAME/dda/measurement_points.h5, the
 time series of points 1-5 in HDF5 (time; ux, uy, sigma_x, sigma_y, tau_xy
@@ -729,6 +737,10 @@ def main():
     p.add_argument("--seeds", type=int, default=1,
                    help="also run random seeds 2..N of each model's "
                         "structure (folders NAME-sK)")
+    p.add_argument("--runs", nargs="*",
+                   help="run only these model folders (NAME or NAME-sK)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                   help="override a key of table-3-2.prm's DDA section")
     p.add_argument("--work")
     p.add_argument("--timeout", type=float)
     p.add_argument("--retry-failed", action="store_true")
@@ -739,6 +751,16 @@ def main():
     names = a.models or [n for n, _, _ in model_list()]
     seeded = names + ["%s-s%d" % (n, k) for k in range(2, a.seeds + 1)
                       for n in names]
+    if a.runs:
+        # Only the realizations asked for (and the models of --models).
+        names = a.models or []
+        seeded = names + [r for r in a.runs if r not in names]
+    overrides = {}
+    for kv in a.set:
+        if "=" not in kv:
+            raise SystemExit("study.py: --set takes KEY=VALUE, got '%s'" % kv)
+        key, value = kv.split("=", 1)
+        overrides[key.strip()] = value.strip()
     work = os.path.abspath(a.work or os.path.join(
         os.path.dirname(os.path.abspath(a.rockdda)), "layering-chapter-3"))
     os.makedirs(work, exist_ok=True)
@@ -759,7 +781,8 @@ def main():
         else:
             names_to_run = seeded
         futures = {pool.submit(run_model, binary, work, n, a.end_time,
-                               a.timeout, a.retry_failed, a.jobs): n
+                               a.timeout, a.retry_failed, a.jobs,
+                               overrides): n
                    for n in names_to_run}
         for f in concurrent.futures.as_completed(futures):
             n = futures[f]
@@ -771,15 +794,9 @@ def main():
                                  status[n].get("diagnosis", "")), flush=True)
     rows, series = collect(work, names, a.end_time)
     os.makedirs(a.out, exist_ok=True)
-    write_csv(os.path.join(a.out, "models.csv"), rows)
-    write_csv(os.path.join(a.out, "timeseries.csv"), series,
-              ["model", "time_s", "point", "uy_m", "sigma_x_Pa"])
-    md = os.path.join(a.out, "results.md")
-    with open(md + ".tmp", "w") as f:
-        f.write(markdown(rows, a.end_time))
-    os.replace(md + ".tmp", md)
-    plots(a.out, rows, series, work, a.end_time)
-    if a.seeds > 1:
+    if names:
+        write_seed_one_tables(a, work, rows, series)
+    if a.seeds > 1 or a.runs:
         all_rows = rows + collect(work, seeded[len(names):], a.end_time)[0]
         write_csv(os.path.join(a.out, "seeds.csv"), all_rows)
         summary_rows = seed_summary(all_rows)
@@ -790,6 +807,18 @@ def main():
         seeds_plot(os.path.join(a.out, "fig-3-9-seeds.png"), summary_rows)
         rows = all_rows
     return 0 if all(r["status"] == "done" for r in rows) else 1
+
+
+def write_seed_one_tables(a, work, rows, series):
+    """models.csv, timeseries.csv, results.md and the plots of seed 1."""
+    write_csv(os.path.join(a.out, "models.csv"), rows)
+    write_csv(os.path.join(a.out, "timeseries.csv"), series,
+              ["model", "time_s", "point", "uy_m", "sigma_x_Pa"])
+    md = os.path.join(a.out, "results.md")
+    with open(md + ".tmp", "w") as f:
+        f.write(markdown(rows, a.end_time))
+    os.replace(md + ".tmp", md)
+    plots(a.out, rows, series, work, a.end_time)
 
 
 if __name__ == "__main__":

@@ -50,7 +50,8 @@ namespace rockdda::dda
                  + ", more than " + num(limits.penetration_ratio)
                  + " x the block size " + num(c.size)
                  + " m: the contact penalty " + num(in.normal_penalty)
-                 + " N/m is too low for the load";
+                 + " N/m is too low for the load (raise Contact penalty, "
+                   "or accept the overlap with Penetration limit)";
       }
     // Strain (DDA blocks are small-strain).
     for (const auto &b : in.blocks)

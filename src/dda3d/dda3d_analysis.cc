@@ -188,20 +188,21 @@ namespace rockdda::dda3d
         const std::string seismic_mode = prm.get("Seismic input");
         c.solver = dda::SolverParameters<3>::parse_parameters(prm, prm_file);
         prm.leave_subsection();
-        c.dt                      = shared.time_step;
-        c.dynamic                 = shared.dynamic;
-        c.strain_damping          = shared.strain_damping;
-        c.contact_damping         = shared.contact_damping;
-        c.contact_step_damping    = shared.contact_step_damping;
-        c.max_open_close          = shared.max_open_close;
-        c.inexact_factor          = shared.inexact_factor;
-        c.max_displacement_ratio  = shared.max_displacement_ratio;
-        c.law.shear_ratio         = shared.shear_ratio;
-        c.law.fixed_shear_penalty = shared.shear_penalty;
-        c.law.force_tolerance     = shared.force_tolerance;
-        c.fixed_penalty           = shared.fixed_penalty;
-        const double      gravity = shared.gravity;
-        const std::string s       = shared.section() + "/";
+        c.dt                             = shared.time_step;
+        c.dynamic                        = shared.dynamic;
+        c.strain_damping                 = shared.strain_damping;
+        c.contact_damping                = shared.contact_damping;
+        c.contact_step_damping           = shared.contact_step_damping;
+        c.max_open_close                 = shared.max_open_close;
+        c.inexact_factor                 = shared.inexact_factor;
+        c.plausibility.penetration_ratio = shared.penetration_ratio;
+        c.max_displacement_ratio         = shared.max_displacement_ratio;
+        c.law.shear_ratio                = shared.shear_ratio;
+        c.law.fixed_shear_penalty        = shared.shear_penalty;
+        c.law.force_tolerance            = shared.force_tolerance;
+        c.fixed_penalty                  = shared.fixed_penalty;
+        const double      gravity        = shared.gravity;
+        const std::string s              = shared.section() + "/";
         io::require(c.min_dt_ratio > 0. && c.min_dt_ratio <= 1.,
                     prm_file,
                     s + "Minimum time step ratio",

@@ -74,6 +74,39 @@ TEST(DdaSanity, PenaltyTooLowForTheLoadStopsWithADiagnosis)
 
 
 
+TEST(DdaSanity, PenetrationLimitIsTheUsersChoiceAndTheOverlapIsWOverP)
+{
+  // A 1 m block (W = 26.5 kN/m) resting flat on a base, on two vertex
+  // contacts of penalty p: each carries W / 2, so a static step settles it
+  // by W / (2 p). p = 6.62e5 N/m makes that 2 % of the block: beyond the
+  // default limit (1 %), which stops the run naming the penalty and the
+  // key; within a limit of 5 % ('Penetration limit'), where the run goes
+  // on and the block sits W / (2 p) deep. Tolerance 0.1 %: the spring law is
+  // linear, so only the block's own compression (W / E ~ 3e-6 of the
+  // depth) and the force tolerance (1e-4 W) separate DDA from W / (2 p).
+  // Static steps of 0.1 s: each closes the gap to equilibrium by the
+  // factor 2 M / dt^2 / (2 M / dt^2 + 2 p) ~ 0.3, so 30 steps settle it.
+  const double W = 2700. * 9.80665;
+  const double p = W / (2. * 0.02);
+  {
+    DdaSystem         dda(incline_scene(0., 40.), controls(0.1, 0., p));
+    const std::string why = failure_of(dda, 3.);
+    EXPECT_NE(why.find("penetrates"), std::string::npos) << why;
+    EXPECT_NE(why.find("Penetration limit"), std::string::npos) << why;
+  }
+  Controls c                       = controls(0.1, 0., p);
+  c.plausibility.penetration_ratio = 0.05;
+  DdaSystem dda(incline_scene(0., 40.), c);
+  EXPECT_EQ(failure_of(dda, 3.), "");
+  const double sink = -dda.centroid_displacement(1)[1];
+  std::printf("limit 0.05: block sank %.6g m, W / 2p = %.6g m\n",
+              sink,
+              W / (2. * p));
+  EXPECT_NEAR(sink, W / (2. * p), 1e-3 * W / (2. * p));
+}
+
+
+
 TEST(DdaSanity, YoungsModulusInTheWrongUnitsStopsWithADiagnosis)
 {
   // E = 10 Pa (meant as 10 GPa): the blocks would flatten under their own

@@ -63,6 +63,10 @@ namespace rockdda::dda
     /// CG tolerance while the contact states settle / the solver
     /// tolerance (-), in [1, 1e6] (inexact Newton; 1: off).
     double inexact_factor = 1.;
+    /// Deepest numerical penetration of a closed contact (N / penalty) an
+    /// accepted step may have, as a fraction of the smaller block's size
+    /// (-), in (0, 0.1] (dda::PlausibilityLimits::penetration_ratio).
+    double penetration_ratio = 0.01;
     /// Spring of fixed points (N/m), >= 0; 0: 10 x the contact penalty.
     double fixed_penalty = 0.;
     /// Static steps under gravity before t = 0, in [0, 100000].
