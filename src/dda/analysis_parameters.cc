@@ -280,10 +280,13 @@ namespace rockdda::dda
             "uncompressed, 4-6x faster to write than the zlib-compressed VTU "
             "and 4-5x larger: 1.1 kB per block with its contacts). Same "
             "fields in both; see doc/user-guide.md. "
-          : "'vtu': blocks-NNNNN.vtu (polyhedra) and contacts-NNNNN.vtu with "
-            "the series blocks.pvd and contacts.pvd; 'hdf5': the snapshots "
-            "stay VTU in 3D (no HDF5 polyhedron writer yet; log.txt says "
-            "so). ")
+          : "'vtu': blocks-NNNNN.vtu (polyhedra, ASCII) and "
+            "contacts-NNNNN.vtu with the series blocks.pvd and contacts.pvd "
+            "(small scenes); 'hdf5': one snapshot-NNNNN.h5 per snapshot "
+            "with the XDMF series blocks.xdmf and contacts.xdmf (large "
+            "scenes), each block as its closed surface, one polygon cell "
+            "per face carrying the block's fields (XDMF has no polyhedron "
+            "cell ParaView reads); same fields otherwise. ")
         + "With 'hdf5' the rows of statistics.csv are also written as "
           "statistics.h5 (one dataset per column, with its unit), rewritten "
           "atomically with statistics.csv.");

@@ -218,7 +218,11 @@ namespace rockdda::dda::internal
           }
         if (matrix->FillComplete() != 0 || matrix->OptimizeStorage() != 0)
           throw std::runtime_error("local ILU: FillComplete failed");
-        // Where each entry of E goes in the local matrix.
+        // Where each entry of E goes in the local matrix, whose column map
+        // on one process is its row map (every column is a row of it), so
+        // that its local column indices are the global ones, sorted.
+        if (!matrix->ColMap().SameAs(*map))
+          throw std::runtime_error("local ILU: unexpected column map");
         target.clear();
         target.reserve(E.NumMyNonzeros());
         for (int row = 0; row < n; ++row)
@@ -233,12 +237,12 @@ namespace rockdda::dda::internal
                 const long long g = E.ColMap().GID64(c[e]) - first;
                 int             t = -1;
                 if (g >= 0 && g < n)
-                  for (int k = 0; k < ml; ++k)
-                    if (matrix->ColMap().GID(cl[k]) == g)
-                      {
-                        t = k;
-                        break;
-                      }
+                  {
+                    const int *at = std::lower_bound(cl, cl + ml, int(g));
+                    if (at == cl + ml || *at != g)
+                      throw std::runtime_error("local ILU: entry not found");
+                    t = static_cast<int>(at - cl);
+                  }
                 target.push_back(t);
               }
           }

@@ -108,6 +108,58 @@ namespace rockdda::dda3d
 
 
   dda::Snapshot
+  blocks_snapshot(const BlockSystem &system, const Point &origin)
+  {
+    dda::Snapshot             out;
+    std::vector<std::int32_t> id, material;
+    std::vector<double>       disp, vel, stress, volume;
+    std::int64_t              end = 0;
+    for (const auto &b : system.blocks)
+      {
+        const auto  m    = b.polyhedron.moments();
+        const int   user = system.materials[b.material].id;
+        const Point d    = m.centroid - b.initial_centroid;
+        for (const auto &f : b.polyhedron.faces)
+          {
+            for (const int k : f)
+              {
+                const Point x = b.polyhedron.vertices[k] + origin;
+                out.xyz.insert(out.xyz.end(), {x.x(), x.y(), x.z()});
+              }
+            end += static_cast<std::int64_t>(f.size());
+            out.offsets.push_back(end);
+            id.push_back(b.id);
+            material.push_back(user >= 0 ? user : b.material);
+            disp.insert(disp.end(), {d.x(), d.y(), d.z()});
+            vel.insert(vel.end(),
+                       {b.velocity[0], b.velocity[1], b.velocity[2]});
+            for (int k = 0; k < 6; ++k)
+              stress.push_back(b.stress[k]);
+            volume.push_back(m.volume);
+          }
+      }
+    out.description
+      = "rockdda 3D DDA blocks: one polygon cell per face of every block "
+        "(counter-clockwise seen from outside; points in m).\n"
+        "Cell data, the face's block's: block_id, material; displacement "
+        "(m, centroid);\n"
+        "velocity (m/s); stress (Pa, tension positive; XX YY ZZ XY YZ XZ); "
+        "volume (m^3).\n";
+    out.fields.push_back(dda::integer_field("block_id", std::move(id)));
+    out.fields.push_back(dda::integer_field("material", std::move(material)));
+    out.fields.push_back(dda::real_field("displacement", 3, std::move(disp)));
+    out.fields.push_back(dda::real_field("velocity", 3, std::move(vel)));
+    out.fields.push_back(dda::real_field("stress", 6, std::move(stress)));
+    out.fields.push_back(dda::real_field("volume", 1, std::move(volume)));
+    out.scalars = "block_id";
+    out.vectors = "displacement";
+    out.tensors = "stress";
+    return out;
+  }
+
+
+
+  dda::Snapshot
   contacts_snapshot(const Engine &engine)
   {
     const auto               &contacts = engine.contacts();

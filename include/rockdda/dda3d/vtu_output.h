@@ -32,6 +32,19 @@ namespace rockdda::dda3d
   blocks_vtu(const BlockSystem &system, const Point &origin = Point::Zero());
 
   /**
+   * The blocks of @p system as a dda::Snapshot of polygon cells, one per
+   * face of every block (its own points, the block's vertices plus @p
+   * origin, m, counter-clockwise seen from outside), for the HDF5 + XDMF
+   * writer of large scenes (dda::Hdf5Series; XDMF has no polyhedron cell
+   * that ParaView reads, so a block is drawn as its closed surface). Each
+   * face carries its block's cell data of blocks_vtu(): `block_id`,
+   * `material`, `displacement`, `velocity`, `stress`, `volume`.
+   */
+  dda::Snapshot
+  blocks_snapshot(const BlockSystem &system,
+                  const Point       &origin = Point::Zero());
+
+  /**
    * The contacts of @p engine (Engine::contacts(), the last accepted step)
    * as a dda::Snapshot of line cells, one per contact, from its point on
    * block i (vertex, or edge point) to its point on block j, both as
