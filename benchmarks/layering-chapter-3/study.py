@@ -39,7 +39,8 @@ the tables above stay those of seed 1, and
 
 --runs NAME-sK ... runs only those realizations (e.g. the ones a first
 pass reported failed) and tabulates them in seeds.csv / seeds.md with the
-seed-1 rows of models in WORK. --set KEY=VALUE (repeatable) overrides a key
+seed-1 rows of models in WORK. --merge SEEDS_CSV adds the rows of an earlier seeds.csv that the runs do
+not replace. --set KEY=VALUE (repeatable) overrides a key
 of the DDA section of table-3-2.prm in every run (e.g. --set "Penetration
 limit=0.05" or --set "Contact penalty=1e9"): give it its own --work and
 --out, as the runs' checkpoints hold the old values.
@@ -739,6 +740,11 @@ def main():
                         "structure (folders NAME-sK)")
     p.add_argument("--runs", nargs="*",
                    help="run only these model folders (NAME or NAME-sK)")
+    p.add_argument("--merge", metavar="SEEDS_CSV",
+                   help="with --runs: the rows of an earlier seeds.csv that "
+                        "these runs do not replace join the seeds tables "
+                        "(a run that completed within the default limits "
+                        "is the same run under looser ones)")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                    help="override a key of table-3-2.prm's DDA section")
     p.add_argument("--work")
@@ -798,6 +804,12 @@ def main():
         write_seed_one_tables(a, work, rows, series)
     if a.seeds > 1 or a.runs:
         all_rows = rows + collect(work, seeded[len(names):], a.end_time)[0]
+        if a.merge:
+            new = {r["model"]: r for r in all_rows}
+            earlier = read_csv(a.merge)
+            known = {r["model"] for r in earlier}
+            all_rows = [new.get(r["model"], r) for r in earlier] + \
+                [r for r in all_rows if r["model"] not in known]
         write_csv(os.path.join(a.out, "seeds.csv"), all_rows)
         summary_rows = seed_summary(all_rows)
         sm = os.path.join(a.out, "seeds.md")
