@@ -12,7 +12,10 @@ end (the driver's own timer), peak resident memory, and the mean settlement
 of the top row of bricks at the end (settlement.py).
 
   from_rest.py [--repeat N] [--threads 1,2] [--scenes wall-25x40,wall-50x80]
-               NAME=BINARY[:OPTION=VALUE...] [...] > from-rest.csv
+               [--scene-dir DIR] NAME=BINARY[:OPTION=VALUE...] [...] > from-rest.csv
+
+--scene-dir reads the scenes (SCENE.prm and its block file) from DIR
+instead, e.g. the larger walls of make_wall.py.
 
 OPTIONs of a configuration (issue 16, distributed DDA): np=N runs it with
 'mpirun -np N' (ranks, column 'ranks'); threads=T fixes its threads
@@ -54,16 +57,16 @@ def parse_spec(text):
     return name, parts[0], options
 
 
-def run(binary, scene, threads, work, options=None):
+def run(binary, scene, threads, work, options=None, data=DATA):
     options = options or {}
-    prm = open(os.path.join(DATA, scene + ".prm")).read()
+    prm = open(os.path.join(data, scene + ".prm")).read()
     end = float(re.search(r"set End time\s*=\s*(\S+)", prm).group(1))
     out = os.path.join(work, "out")
     prm = re.sub(r"set Output directory\s*=.*", "set Output directory = " + out,
                  prm)
     prm = re.sub(r"set Block file\s*=\s*(\S+)",
                  lambda m: "set Block file = "
-                 + os.path.join(DATA, m.group(1)), prm)
+                 + os.path.join(data, m.group(1)), prm)
     prm = re.sub(r"set Threads\s*=.*", "set Threads = %d" % threads, prm)
     extra = ""
     if "solver" in options:
@@ -120,6 +123,7 @@ def main():
     p.add_argument("--repeat", type=int, default=3)
     p.add_argument("--threads", default="2")
     p.add_argument("--scenes", default="wall-25x40,wall-50x80")
+    p.add_argument("--scene-dir", default=DATA)
     p.add_argument("binaries", nargs="+")
     a = p.parse_args()
     specs = [parse_spec(b) for b in a.binaries]
@@ -142,7 +146,7 @@ def main():
             for name, binary, options, t in runs:
                 with tempfile.TemporaryDirectory() as work:
                     results[(name, t)].append(run(binary, scene, t, work,
-                                                  options))
+                                                  options, a.scene_dir))
         first = results[(runs[0][0], runs[0][3])]
         for name, _, options, t in runs:
             rows = results[(name, t)]

@@ -84,11 +84,11 @@ subsection DDA
   set Output interval     = 0
   set Statistics interval = %r
   set Maximum open-close iterations = 100
-  set Linear solver       = %s
-  set Threads             = %d
+%s  set Threads             = %d
 end
-""" % (blocks, name, name, a.end_time, a.statistics_interval, a.solver,
-            a.threads))
+""" % (blocks, name, name, a.end_time, a.statistics_interval,
+            "" if a.solver == "automatic"
+            else "  set Linear solver       = %s\n" % a.solver, a.threads))
     os.replace(prm + ".tmp", prm)
     print(prm)
 

@@ -71,6 +71,9 @@ namespace rockdda::dda::internal
     DistributedPreconditioner kind;
     BlockPartition            partition;
     int                       partitioned_blocks = -1;
+    /// The block count and coupled pairs of the current pattern.
+    int                              pattern_blocks = -1;
+    std::vector<std::pair<int, int>> pattern_pairs;
     /// This rank's rows (contiguous in the new numbering).
     dealii::IndexSet owned;
     int              begin = 0, end = 0;
@@ -422,8 +425,27 @@ namespace rockdda::dda::internal
             + " centroids for " + std::to_string(n) + " blocks");
         d.partition          = partition_blocks(centroids, d.size);
         d.partitioned_blocks = n;
-        d.begin              = d.partition.first[d.rank];
-        d.end                = d.partition.first[d.rank + 1];
+        // Within each part, blocks coupled to many others (a fixed base
+        // under a whole wall) are numbered last: ILU(0) then eliminates
+        // their long rows against the short rows of their neighbours,
+        // instead of updating every neighbour's row with the long one.
+        {
+          std::vector<int> degree(n, 0);
+          for (const auto &pr : K.pairs)
+            {
+              ++degree[pr.first];
+              ++degree[pr.second];
+            }
+          auto &order = d.partition.order;
+          for (int r = 0; r < d.size; ++r)
+            std::stable_partition(order.begin() + d.partition.first[r],
+                                  order.begin() + d.partition.first[r + 1],
+                                  [&](const int b) { return degree[b] <= 16; });
+          for (int p = 0; p < n; ++p)
+            d.partition.position[order[p]] = p;
+        }
+        d.begin = d.partition.first[d.rank];
+        d.end   = d.partition.first[d.rank + 1];
         d.owned = dealii::IndexSet(6 * static_cast<Impl::size_type>(n));
         d.owned.add_range(6 * static_cast<Impl::size_type>(d.begin),
                           6 * static_cast<Impl::size_type>(d.end));
@@ -439,6 +461,19 @@ namespace rockdda::dda::internal
           }
         d.gathered.resize(6 * static_cast<std::size_t>(n));
       }
+    // The same coupled pairs in the same order as the last pattern (a rock
+    // mass whose contacts change state but not neighbours, most steps):
+    // the Epetra pattern, the map into it and ILU's symbolic factorization
+    // stay; only the values are refreshed by the next solve. Rebuilding
+    // them every step cost 40 % of a 10^5-block step (page faults of the
+    // fresh matrices, index searches).
+    if (n == d.pattern_blocks && K.pairs == d.pattern_pairs)
+      {
+        d.ready = false;
+        return;
+      }
+    d.pattern_blocks = n;
+    d.pattern_pairs  = K.pairs;
     d.rows.assign(d.end - d.begin, {});
     for (int l = 0; l < d.end - d.begin; ++l)
       d.rows[l].push_back({d.begin + l, -1, false});
