@@ -170,8 +170,9 @@ namespace rockdda::dda::internal
      * AdditiveSchwarz would wrap the rank's rows in an Ifpack_LocalFilter,
      * a row matrix for which Ifpack_ILU::Initialize allocates the longest
      * row's length for every row: a fixed base touching every bottom brick
-     * has one row of 6 x (bottom bricks) entries, which made that rank's
-     * factors grow as N^1.5 (23 GB at 10^5 blocks; 1.6 MB at 10^3).
+     * has rows of 6 x (bottom bricks) entries, so that rank's factors grew
+     * as N^1.5 on a square wall (23 GB on one rank at 10^5 blocks,
+     * benchmarks/dda-scaling section 18).
      */
     struct LocalIlu
     {

@@ -771,21 +771,35 @@ TEST(Dda3dInput, BlockFileReadsWritesAndNamesBadInput)
 
 
 
+namespace
+{
+  /// The blocks of the output tests: a non-convex prism (id 1) and a
+  /// tetrahedron (id 2).
+  BlockSystem
+  output_blocks()
+  {
+    BlockSystem s = one_block(make_prism(l_polygon(), 0., 1.5));
+    Block       t = s.blocks[0];
+    t.id          = 2;
+    t.polyhedron  = make_tetrahedron(Point(3., 0., 0.),
+                                    Point(4., 0., 0.),
+                                    Point(3., 2., 0.),
+                                    Point(3., 0., 3.));
+    s.blocks.push_back(t);
+    validate_and_prepare(s);
+    return s;
+  }
+} // namespace
+
+
+
 TEST(Dda3dOutput, PolyhedraVtuRoundTrip)
 {
   // Two blocks (a non-convex prism and a tetrahedron) at UTM coordinates:
   // the VTU's points and its faces / faceoffsets arrays rebuild the same
   // polyhedra (volumes to 1e-12 with the 17-digit ASCII), one
   // VTK_POLYHEDRON (42) per block.
-  BlockSystem s = one_block(make_prism(l_polygon(), 0., 1.5));
-  Block       t = s.blocks[0];
-  t.id          = 2;
-  t.polyhedron  = make_tetrahedron(Point(3., 0., 0.),
-                                  Point(4., 0., 0.),
-                                  Point(3., 2., 0.),
-                                  Point(3., 0., 3.));
-  s.blocks.push_back(t);
-  validate_and_prepare(s);
+  BlockSystem       s = output_blocks();
   const Point       origin(5e5, 4e6, 0.);
   const std::string vtu  = blocks_vtu(s, origin);
   auto              data = [&](const std::string &name) {
@@ -845,15 +859,7 @@ TEST(Dda3dOutput, Hdf5SnapshotIsTheBlocksClosedSurfaces)
   // does not cancel): to 1e-9 of V, the 17 digits of the coordinates at
   // 4e6 m against a 1 m block; faces of the wrong orientation or a missing
   // one would change V by O(1).
-  BlockSystem s = one_block(make_prism(l_polygon(), 0., 1.5));
-  Block       t = s.blocks[0];
-  t.id          = 2;
-  t.polyhedron  = make_tetrahedron(Point(3., 0., 0.),
-                                  Point(4., 0., 0.),
-                                  Point(3., 2., 0.),
-                                  Point(3., 0., 3.));
-  s.blocks.push_back(t);
-  validate_and_prepare(s);
+  BlockSystem s         = output_blocks();
   s.blocks[1].stress[4] = 7.5e5;
   const Point       origin(5e5, 4e6, 0.);
   const std::string path

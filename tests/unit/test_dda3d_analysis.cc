@@ -437,6 +437,11 @@ TEST(Dda3dAnalysis, BadInputNamesFileKeyAndRange)
     dda3d_prm(1., 0.01, 1e10, "  set Maximum displacement ratio = 0\n"));
   EXPECT_NE(m.find("Maximum displacement ratio"), std::string::npos) << m;
   EXPECT_NE(m.find("0 < x <= 1"), std::string::npos) << m;
+  // The sanity check's penetration bound, a key of both analyses: beyond
+  // 10 % of a block the penalty method's overlap is no longer a contact.
+  m = error(dda3d_prm(1., 0.01, 1e10, "  set Penetration limit = 0.5\n"));
+  EXPECT_NE(m.find("Penetration limit"), std::string::npos) << m;
+  EXPECT_NE(m.find("0 < x <= 0.1"), std::string::npos) << m;
   m = error(dda3d_prm(1.,
                       0.01,
                       1e10,

@@ -281,18 +281,12 @@ TEST(DdaHdf5, XdmfIndicesMatchTheFilesAndResumeContinues)
           dda.step();
         series.write(dda.time(), blocks_snapshot(dda), contacts_snapshot(dda));
       }
-    std::ifstream     in(folder + "/blocks.xdmf");
-    std::stringstream text;
-    text << in.rdbuf();
-    first_index = text.str();
+    first_index = test_files::read_file(folder + "/blocks.xdmf");
     // A series continued from its file list (a resumed run) writes the
     // same index.
     Hdf5Series resumed(out);
     resumed.restore(series.files());
-    std::ifstream     again(folder + "/blocks.xdmf");
-    std::stringstream text2;
-    text2 << again.rdbuf();
-    EXPECT_EQ(text2.str(), first_index);
+    EXPECT_EQ(test_files::read_file(folder + "/blocks.xdmf"), first_index);
     EXPECT_THROW(resumed.restore({{0., "blocks-00000.vtu"}}),
                  std::runtime_error);
   }
@@ -442,8 +436,16 @@ TEST(DdaHdf5, Dda3dStatisticsH5EqualsTheCsvAlsoAfterAResume)
   const std::string out = (full / "out").string();
   // The row at t = 0 and one per step of 5 ms at least.
   EXPECT_GE(expect_statistics_match(out), 41u);
-  // The 3D snapshots stay VTU (no HDF5 polyhedron writer).
-  EXPECT_TRUE(std::filesystem::exists(out + "/blocks.pvd"));
+  // The 3D snapshots are HDF5 too (each block as its faces): one at t =
+  // 0, 0.1 and 0.2 s, indexed by blocks.xdmf and contacts.xdmf; no VTU.
+  for (const char *f : {"/blocks.xdmf",
+                        "/contacts.xdmf",
+                        "/snapshot-00000.h5",
+                        "/snapshot-00001.h5",
+                        "/snapshot-00002.h5"})
+    EXPECT_TRUE(std::filesystem::exists(out + f)) << f;
+  EXPECT_FALSE(std::filesystem::exists(out + "/blocks.pvd"));
+  EXPECT_FALSE(std::filesystem::exists(out + "/snapshot-00003.h5"));
 
   // The file holds the physics of the CSV's columns: the point on the cube
   // moves along the dip as d = g/2 (sin 30 - cos 30 tan 20) t^2, ux = d cos
@@ -476,6 +478,17 @@ TEST(DdaHdf5, Dda3dStatisticsH5EqualsTheCsvAlsoAfterAResume)
   run(part, prm_text(0.2, true));
   expect_statistics_match(part_out);
   EXPECT_EQ(read_table_hdf5(part_out + "/statistics.h5").csv(), stats.csv());
+  // The resumed run continues the snapshot series: the same index and the
+  // same last snapshot, bit for bit.
+  EXPECT_EQ(test_files::read_file(part_out + "/blocks.xdmf"),
+            test_files::read_file(out + "/blocks.xdmf"));
+  const Snapshot a = read_snapshot_hdf5(out + "/snapshot-00002.h5", "blocks");
+  const Snapshot b
+    = read_snapshot_hdf5(part_out + "/snapshot-00002.h5", "blocks");
+  EXPECT_EQ(a.xyz, b.xyz);
+  ASSERT_EQ(a.fields.size(), b.fields.size());
+  for (std::size_t k = 0; k < a.fields.size(); ++k)
+    EXPECT_EQ(a.fields[k].real, b.fields[k].real) << a.fields[k].name;
 }
 
 

@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -56,6 +57,16 @@ namespace rockdda::test_files
   write_file(const std::filesystem::path &p, const std::string &text)
   {
     std::ofstream(p) << text;
+  }
+
+  /// The contents of the file @p p ("" if it cannot be read).
+  inline std::string
+  read_file(const std::filesystem::path &p)
+  {
+    std::ifstream     in(p);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
   }
 
   /// The message of the InputError that @p f() throws ("" if none).
