@@ -2,7 +2,8 @@
 """Layering study of thesis Chapter 3.4-3.5 (issue 16, items 1 and 2).
 
 usage: study.py ROCKDDA [--end-time T] [--jobs J] [--models NAME ...]
-                [--seeds N] [--runs NAME-sK ...] [--set KEY=VALUE ...]
+                [--seeds N] [--runs NAME-sK ...] [--merge SEEDS_CSV]
+                [--set KEY=VALUE ...]
                 [--work FOLDER] [--timeout S] [--retry-failed]
                 [--out DIR] [--collect-only]
 
@@ -37,13 +38,15 @@ the tables above stay those of seed 1, and
                     the loosened-zone height / B
   fig-3-9-seeds.png Fig. 3-9 with the mean over the seeds and the range
 
---runs NAME-sK ... runs only those realizations (e.g. the ones a first
-pass reported failed) and tabulates them in seeds.csv / seeds.md with the
-seed-1 rows of models in WORK. --merge SEEDS_CSV adds the rows of an earlier seeds.csv that the runs do
-not replace. --set KEY=VALUE (repeatable) overrides a key
-of the DDA section of table-3-2.prm in every run (e.g. --set "Penetration
-limit=0.05" or --set "Contact penalty=1e9"): give it its own --work and
---out, as the runs' checkpoints hold the old values.
+--runs NAME-sK ... runs only those model folders (e.g. the realizations a
+first pass reported failed; with --models also those models) and writes
+only seeds.csv, seeds.md and fig-3-9-seeds.png for them. --merge SEEDS_CSV
+adds the rows of an earlier seeds.csv that the runs do not replace, in its
+order (a run that completed under the default limits is the same run
+under looser ones). --set KEY=VALUE (repeatable) overrides a key of the
+DDA section of table-3-2.prm in every run (e.g. --set "Penetration
+limit=0.05" or --set "Contact penalty=1e9"): give such runs their own
+--work and --out, as a model's checkpoint holds the values it ran with.
 
 Each model's DDA also writes WORK/NAME/dda/measurement_points.h5, the
 time series of points 1-5 in HDF5 (time; ux, uy, sigma_x, sigma_y, tau_xy
