@@ -15,6 +15,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include "part_team.h"
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Map.h>
 #include <Epetra_SerialComm.h>
@@ -32,23 +33,6 @@
 
 namespace rockdda::dda::internal
 {
-  namespace
-  {
-    /// FNV-1a hash of the bytes of @p v: equal on every rank exactly when
-    /// the ranks hold the same values.
-    std::uint64_t
-    bit_hash(const Eigen::VectorXd &v)
-    {
-      std::uint64_t h = 1469598103934665603ull;
-      for (Eigen::Index i = 0; i < v.size(); ++i)
-        {
-          std::uint64_t bits;
-          std::memcpy(&bits, &v[i], sizeof bits);
-          h = (h ^ bits) * 1099511628211ull;
-        }
-      return h;
-    }
-  } // namespace
 
 
 
@@ -528,9 +512,7 @@ namespace rockdda::dda::internal
     iterations = 0;
     // The replicated inputs must agree bit for bit (otherwise the ranks
     // have diverged and their open-close decisions would differ).
-    const std::uint64_t h = bit_hash(f);
-    if (dealii::Utilities::MPI::min(h, d.comm)
-        != dealii::Utilities::MPI::max(h, d.comm))
+    if (!same_on_every_rank(f, d.comm))
       throw std::runtime_error(
         "distributed DDA: the ranks hold different load vectors (their "
         "replicated states have diverged)");

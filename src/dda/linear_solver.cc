@@ -12,6 +12,7 @@
 
 #include "block_cholesky.h"
 #include "distributed_solver.h"
+#include "part_team.h"
 #include "task_team.h"
 #include "thread_pair.h"
 #include <algorithm>
@@ -163,89 +164,15 @@ namespace rockdda::dda
 
 
 
-  namespace
-  {
-    /**
-     * Two subdomains and a separator of the block graph (the pairs): BFS
-     * level structure from a pseudo-peripheral block of each connected
-     * component (levels numbered on across components), split at the level
-     * that best balances the blocks below and above it. Edges join equal
-     * or neighbouring levels only, so that level separates the blocks
-     * below it (part 0) from those above (part 1); it is part 2 (George &
-     * Liu 1981, Computer Solution of Large Sparse Positive Definite
-     * Systems, ch. 4 and 8).
-     */
-    std::vector<int>
-    two_subdomains(const int n, const std::vector<std::pair<int, int>> &pairs)
-    {
-      std::vector<int> start(n + 1, 0), adjacent(2 * pairs.size());
-      for (const auto &pr : pairs)
-        {
-          ++start[pr.first + 1];
-          ++start[pr.second + 1];
-        }
-      for (int i = 0; i < n; ++i)
-        start[i + 1] += start[i];
-      std::vector<int> fill(start.begin(), start.end() - 1);
-      for (const auto &pr : pairs)
-        {
-          adjacent[fill[pr.first]++]  = pr.second;
-          adjacent[fill[pr.second]++] = pr.first;
-        }
-      std::vector<int> level(n, -1), probe(n, -1), queue;
-      queue.reserve(n);
-      const auto bfs = [&](const int root, std::vector<int> &depth, int base) {
-        queue.clear();
-        queue.push_back(root);
-        depth[root] = base;
-        for (std::size_t h = 0; h < queue.size(); ++h)
-          {
-            const int u = queue[h];
-            for (int a = start[u]; a < start[u + 1]; ++a)
-              if (depth[adjacent[a]] < 0)
-                {
-                  depth[adjacent[a]] = depth[u] + 1;
-                  queue.push_back(adjacent[a]);
-                }
-          }
-        return depth[queue.back()];
-      };
-      int n_levels = 0;
-      for (int s = 0; s < n; ++s)
-        if (level[s] < 0)
-          {
-            bfs(s, probe, 0);
-            n_levels = bfs(queue.back(), level, n_levels) + 1;
-          }
-      std::vector<int> count(n_levels, 0);
-      for (int i = 0; i < n; ++i)
-        ++count[level[i]];
-      int split = 0, best = n + 1;
-      for (int l = 0, b = 0; l < n_levels; b += count[l], ++l)
-        {
-          const int imbalance = std::abs(b - (n - b - count[l]));
-          if (imbalance < best)
-            {
-              best  = imbalance;
-              split = l;
-            }
-        }
-      std::vector<int> part(n);
-      for (int i = 0; i < n; ++i)
-        part[i] = level[i] < split ? 0 : level[i] > split ? 1 : 2;
-      return part;
-    }
-  } // namespace
-
-
-
   /**
    * Block D-ILU preconditioned CG with Eisenstat's trick. Large systems are
-   * renumbered as subdomain 0, subdomain 1, separator (each in the
-   * original order): the two subdomains do not couple, so their parts of
-   * the pivot computation and of both sweeps run in parallel, and the
-   * separator is eliminated last. The operations and their order are the
-   * same for one and two threads.
+   * renumbered as P subdomains and their separator (each in the original
+   * order; linear_parts()): the subdomains do not couple, so their parts
+   * of the pivot computation and of every sweep run at once (two threads,
+   * or one MPI rank each: internal::PartTeam), and the separator is
+   * eliminated last by every process. The operations and their order are
+   * the same for one and two threads, and on P ranks those of the serial
+   * solver with the same P subdomains.
    */
   template <int dofs>
   struct LinearSolverOf<dofs>::Dilu
@@ -259,49 +186,166 @@ namespace rockdda::dda
     /// Source pair of each renumbered pair, and whether it is transposed.
     std::vector<int>  pair_source;
     std::vector<char> pair_transposed;
-    Matrix            renumbered_matrix;
-    /// Subdomain 0 = [0, end0), subdomain 1 = [end0, end1), separator =
-    /// [end1, n).
-    int n = 0, end0 = 0, end1 = 0;
-    /// The matrix the sweeps use (renumbered_matrix or the caller's).
-    const Matrix    *M = nullptr;
+    /// The renumbered pairs (i < j).
+    std::vector<std::pair<int, int>> new_pairs;
+    /// Subdomain d = [first[d], first[d + 1]) for d < P; the separator =
+    /// [first[P], n) = [end1, n).
+    int              n = 0, end1 = 0, P = 1, n_sep = 0;
+    std::vector<int> first;
     std::vector<int> row_start;
-    /// Pivots P_i, their inverses and K_ii - 2 P_i.
+    /// The rows this process stores, [a0, a1) and [b0, n) (every row, or on
+    /// a rank its subdomain and the separator), and their pairs [pa0, pa1)
+    /// and [pb0, row_start[n]): a row's values are at row_slot(), a pair's
+    /// at pair_slot().
+    int a0 = 0, a1 = 0, b0 = 0, pa0 = 0, pa1 = 0, pb0 = 0;
+    /// The stored rows' blocks, renumbered.
+    std::vector<Dense> diag_store, off_store;
+    /// The blocks the sweeps read (the stored ones or the caller's matrix)
+    /// and the pairs.
+    const Dense               *D = nullptr, *O = nullptr;
+    const std::pair<int, int> *PR = nullptr;
+    /// Pivots P_i, their inverses and K_ii - 2 P_i (stored rows).
     std::vector<Dense> pivot, inverse_pivot, diag_shift;
-    /// Contributions of each subdomain to the separator's pivots.
-    std::vector<Dense> pivot_update[2];
+    /// Each subdomain's contributions to the separator's pivots (P slices
+    /// of n_sep blocks).
+    std::vector<Dense> pivot_update;
     Eigen::VectorXd    f, x, r, z, p, q, t, y;
-    /// Contributions of each subdomain to q on the separator.
-    Eigen::VectorXd q_update[2];
-    double          partial[2] = {0., 0.};
+    /// Each subdomain's contributions to a vector on the separator and its
+    /// partial sum (P slices of dofs n_sep + 1 values).
+    Eigen::VectorXd     exchange;
+    std::vector<double> partial, flags;
 
-    /// Rows [begin, end) of subdomain @p part (0, 1) or the separator (2).
+    int
+    row_slot(const int i) const
+    {
+      return i < a1 ? i - a0 : (a1 - a0) + (i - b0);
+    }
+    int
+    pair_slot(const int k) const
+    {
+      return k < pa1 ? k - pa0 : (pa1 - pa0) + (k - pb0);
+    }
+    const Dense &
+    Kdiag(const int i) const
+    {
+      return D[row_slot(i)];
+    }
+    const Dense &
+    Koff(const int k) const
+    {
+      return O[pair_slot(k)];
+    }
+    int
+    col(const int k) const
+    {
+      return PR[k].second;
+    }
+    Dense &
+    piv(const int i)
+    {
+      return pivot[row_slot(i)];
+    }
+    const Dense &
+    piv(const int i) const
+    {
+      return pivot[row_slot(i)];
+    }
+    Dense &
+    ipiv(const int i)
+    {
+      return inverse_pivot[row_slot(i)];
+    }
+    const Dense &
+    ipiv(const int i) const
+    {
+      return inverse_pivot[row_slot(i)];
+    }
+    Dense &
+    dshift(const int i)
+    {
+      return diag_shift[row_slot(i)];
+    }
+    const Dense &
+    dshift(const int i) const
+    {
+      return diag_shift[row_slot(i)];
+    }
+
+    /// Rows [begin, end) of subdomain @p part (< P) or the separator (P).
     std::pair<int, int>
     rows(const int part) const
     {
-      return part == 0   ? std::make_pair(0, end0)
-             : part == 1 ? std::make_pair(end0, end1)
-                         : std::make_pair(end1, n);
+      return part < P ? std::make_pair(first[part], first[part + 1])
+                      : std::make_pair(end1, n);
     }
 
-    void
-    new_pattern(const Matrix &K, const int subdomain_limit)
+    /// Slice @p d of the exchange buffer (dofs n_sep separator values,
+    /// then the partial sum).
+    double *
+    slice(const int d)
     {
-      n          = K.n_blocks();
-      renumbered = n >= subdomain_limit && n >= 3;
+      return exchange.data() + static_cast<std::size_t>(d) * (dofs * n_sep + 1);
+    }
+
+    /// Add the subdomains' separator contributions in exchange to @p v on
+    /// the separator, in the order of the subdomains, and return the sum
+    /// of their partial sums.
+    double
+    add_slices(Eigen::VectorXd &v)
+    {
+      double sum = 0.;
+      for (int d = 0; d < P; ++d)
+        {
+          const double *s = slice(d);
+          for (int k = 0; k < dofs * n_sep; ++k)
+            v[dofs * end1 + k] += s[k];
+          sum += s[dofs * n_sep];
+        }
+      return sum;
+    }
+
+    /// The sum of partial over the subdomains, in their order.
+    double
+    sum_partial() const
+    {
+      double sum = 0.;
+      for (const double v : partial)
+        sum += v;
+      return sum;
+    }
+
+    /// The pattern of @p K in @p parts subdomains (1: the natural order),
+    /// this process computing subdomain @p own (-1: all of them).
+    void
+    new_pattern(const Matrix &K, const int parts, const int own)
+    {
+      n                                             = K.n_blocks();
+      renumbered                                    = parts > 1 && n >= 1;
+      P                                             = renumbered ? parts : 1;
       const std::vector<std::pair<int, int>> *pairs = &K.pairs;
-      end0 = end1 = n;
+      first.assign(P + 1, 0);
+      first[P] = end1 = n;
       if (renumbered)
         {
-          const std::vector<int> part = two_subdomains(n, K.pairs);
+          const std::vector<int> part = internal::level_parts(n, K.pairs, P);
+          // The sweeps of different subdomains run at once: no pair may
+          // couple two of them.
+          for (const auto &pr : K.pairs)
+            if (part[pr.first] != part[pr.second] && part[pr.first] != P
+                && part[pr.second] != P)
+              throw std::logic_error(
+                "block D-ILU: blocks " + std::to_string(pr.first) + " and "
+                + std::to_string(pr.second)
+                + " couple two subdomains (no separator between them)");
           order.clear();
-          for (int which = 0; which < 3; ++which)
-            for (int i = 0; i < n; ++i)
-              if (part[i] == which)
-                order.push_back(i);
-          end0 = static_cast<int>(std::count(part.begin(), part.end(), 0));
-          end1
-            = end0 + static_cast<int>(std::count(part.begin(), part.end(), 1));
+          for (int which = 0; which <= P; ++which)
+            {
+              first[which] = static_cast<int>(order.size());
+              for (int i = 0; i < n; ++i)
+                if (part[i] == which)
+                  order.push_back(i);
+            }
+          end1 = first[P];
           std::vector<int> position(n);
           for (int i = 0; i < n; ++i)
             position[order[i]] = i;
@@ -317,7 +361,7 @@ namespace rockdda::dda
                       : std::make_pair(std::make_pair(b, a), -int(k) - 1));
             }
           std::sort(renumbered_pairs.begin(), renumbered_pairs.end());
-          std::vector<std::pair<int, int>> new_pairs;
+          new_pairs.clear();
           new_pairs.reserve(renumbered_pairs.size());
           pair_source.resize(renumbered_pairs.size());
           pair_transposed.resize(renumbered_pairs.size());
@@ -328,81 +372,107 @@ namespace rockdda::dda
               pair_transposed[k] = s < 0;
               pair_source[k]     = s < 0 ? -s - 1 : s;
             }
-          renumbered_matrix.reinit(n, new_pairs);
-          pairs = &renumbered_matrix.pairs;
+          pairs = &new_pairs;
         }
+      n_sep = n - end1;
       row_start.assign(n + 1, 0);
       for (const auto &pr : *pairs)
         ++row_start[pr.first + 1];
       for (int i = 0; i < n; ++i)
         row_start[i + 1] += row_start[i];
-      pivot.resize(n);
-      inverse_pivot.resize(n);
-      diag_shift.resize(n);
-      for (auto &u : pivot_update)
-        u.resize(n - end1);
+      const bool all         = !renumbered || own < 0;
+      a0                     = all ? 0 : first[own];
+      a1                     = all ? n : first[own + 1];
+      b0                     = all ? n : end1;
+      pa0                    = row_start[a0];
+      pa1                    = row_start[a1];
+      pb0                    = row_start[b0];
+      const int rows_stored  = (a1 - a0) + (n - b0);
+      const int pairs_stored = (pa1 - pa0) + (row_start[n] - pb0);
+      if (renumbered)
+        {
+          diag_store.resize(rows_stored);
+          off_store.resize(pairs_stored);
+        }
+      else
+        {
+          std::vector<Dense>().swap(diag_store);
+          std::vector<Dense>().swap(off_store);
+          std::vector<std::pair<int, int>>().swap(new_pairs);
+        }
+      pivot.resize(rows_stored);
+      inverse_pivot.resize(rows_stored);
+      diag_shift.resize(rows_stored);
+      pivot_update.resize(static_cast<std::size_t>(P) * n_sep);
       for (auto &v : {&f, &x, &r, &z, &p, &q, &t, &y})
         v->resize(dofs * n);
-      for (auto &u : q_update)
-        u.resize(dofs * (n - end1));
+      exchange.resize(static_cast<Eigen::Index>(P) * (dofs * n_sep + 1));
+      partial.assign(P, 0.);
+      flags.assign(P, 0.);
     }
 
-    /// Copy the values of @p K into the renumbered matrix.
+    /// Point the sweeps at the values of @p K: copied into the stored
+    /// rows when renumbered.
     void
     gather(const Matrix &K)
     {
       if (!renumbered)
         {
-          M = &K;
+          D  = K.diag.data();
+          O  = K.off.data();
+          PR = K.pairs.data();
           return;
         }
-      M = &renumbered_matrix;
-      for (int i = 0; i < n; ++i)
-        renumbered_matrix.diag[i] = K.diag[order[i]];
-      for (std::size_t k = 0; k < pair_source.size(); ++k)
-        if (pair_transposed[k])
-          renumbered_matrix.off[k] = K.off[pair_source[k]].transpose();
-        else
-          renumbered_matrix.off[k] = K.off[pair_source[k]];
+      D  = diag_store.data();
+      O  = off_store.data();
+      PR = new_pairs.data();
+      for (const auto &[begin, end] :
+           {std::make_pair(a0, a1), std::make_pair(b0, n)})
+        for (int i = begin; i < end; ++i)
+          {
+            diag_store[row_slot(i)] = K.diag[order[i]];
+            for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+              if (pair_transposed[k])
+                off_store[pair_slot(k)] = K.off[pair_source[k]].transpose();
+              else
+                off_store[pair_slot(k)] = K.off[pair_source[k]];
+          }
     }
 
-    /// Run f(0), f(1): on two threads when renumbered.
+    /// Run f(d) for the subdomains this process computes (at once on a
+    /// team of two threads; the natural order is one subdomain).
     template <typename F>
     void
-    run(internal::ThreadPair &team, F &&f)
+    run(internal::PartTeam &team, F &&f)
     {
-      if (renumbered)
-        team.run(f);
+      if (P == 1)
+        f(0);
       else
-        {
-          f(0);
-          f(1);
-        }
+        team.run(f);
     }
 
     /// Pivot of row @p i (its P_i accumulated), then its updates of later
     /// pivots; those of the separator go to @p separator_update when given.
     bool
-    eliminate(const int i, std::vector<Dense> *separator_update)
+    eliminate(const int i, Dense *separator_update)
     {
-      const Matrix &K = *M;
-      if (!invert_spd(pivot[i], inverse_pivot[i]))
+      if (!invert_spd(piv(i), ipiv(i)))
         {
           // Modified pivot not positive definite: fall back to the
           // diagonal block (symmetric Gauss-Seidel there); M stays SPD.
-          pivot[i] = K.diag[i];
-          if (!invert_spd(pivot[i], inverse_pivot[i]))
+          piv(i) = Kdiag(i);
+          if (!invert_spd(piv(i), ipiv(i)))
             return false;
         }
-      diag_shift[i] = K.diag[i] - 2. * pivot[i];
+      dshift(i) = Kdiag(i) - 2. * piv(i);
       for (int k = row_start[i]; k < row_start[i + 1]; ++k)
         {
-          const Dense &A      = K.off[k];
-          const Dense  PiA    = inverse_pivot[i].lazyProduct(A);
-          const int    j      = K.pairs[k].second;
+          const Dense &A      = Koff(k);
+          const Dense  PiA    = ipiv(i).lazyProduct(A);
+          const int    j      = col(k);
           Dense       &target = (separator_update != nullptr && j >= end1)
-                                  ? (*separator_update)[j - end1]
-                                  : pivot[j];
+                                  ? separator_update[j - end1]
+                                  : piv(j);
           target.noalias() -= A.transpose().lazyProduct(PiA);
         }
       return true;
@@ -410,68 +480,135 @@ namespace rockdda::dda
 
     /// Pivots P_i = K_ii - sum_{j<i} K_ij P_j^-1 K_ji.
     bool
-    setup(const Matrix &K_in, internal::ThreadPair &team)
+    setup(const Matrix &K_in, internal::PartTeam &team)
     {
       gather(K_in);
-      const Matrix &K     = *M;
-      bool          ok[2] = {true, true};
-      auto          part  = [&](const int d) {
+      auto part = [&](const int d) {
         const auto [begin, end] = rows(d);
-        for (auto &u : pivot_update[d])
-          u.setZero();
+        Dense *update
+          = pivot_update.data() + static_cast<std::size_t>(d) * n_sep;
+        for (int s = 0; s < n_sep; ++s)
+          update[s].setZero();
         for (int i = begin; i < end; ++i)
-          pivot[i] = K.diag[i];
-        for (int i = begin; i < end && ok[d]; ++i)
-          ok[d] = eliminate(i, &pivot_update[d]);
+          piv(i) = Kdiag(i);
+        flags[d] = 1.;
+        for (int i = begin; i < end && flags[d] == 1.; ++i)
+          flags[d] = eliminate(i, update) ? 1. : 0.;
       };
       run(team, part);
-      if (!ok[0] || !ok[1])
-        return false;
+      if (P > 1)
+        {
+          team.share(flags.data(), 1);
+          team.share(pivot_update.data()->data(),
+                     static_cast<std::size_t>(dofs * dofs) * n_sep);
+        }
+      for (const double ok : flags)
+        if (ok != 1.)
+          return false;
       for (int i = end1; i < n; ++i)
-        pivot[i]
-          = K.diag[i] + pivot_update[0][i - end1] + pivot_update[1][i - end1];
+        {
+          piv(i) = Kdiag(i);
+          for (int d = 0; d < P; ++d)
+            piv(i)
+              += pivot_update[static_cast<std::size_t>(d) * n_sep + (i - end1)];
+        }
       for (int i = end1; i < n; ++i)
         if (!eliminate(i, nullptr))
           return false;
       return true;
     }
 
-    /// Solve (P + U) out = v, U the strict upper block triangle.
+    /// Rows [begin, end) of the solve of (P + U) out = v, U the strict
+    /// upper block triangle (descending; the rows above end must be done).
     void
-    backward_sweep(const Eigen::VectorXd &v, Eigen::VectorXd &out) const
+    backward_solve_rows(const int              begin,
+                        const int              end,
+                        const Eigen::VectorXd &v,
+                        Eigen::VectorXd       &out) const
     {
-      const Matrix &K = *M;
-      for (int i = n - 1; i >= 0; --i)
+      for (int i = end - 1; i >= begin; --i)
         {
           Vector acc = v.template segment<dofs>(dofs * i);
           // Descending, as backward_rows.
           for (int k = row_start[i + 1] - 1; k >= row_start[i]; --k)
             acc.noalias()
-              -= K.off[k]
-                 * out.template segment<dofs>(dofs * K.pairs[k].second);
-          out.template segment<dofs>(dofs * i).noalias()
-            = inverse_pivot[i] * acc;
+              -= Koff(k) * out.template segment<dofs>(dofs * col(k));
+          out.template segment<dofs>(dofs * i).noalias() = ipiv(i) * acc;
         }
     }
 
-    /// Solve (P + L) s = w in place.
+    /// Rows [begin, end) of the solve of (P + L) s = w in place; updates of
+    /// the separator go to @p separator_update when given.
     void
-    forward_sweep(Eigen::VectorXd &w) const
+    forward_solve_rows(const int        begin,
+                       const int        end,
+                       Eigen::VectorXd &w,
+                       double          *separator_update) const
     {
-      const Matrix &K = *M;
-      for (int i = 0; i < n; ++i)
+      for (int i = begin; i < end; ++i)
         {
-          const Vector s
-            = inverse_pivot[i] * w.template segment<dofs>(dofs * i);
+          const Vector s = ipiv(i) * w.template segment<dofs>(dofs * i);
           w.template segment<dofs>(dofs * i) = s;
           for (int k = row_start[i]; k < row_start[i + 1]; ++k)
             {
-              const Dense &A = K.off[k];
-              const int    j = K.pairs[k].second;
+              const Dense &A      = Koff(k);
+              const int    j      = col(k);
+              double      *target = (separator_update != nullptr && j >= end1)
+                                      ? separator_update + dofs * (j - end1)
+                                      : w.data() + dofs * j;
               for (int c = 0; c < dofs; ++c)
-                w[dofs * j + c] -= A.col(c).dot(s);
+                target[c] -= A.col(c).dot(s);
             }
         }
+    }
+
+    /// Solve (P + L) s = w in place on every row this process holds.
+    void
+    forward_solve(Eigen::VectorXd &w, internal::PartTeam &team)
+    {
+      run(team, [&](const int d) {
+        double *s = slice(d);
+        std::fill(s, s + dofs * n_sep + 1, 0.);
+        const auto [begin, end] = rows(d);
+        forward_solve_rows(begin, end, w, s);
+      });
+      if (P > 1)
+        team.share(exchange.data(), dofs * n_sep + 1);
+      add_slices(w);
+      forward_solve_rows(end1, n, w, nullptr);
+    }
+
+    /// Rows [begin, end): out = P in; returns their part of in.out.
+    double
+    times_pivot_rows(const int              begin,
+                     const int              end,
+                     const Eigen::VectorXd &in,
+                     Eigen::VectorXd       &out) const
+    {
+      double sum = 0.;
+      for (int i = begin; i < end; ++i)
+        {
+          out.template segment<dofs>(dofs * i).noalias()
+            = piv(i) * in.template segment<dofs>(dofs * i);
+          sum += in.template segment<dofs>(dofs * i).dot(
+            out.template segment<dofs>(dofs * i));
+        }
+      return sum;
+    }
+
+    /// out = P in on every row this process holds; returns in.out.
+    double
+    times_pivot(const Eigen::VectorXd &in,
+                Eigen::VectorXd       &out,
+                internal::PartTeam    &team)
+    {
+      run(team, [&](const int d) {
+        const auto [begin, end] = rows(d);
+        partial[d]              = times_pivot_rows(begin, end, in, out);
+      });
+      if (P > 1)
+        team.share(partial.data(), 1);
+      return sum_partial() + times_pivot_rows(end1, n, in, out);
     }
 
     /// Rows [begin, end) of the backward sweep of the Eisenstat operator
@@ -479,7 +616,6 @@ namespace rockdda::dda
     void
     backward_rows(const int begin, const int end, const double beta)
     {
-      const Matrix &K = *M;
       for (int i = end - 1; i >= begin; --i)
         {
           auto pi    = p.template segment<dofs>(dofs * i);
@@ -490,9 +626,8 @@ namespace rockdda::dda
           // prefetcher follows (ascending within each row, it read them 3x
           // slower than the forward sweep: benchmarks/dda-scaling, section 14).
           for (int k = row_start[i + 1] - 1; k >= row_start[i]; --k)
-            acc.noalias()
-              -= K.off[k] * t.template segment<dofs>(dofs * K.pairs[k].second);
-          t.template segment<dofs>(dofs * i).noalias() = inverse_pivot[i] * acc;
+            acc.noalias() -= Koff(k) * t.template segment<dofs>(dofs * col(k));
+          t.template segment<dofs>(dofs * i).noalias() = ipiv(i) * acc;
         }
     }
 
@@ -501,27 +636,24 @@ namespace rockdda::dda
     /// the separator go to @p separator_update when given. Returns the
     /// rows' part of p.q.
     double
-    forward_rows(const int        begin,
-                 const int        end,
-                 Eigen::VectorXd *separator_update)
+    forward_rows(const int begin, const int end, double *separator_update)
     {
-      const Matrix &K  = *M;
-      double        pq = 0.;
+      double pq = 0.;
       for (int i = begin; i < end; ++i)
         {
           const auto ti = t.template segment<dofs>(dofs * i);
           auto       qi = q.template segment<dofs>(dofs * i);
           Vector     w  = qi + p.template segment<dofs>(dofs * i);
-          w.noalias() += diag_shift[i] * ti;
-          const Vector si = inverse_pivot[i] * w;
+          w.noalias() += dshift(i) * ti;
+          const Vector si = ipiv(i) * w;
           qi              = si + ti;
           pq += p.template segment<dofs>(dofs * i).dot(qi);
           for (int k = row_start[i]; k < row_start[i + 1]; ++k)
             {
-              const Dense &A      = K.off[k];
-              const int    j      = K.pairs[k].second;
+              const Dense &A      = Koff(k);
+              const int    j      = col(k);
               double      *target = (separator_update != nullptr && j >= end1)
-                                      ? separator_update->data() + dofs * (j - end1)
+                                      ? separator_update + dofs * (j - end1)
                                       : q.data() + dofs * j;
               for (int c = 0; c < dofs; ++c)
                 target[c] -= A.col(c).dot(si);
@@ -543,25 +675,42 @@ namespace rockdda::dda
           auto ri = r.template segment<dofs>(dofs * i);
           ri -= alpha * q.template segment<dofs>(dofs * i);
           auto zi      = z.template segment<dofs>(dofs * i);
-          zi.noalias() = pivot[i] * ri;
+          zi.noalias() = piv(i) * ri;
           rz += ri.dot(zi);
         }
       return rz;
     }
 
+    /// Rows [begin, end): y = (P + U) x, and w = f - y - (D - 2P) x.
+    void
+    start_rows(const int begin, const int end, Eigen::VectorXd &w)
+    {
+      for (int i = begin; i < end; ++i)
+        {
+          auto yi      = y.template segment<dofs>(dofs * i);
+          yi.noalias() = piv(i) * x.template segment<dofs>(dofs * i);
+          for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+            yi.noalias() += Koff(k) * x.template segment<dofs>(dofs * col(k));
+          auto wi = w.template segment<dofs>(dofs * i);
+          wi      = f.template segment<dofs>(dofs * i) - yi;
+          wi.noalias() -= dshift(i) * x.template segment<dofs>(dofs * i);
+        }
+    }
+
     /// PCG on K with M = (P + L) P^-1 (P + U) is CG on
     /// A^ = (P + L)^-1 K (P + U)^-1 (unknown y = (P + U) x) preconditioned
     /// by multiplication with P. With K = (P + L) + (P + U) + (D - 2 P):
-    /// A^ v = t + (P + L)^-1 (v + (D - 2 P) t), t = (P + U)^-1 v.
+    /// A^ v = t + (P + L)^-1 (v + (D - 2 P) t), t = (P + U)^-1 v. Every
+    /// process keeps the rows of its subdomains and the separator; the
+    /// solution comes back whole on each.
     bool
     cg(const Eigen::VectorXd &f_in,
        Eigen::VectorXd       &x_out,
-       internal::ThreadPair  &team,
+       internal::PartTeam    &team,
        const double           tolerance,
        const int              max_iterations,
        int                   &iterations)
     {
-      const Matrix &K = *M;
       if (renumbered)
         for (int i = 0; i < n; ++i)
           {
@@ -575,72 +724,73 @@ namespace rockdda::dda
           f = f_in;
           x = x_out;
         }
-      auto times_pivot = [&](const Eigen::VectorXd &in, Eigen::VectorXd &out) {
-        for (int i = 0; i < n; ++i)
-          out.template segment<dofs>(dofs * i).noalias()
-            = pivot[i] * in.template segment<dofs>(dofs * i);
-      };
-      // Right-hand side norm r^T M^-1 r for the stopping test.
+      // Right-hand side norm f^T M^-1 f for the stopping test.
       r = f;
-      forward_sweep(r);
-      times_pivot(r, z);
-      const double bnorm = r.dot(z);
+      forward_solve(r, team);
+      const double bnorm = times_pivot(r, z, team);
       if (!(bnorm > 0.))
         {
           x_out.setZero();
           return std::isfinite(bnorm);
         }
-      // y0 = (P + U) x0, r^0 = (P + L)^-1 (f - K x0).
-      times_pivot(x, y);
-      for (std::size_t k = 0; k < K.pairs.size(); ++k)
-        y.template segment<dofs>(dofs * K.pairs[k].first).noalias()
-          += K.off[k] * x.template segment<dofs>(dofs * K.pairs[k].second);
-      K.vmult(x, q);
-      r = f - q;
-      forward_sweep(r);
-      times_pivot(r, z);
+      // y0 = (P + U) x0, r^0 = (P + L)^-1 (f - K x0)
+      //                      = (P + L)^-1 (f - y0 - (D - 2P) x0) - x0.
+      run(team, [&](const int d) {
+        const auto [begin, end] = rows(d);
+        start_rows(begin, end, r);
+      });
+      start_rows(end1, n, r);
+      forward_solve(r, team);
+      r -= x;
+      double rz = times_pivot(r, z, team);
       p.setZero();
-      double       rz   = r.dot(z);
       double       beta = 0.;
       const double tol2 = tolerance * tolerance * bnorm;
       // One pass per sweep, with the vector updates fused into them.
-      // Separator rows first (backward), then both subdomains (backward
-      // and forward, in parallel), then the separator (forward), then the
-      // vector updates (in parallel).
+      // Separator rows first (backward), then the subdomains (backward
+      // and forward, at once), then the separator (forward), then the
+      // vector updates.
       while (rz > tol2)
         {
           if (iterations >= max_iterations)
             return false;
           ++iterations;
           backward_rows(end1, n, beta);
-          auto sweeps = [&](const int d) {
+          run(team, [&](const int d) {
             const auto [begin, end] = rows(d);
             q.segment(dofs * begin, dofs * (end - begin)).setZero();
-            q_update[d].setZero();
+            double *s = slice(d);
+            std::fill(s, s + dofs * n_sep, 0.);
             backward_rows(begin, end, beta);
-            partial[d] = forward_rows(begin, end, &q_update[d]);
-          };
-          run(team, sweeps);
-          q.segment(dofs * end1, dofs * (n - end1)) = q_update[0] + q_update[1];
-          const double pq
-            = (partial[0] + partial[1]) + forward_rows(end1, n, nullptr);
+            s[dofs * n_sep] = forward_rows(begin, end, s);
+          });
+          if (P > 1)
+            team.share(exchange.data(), dofs * n_sep + 1);
+          q.segment(dofs * end1, dofs * n_sep).setZero();
+          const double pq = add_slices(q) + forward_rows(end1, n, nullptr);
           if (!(pq > 0.))
             return false;
-          const double alpha   = rz / pq;
-          auto         updates = [&](const int d) {
+          const double alpha = rz / pq;
+          run(team, [&](const int d) {
             const auto [begin, end] = rows(d);
             partial[d]              = update_rows(begin, end, alpha);
-            if (d == 0)
-              partial[d] += update_rows(end1, n, alpha);
-          };
-          run(team, updates);
-          const double rz_new = partial[0] + partial[1];
+          });
+          if (P > 1)
+            team.share(partial.data(), 1);
+          const double rz_new = sum_partial() + update_rows(end1, n, alpha);
           beta                = rz_new / rz;
           rz                  = rz_new;
           if (!std::isfinite(rz))
             return false;
         }
-      backward_sweep(y, x);
+      // x = (P + U)^-1 y: the separator, then each subdomain.
+      backward_solve_rows(end1, n, y, x);
+      run(team, [&](const int d) {
+        const auto [begin, end] = rows(d);
+        backward_solve_rows(begin, end, y, x);
+      });
+      if (P > 1)
+        team.share_rows(x.data(), first, dofs);
       if (renumbered)
         for (int i = 0; i < n; ++i)
           x_out.template segment<dofs>(dofs * order[i])
@@ -670,6 +820,8 @@ namespace rockdda::dda
   int
   LinearSolverOf<dofs>::n_ranks() const
   {
+    if (ranks)
+      return ranks->n_parts();
     return distributed ? distributed->n_ranks() : 1;
   }
 
@@ -697,7 +849,13 @@ namespace rockdda::dda
   std::string
   LinearSolverOf<dofs>::description() const
   {
-    const auto  p = options.distributed_preconditioner;
+    const auto p = options.distributed_preconditioner;
+    if (current == SolverType::distributed && ranks)
+      return "CG + block D-ILU on " + std::to_string(n_ranks())
+             + " MPI ranks (a subdomain each, a separator of "
+             + std::to_string(separator_size())
+             + " blocks eliminated last by every rank; geometry, contacts "
+               "and assembly replicated)";
     std::string text
       = current == SolverType::direct ? "sparse LDL^T (direct)"
         : current == SolverType::distributed
@@ -780,7 +938,21 @@ namespace rockdda::dda
       current = K.n_blocks() <= options.automatic_limit ? SolverType::direct
                 : world_ranks() > 1 && can_distribute ? SolverType::distributed
                                                       : SolverType::iterative;
-    if (current == SolverType::distributed)
+    if (current == SolverType::distributed
+        && options.distributed_preconditioner
+             == DistributedPreconditioner::dilu)
+      {
+        // The block D-ILU with one subdomain per rank (every dofs).
+        if (!ranks)
+          ranks = std::make_unique<internal::RankTeam>(MPI_COMM_WORLD);
+        if (!dilu)
+          dilu = std::make_unique<Dilu>();
+        int own = 0;
+        while (!ranks->computes(own))
+          ++own;
+        dilu->new_pattern(K, ranks->n_parts(), own);
+      }
+    else if (current == SolverType::distributed)
       {
         if constexpr (!can_distribute)
           throw std::invalid_argument(
@@ -810,7 +982,10 @@ namespace rockdda::dda
       {
         if (!dilu)
           dilu = std::make_unique<Dilu>();
-        dilu->new_pattern(K, options.subdomain_limit);
+        const int n = K.n_blocks();
+        dilu->new_pattern(K,
+                          n >= options.subdomain_limit && n >= 3 ? 2 : 1,
+                          -1);
       }
   }
 
@@ -838,6 +1013,29 @@ namespace rockdda::dda
         return x.allFinite();
       }
 
+    if (current == SolverType::distributed && ranks)
+      {
+        // The replicated inputs must agree bit for bit (otherwise the
+        // ranks have diverged and their open-close decisions would differ).
+        if (!ranks->same_everywhere(f))
+          throw std::runtime_error(
+            "distributed DDA: the ranks hold different load vectors (their "
+            "replicated states have diverged)");
+        if (x.size() != f.size() || !x.allFinite())
+          x = Eigen::VectorXd::Zero(f.size());
+        if (!same_matrix || !factorised)
+          {
+            factorised = dilu->setup(K, *ranks);
+            if (!factorised)
+              return false;
+          }
+        return dilu->cg(f,
+                        x,
+                        *ranks,
+                        tolerance > 0. ? tolerance : options.tolerance,
+                        iteration_limit(K.n_blocks()),
+                        iterations);
+      }
     if constexpr (dofs == 6)
       if (current == SolverType::distributed)
         return distributed->solve(K,
@@ -866,13 +1064,15 @@ namespace rockdda::dda
       }
     if (!same_matrix || !factorised)
       {
-        factorised = dilu->setup(K, pair_of_run());
+        internal::PairTeam threads(pair_of_run(), dilu->P);
+        factorised = dilu->setup(K, threads);
         if (!factorised)
           return false;
       }
-    const bool ok = dilu->cg(f,
+    internal::PairTeam threads(pair_of_run(), dilu->P);
+    const bool         ok = dilu->cg(f,
                              x,
-                             pair_of_run(),
+                             threads,
                              tolerance > 0. ? tolerance : options.tolerance,
                              iteration_limit(K.n_blocks()),
                              iterations);

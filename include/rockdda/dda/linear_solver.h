@@ -98,9 +98,13 @@ namespace rockdda::dda
     block_dilu
   };
 
-  /// Preconditioner of the distributed solver (from Trilinos).
+  /// Preconditioner of the distributed solver.
   enum class DistributedPreconditioner
   {
+    /// The block D-ILU of the iterative solver with one subdomain per rank
+    /// and a separator eliminated last by every rank (CG on the replicated
+    /// block matrix, its sweeps split over the ranks; any block size).
+    dilu,
     /// ML smoothed-aggregation algebraic multigrid, the six unknowns of a
     /// block aggregated together.
     amg,
@@ -132,10 +136,10 @@ namespace rockdda::dda
     /// subdomains and their separator (last), so that the two subdomains
     /// are swept in parallel.
     int subdomain_limit = 300;
-    /// Preconditioner of the distributed solver (ILU(0): the fastest of
-    /// the three on the brick walls, doc/theory/dda-mpi.md).
+    /// Preconditioner of the distributed solver (the D-ILU over the ranks:
+    /// the fastest on the brick walls, doc/theory/dda-mpi.md).
     DistributedPreconditioner distributed_preconditioner
-      = DistributedPreconditioner::ilu;
+      = DistributedPreconditioner::dilu;
   };
 
   namespace internal
@@ -143,6 +147,7 @@ namespace rockdda::dda
     class TaskTeam;
     class ThreadPair;
     class DistributedSolver;
+    class RankTeam;
   } // namespace internal
 
   /**
@@ -255,8 +260,10 @@ namespace rockdda::dda
     std::unique_ptr<Direct>                      direct;
     std::unique_ptr<Dilu>                        dilu;
     std::unique_ptr<internal::DistributedSolver> distributed;
-    mutable std::unique_ptr<internal::TaskTeam>  team;
-    std::unique_ptr<internal::ThreadPair>        pair;
+    /// The ranks of the D-ILU over MPI (DistributedPreconditioner::dilu).
+    std::unique_ptr<internal::RankTeam>         ranks;
+    mutable std::unique_ptr<internal::TaskTeam> team;
+    std::unique_ptr<internal::ThreadPair>       pair;
     /// Inverse diagonal blocks (block-Jacobi).
     std::vector<typename Matrix::Dense> inverse_diag;
     Eigen::VectorXd                     r, z, p, q;
