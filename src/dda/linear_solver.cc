@@ -225,6 +225,15 @@ namespace rockdda::dda
     {
       return k < pa1 ? k - pa0 : (pa1 - pa0) + (k - pb0);
     }
+    /// The stored blocks of row @p i's pairs: its k-th pair is at
+    /// row_pairs(i)[k - row_start[i]].
+    const Dense *
+    row_pairs(const int i) const
+    {
+      return O
+             + (i < a1 ? row_start[i] - pa0
+                       : (pa1 - pa0) + (row_start[i] - pb0));
+    }
     const Dense &
     Kdiag(const int i) const
     {
@@ -625,8 +634,11 @@ namespace rockdda::dda
           // off-diagonal blocks as one descending stream, which the hardware
           // prefetcher follows (ascending within each row, it read them 3x
           // slower than the forward sweep: benchmarks/dda-scaling, section 14).
-          for (int k = row_start[i + 1] - 1; k >= row_start[i]; --k)
-            acc.noalias() -= Koff(k) * t.template segment<dofs>(dofs * col(k));
+          const int    ks  = row_start[i];
+          const Dense *row = row_pairs(i);
+          for (int k = row_start[i + 1] - 1; k >= ks; --k)
+            acc.noalias()
+              -= row[k - ks] * t.template segment<dofs>(dofs * PR[k].second);
           t.template segment<dofs>(dofs * i).noalias() = ipiv(i) * acc;
         }
     }
@@ -641,17 +653,20 @@ namespace rockdda::dda
       double pq = 0.;
       for (int i = begin; i < end; ++i)
         {
-          const auto ti = t.template segment<dofs>(dofs * i);
-          auto       qi = q.template segment<dofs>(dofs * i);
-          Vector     w  = qi + p.template segment<dofs>(dofs * i);
-          w.noalias() += dshift(i) * ti;
-          const Vector si = ipiv(i) * w;
+          const auto ti   = t.template segment<dofs>(dofs * i);
+          auto       qi   = q.template segment<dofs>(dofs * i);
+          Vector     w    = qi + p.template segment<dofs>(dofs * i);
+          const int  slot = row_slot(i);
+          w.noalias() += diag_shift[slot] * ti;
+          const Vector si = inverse_pivot[slot] * w;
           qi              = si + ti;
           pq += p.template segment<dofs>(dofs * i).dot(qi);
-          for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+          const int    ks  = row_start[i];
+          const Dense *row = row_pairs(i);
+          for (int k = ks; k < row_start[i + 1]; ++k)
             {
-              const Dense &A      = Koff(k);
-              const int    j      = col(k);
+              const Dense &A      = row[k - ks];
+              const int    j      = PR[k].second;
               double      *target = (separator_update != nullptr && j >= end1)
                                       ? separator_update + dofs * (j - end1)
                                       : q.data() + dofs * j;
