@@ -9,6 +9,7 @@
 #include <rockdda/dda/engine.h>
 #include <rockdda/dda/hdf5_output.h>
 #include <rockdda/dda/run_loop.h>
+#include <rockdda/dda/snapshot_series.h>
 #include <rockdda/dda/vtu_output.h>
 #include <rockdda/io/checkpoint.h>
 #include <rockdda/io/error.h>
@@ -373,32 +374,16 @@ namespace rockdda::dda
         };
 
         RunLoop<DdaSystem> loop(*dda, settings, context, table);
-        auto              &block_files   = loop.progress.block_files;
-        auto              &contact_files = loop.progress.contact_files;
-        Hdf5Series         series(context.output);
-        auto               snapshot = [&]() {
-          if (hdf5_snapshots)
-            {
-              const std::string f = series.write(dda->time(),
-                                                 blocks_snapshot(*dda),
-                                                 contacts_snapshot(*dda));
-              block_files.emplace_back(dda->time(), f);
-              contact_files.emplace_back(dda->time(), f);
-              return;
-            }
-          char name[64];
-          std::snprintf(name, sizeof(name), "%05zu", block_files.size());
-          const std::string b = std::string("blocks-") + name + ".vtu";
-          const std::string c = std::string("contacts-") + name + ".vtu";
-          context.output.write(b, blocks_vtu(*dda));
-          context.output.write(c, contacts_vtu(*dda));
-          block_files.emplace_back(dda->time(), b);
-          contact_files.emplace_back(dda->time(), c);
-          context.output.write("blocks.pvd", pvd(block_files));
-          context.output.write("contacts.pvd", pvd(contact_files));
+        SnapshotSeries snapshots(context.output, hdf5_snapshots, loop.progress);
+        auto           snapshot = [&]() {
+          snapshots.write(
+            dda->time(),
+            [&]() { return blocks_snapshot(*dda); },
+            [&]() { return contacts_snapshot(*dda); },
+            [&]() { return blocks_vtu(*dda); },
+            [&]() { return contacts_vtu(*dda); });
         };
-        if (hdf5_snapshots)
-          loop.on_resume = [&]() { series.restore(block_files); };
+        loop.on_resume = [&]() { snapshots.resume(); };
         if (point_file)
           loop.on_statistics = [&]() {
             context.output.write_with(

@@ -167,7 +167,7 @@ namespace rockdda::dda
   /**
    * Block D-ILU preconditioned CG with Eisenstat's trick. Large systems are
    * renumbered as P subdomains and their separator (each in the original
-   * order; linear_parts()): the subdomains do not couple, so their parts
+   * order; internal::level_parts()): the subdomains do not couple, so their parts
    * of the pivot computation and of every sweep run at once (two threads,
    * or one MPI rank each: internal::PartTeam), and the separator is
    * eliminated last by every process. The operations and their order are
@@ -508,8 +508,9 @@ namespace rockdda::dda
       if (P > 1)
         {
           team.share(flags.data(), 1);
-          team.share(pivot_update.data()->data(),
-                     static_cast<std::size_t>(dofs * dofs) * n_sep);
+          if (n_sep > 0)
+            team.share(pivot_update.data()->data(),
+                       static_cast<std::size_t>(dofs * dofs) * n_sep);
         }
       for (const double ok : flags)
         if (ok != 1.)
@@ -947,7 +948,8 @@ namespace rockdda::dda
   {
     factorised = false;
     current    = options.type;
-    // The distributed solver is written for 2D blocks (6 unknowns).
+    // The Trilinos path is written for 2D blocks (6 unknowns); automatic
+    // distributes only 2D runs (3D has no MPI driver).
     constexpr bool can_distribute = dofs == 6;
     if (current == SolverType::automatic)
       current = K.n_blocks() <= options.automatic_limit ? SolverType::direct

@@ -9,6 +9,7 @@
 #include <rockdda/dda/block_system.h>
 #include <rockdda/dda/hdf5_output.h>
 #include <rockdda/dda/run_loop.h>
+#include <rockdda/dda/snapshot_series.h>
 #include <rockdda/dda/vtu_output.h>
 #include <rockdda/dda3d/analyses.h>
 #include <rockdda/dda3d/block_file.h>
@@ -334,37 +335,20 @@ namespace rockdda::dda3d
           table.add_row(row);
         };
         dda::RunLoop<Engine> loop(*engine, settings, context, table);
-        auto                &files         = loop.progress.block_files;
-        auto                &contact_files = loop.progress.contact_files;
-        dda::Hdf5Series      series(context.output);
+        dda::SnapshotSeries  snapshots(context.output,
+                                      settings.statistics_hdf5,
+                                      loop.progress);
         auto                 snapshot = [&]() {
-          if (settings.statistics_hdf5)
-            {
-              const std::string f
-                = series.write(engine->time(),
-                               blocks_snapshot(engine->scene(),
-                                               engine->origin()),
-                               contacts_snapshot(*engine));
-              files.emplace_back(engine->time(), f);
-              contact_files.emplace_back(engine->time(), f);
-              return;
-            }
-          char name[64];
-          std::snprintf(name, sizeof(name), "blocks-%05zu.vtu", files.size());
-          context.output.write(name,
-                               blocks_vtu(engine->scene(), engine->origin()));
-          files.emplace_back(engine->time(), name);
-          context.output.write("blocks.pvd", dda::pvd(files));
-          std::snprintf(name,
-                        sizeof(name),
-                        "contacts-%05zu.vtu",
-                        contact_files.size());
-          context.output.write(name, contacts_vtu(*engine));
-          contact_files.emplace_back(engine->time(), name);
-          context.output.write("contacts.pvd", dda::pvd(contact_files));
+          snapshots.write(
+            engine->time(),
+            [&]() {
+              return blocks_snapshot(engine->scene(), engine->origin());
+            },
+            [&]() { return contacts_snapshot(*engine); },
+            [&]() { return blocks_vtu(engine->scene(), engine->origin()); },
+            [&]() { return contacts_vtu(*engine); });
         };
-        if (settings.statistics_hdf5)
-          loop.on_resume = [&]() { series.restore(files); };
+        loop.on_resume = [&]() { snapshots.resume(); };
         // One step (the last before an output or checkpoint time
         // shortened to land on it).
         const auto step = [&](const double target) {

@@ -75,13 +75,15 @@ namespace rockdda::dda
     direct,
     /// Block-Jacobi preconditioned conjugate gradients, warm-started.
     iterative,
-    /// CG on a Trilinos matrix whose block rows are distributed over the
-    /// ranks of MPI_COMM_WORLD (a space-filling-curve partition of the
-    /// blocks), preconditioned by SolverOptions::distributed_preconditioner;
-    /// the solution is gathered on every rank (doc/theory/dda-mpi.md).
-    /// Automatic picks it instead of iterative when the run has more than
-    /// one rank. Needs MPI to be initialised. 2D (6 unknowns per block)
-    /// only: with 12 (3D) new_pattern() throws.
+    /// CG whose block rows are distributed over the ranks of
+    /// MPI_COMM_WORLD, preconditioned by
+    /// SolverOptions::distributed_preconditioner: the block D-ILU with one
+    /// subdomain per rank, or on a Trilinos matrix (a space-filling-curve
+    /// partition of the blocks); the solution is gathered on every rank
+    /// (doc/theory/dda-mpi.md). Automatic picks it instead of iterative
+    /// when a 2D run has more than one rank. Needs MPI to be initialised.
+    /// The Trilinos preconditioners are 2D only (6 unknowns per block):
+    /// with 12 (3D) new_pattern() throws.
     distributed
   };
 
