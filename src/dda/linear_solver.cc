@@ -167,8 +167,8 @@ namespace rockdda::dda
   /**
    * Block D-ILU preconditioned CG with Eisenstat's trick. Large systems are
    * renumbered as P subdomains and their separator (each in the original
-   * order; internal::level_parts()): the subdomains do not couple, so their parts
-   * of the pivot computation and of every sweep run at once (two threads,
+   * order; internal::level_parts()): the subdomains do not couple, so their
+   * parts of the pivot computation and of every sweep run at once (two threads,
    * or one MPI rank each: internal::PartTeam), and the separator is
    * eliminated last by every process. The operations and their order are
    * the same for one and two threads, and on P ranks those of the serial
