@@ -375,6 +375,7 @@ namespace rockdda::dda
         std::lower_bound(unique_pairs.begin(), unique_pairs.end(), pairs[c])
         - unique_pairs.begin());
     matrix.reinit(n, unique_pairs);
+    assembled_matrix = nullptr;
     // The contacts of each block and of each pair, in contact order, for
     // assemble()'s chunks; the pairs whose coupling a clamp eliminates.
     contacts_of_block
@@ -412,6 +413,8 @@ namespace rockdda::dda
     k.weight_tolerance = old.weight_tolerance;
     if (damped())
       set_dashpots(system, index);
+    if (static_cast<std::size_t>(index) < springs_changed.size())
+      springs_changed[index] = 1;
   }
 
 
@@ -452,30 +455,47 @@ namespace rockdda::dda
   Assembler::add_to_block(const Contact           &ct,
                           const ContactKinematics &kin,
                           const bool               vertex_side,
-                          Matrix6                 &Kb,
-                          Eigen::Ref<Vector6>      Fb) const
+                          Matrix6                 &Kb) const
   {
     if (ct.state == ContactState::open)
       return;
     const Vector6 &en = vertex_side ? kin.en : kin.hn;
-    const Vector6 &es = vertex_side ? kin.es : kin.hs;
-    const double   kn = kin.normal_stiffness;
     // The dashpots (ContactDamping): the force -c v' with the end-of-step
-    // rate v' = 2 d / h - v adds 2 c / h to the spring and c v to the load.
+    // rate v' = 2 d / h - v adds 2 c / h to the spring (add_to_load: c v to
+    // the load).
     const bool damped_step = damped();
-    Kb.noalias()
-      += (kn + (damped_step ? 2. * kin.normal_dashpot / params.dt : 0.)) * en
-         * en.transpose();
-    Fb -= (kn * kin.g0) * en;
+    Kb.noalias() += (kin.normal_stiffness
+                     + (damped_step ? 2. * kin.normal_dashpot / params.dt : 0.))
+                    * en * en.transpose();
+    if (ct.state == ContactState::locked)
+      {
+        const Vector6 &es = vertex_side ? kin.es : kin.hs;
+        Kb.noalias()
+          += (kin.shear_stiffness
+              + (damped_step ? 2. * kin.shear_dashpot / params.dt : 0.))
+             * es * es.transpose();
+      }
+  }
+
+
+
+  void
+  Assembler::add_to_load(const Contact           &ct,
+                         const ContactKinematics &kin,
+                         const bool               vertex_side,
+                         Eigen::Ref<Vector6>      Fb) const
+  {
+    if (ct.state == ContactState::open)
+      return;
+    const Vector6 &en          = vertex_side ? kin.en : kin.hn;
+    const Vector6 &es          = vertex_side ? kin.es : kin.hs;
+    const bool     damped_step = damped();
+    Fb -= (kin.normal_stiffness * kin.g0) * en;
     if (damped_step)
       Fb += (kin.normal_dashpot * kin.normal_rate) * en;
     if (ct.state == ContactState::locked)
       {
-        const double ks = kin.shear_stiffness;
-        Kb.noalias()
-          += (ks + (damped_step ? 2. * kin.shear_dashpot / params.dt : 0.)) * es
-             * es.transpose();
-        Fb -= (ks * kin.s0) * es;
+        Fb -= (kin.shear_stiffness * kin.s0) * es;
         if (damped_step)
           Fb += (kin.shear_dashpot * kin.shear_rate) * es;
       }
@@ -517,19 +537,48 @@ namespace rockdda::dda
 
 
 
-  void
+  int
   Assembler::assemble(const std::vector<Contact> &contacts,
                       BlockSparseMatrix          &K,
-                      Eigen::VectorXd            &F) const
+                      Eigen::VectorXd            &F)
   {
-    const int n = static_cast<int>(base_matrix.size());
+    const int         n  = static_cast<int>(base_matrix.size());
+    const std::size_t nc = contacts.size();
     F.resize(6 * n);
+    // Which rows of K change: all at the step's first assembly, then those
+    // with a contact whose springs changed (and the clamped pairs, whose
+    // coupling is eliminated into F below).
+    const bool whole = assembled_matrix != &K || assembled_state.size() != nc;
+    dirty_block.assign(n, whole);
+    dirty_pair.assign(K.off.size(), whole);
+    if (!whole)
+      {
+        for (std::size_t c = 0; c < nc; ++c)
+          if (contacts[c].state != assembled_state[c] || springs_changed[c])
+            {
+              dirty_block[contact_blocks[c].first]  = 1;
+              dirty_block[contact_blocks[c].second] = 1;
+              dirty_pair[contact_pair[c]]           = 1;
+            }
+        for (const int k : clamped_pairs)
+          dirty_pair[k] = 1;
+      }
+    assembled_matrix = &K;
+    assembled_state.resize(nc);
+    for (std::size_t c = 0; c < nc; ++c)
+      assembled_state[c] = contacts[c].state;
+    springs_changed.assign(nc, 0);
+    const int n_assembled = static_cast<int>(
+      std::count(dirty_block.begin(), dirty_block.end(), char(1)));
     // Each block row and each pair adds its contacts in contact order. On
     // threads, each row is written by one chunk; on one (or a scene too
-    // small for the 8 chunks from which the runner uses threads) a single
-    // pass over the contacts adds them in the same order per row, reading
-    // each contact once: the same bits either way.
-    if (params.threads < 2 || static_cast<std::size_t>(n) < 8 * block_grain)
+    // small for the 8 chunks from which the runner uses threads) a whole
+    // assembly is a single pass over the contacts, which adds them in the
+    // same order per row, reading each contact once: the same bits either
+    // way.
+    const bool threaded
+      = params.threads >= 2 && static_cast<std::size_t>(n) >= 8 * block_grain;
+    if (whole && !threaded)
       {
         for (int b = 0; b < n; ++b)
           {
@@ -538,59 +587,67 @@ namespace rockdda::dda
           }
         for (auto &m : K.off)
           m.setZero();
-        for (std::size_t c = 0; c < contacts.size(); ++c)
+        for (std::size_t c = 0; c < nc; ++c)
           {
             const auto [i, j] = contact_blocks[c];
             const auto &kin   = contact_kinematics[c];
-            add_to_block(
-              contacts[c], kin, true, K.diag[i], F.segment<6>(6 * i));
-            add_to_block(
-              contacts[c], kin, false, K.diag[j], F.segment<6>(6 * j));
+            add_to_block(contacts[c], kin, true, K.diag[i]);
+            add_to_load(contacts[c], kin, true, F.segment<6>(6 * i));
+            add_to_block(contacts[c], kin, false, K.diag[j]);
+            add_to_load(contacts[c], kin, false, F.segment<6>(6 * j));
             add_to_pair(contacts[c], kin, K.off[contact_pair[c]]);
           }
       }
     else
       {
-        for_each_chunk(params.run_chunks,
-                       n,
-                       block_grain,
-                       [&](const std::size_t lo, const std::size_t hi) {
-                         for (std::size_t b = lo; b < hi; ++b)
-                           {
-                             K.diag[b]           = base_matrix[b];
-                             F.segment<6>(6 * b) = base_rhs[b];
-                             for (int e = contacts_of_block.start[b];
-                                  e < contacts_of_block.start[b + 1];
-                                  ++e)
-                               {
-                                 const int c = contacts_of_block.entry[e] / 2;
-                                 add_to_block(contacts[c],
-                                              contact_kinematics[c],
-                                              contacts_of_block.entry[e] % 2
-                                                == 0,
-                                              K.diag[b],
-                                              F.segment<6>(6 * b));
-                               }
-                           }
-                       });
-        for_each_chunk(params.run_chunks,
-                       K.off.size(),
-                       pair_grain,
-                       [&](const std::size_t lo, const std::size_t hi) {
-                         for (std::size_t p = lo; p < hi; ++p)
-                           {
-                             K.off[p].setZero();
-                             for (int e = contacts_of_pair.start[p];
-                                  e < contacts_of_pair.start[p + 1];
-                                  ++e)
-                               {
-                                 const int c = contacts_of_pair.entry[e] / 2;
-                                 add_to_pair(contacts[c],
-                                             contact_kinematics[c],
-                                             K.off[p]);
-                               }
-                           }
-                       });
+        const auto block_rows = [&](const std::size_t lo,
+                                    const std::size_t hi) {
+          for (std::size_t b = lo; b < hi; ++b)
+            {
+              const bool dirty    = dirty_block[b] != 0;
+              F.segment<6>(6 * b) = base_rhs[b];
+              if (dirty)
+                K.diag[b] = base_matrix[b];
+              for (int e = contacts_of_block.start[b];
+                   e < contacts_of_block.start[b + 1];
+                   ++e)
+                {
+                  const int   c      = contacts_of_block.entry[e] / 2;
+                  const bool  vertex = contacts_of_block.entry[e] % 2 == 0;
+                  const auto &kin    = contact_kinematics[c];
+                  add_to_load(contacts[c], kin, vertex, F.segment<6>(6 * b));
+                  if (dirty)
+                    add_to_block(contacts[c], kin, vertex, K.diag[b]);
+                }
+            }
+        };
+        const auto pair_rows = [&](const std::size_t lo, const std::size_t hi) {
+          for (std::size_t p = lo; p < hi; ++p)
+            if (dirty_pair[p])
+              {
+                K.off[p].setZero();
+                for (int e = contacts_of_pair.start[p];
+                     e < contacts_of_pair.start[p + 1];
+                     ++e)
+                  {
+                    const int c = contacts_of_pair.entry[e] / 2;
+                    add_to_pair(contacts[c], contact_kinematics[c], K.off[p]);
+                  }
+              }
+        };
+        if (threaded)
+          {
+            for_each_chunk(params.run_chunks, n, block_grain, block_rows);
+            for_each_chunk(params.run_chunks,
+                           K.off.size(),
+                           pair_grain,
+                           pair_rows);
+          }
+        else
+          {
+            block_rows(0, n);
+            pair_rows(0, K.off.size());
+          }
       }
     // Clamped blocks: eliminate their prescribed displacements.
     for (const int k : clamped_pairs)
@@ -605,5 +662,6 @@ namespace rockdda::dda
     for (int b = 0; b < n; ++b)
       if (clamped[b])
         F.segment<6>(6 * b) = K.diag[b] * prescribed[b];
+    return n_assembled;
   }
 } // namespace rockdda::dda

@@ -239,11 +239,6 @@ namespace rockdda::dda
     {
       return D[row_slot(i)];
     }
-    const Dense &
-    Koff(const int k) const
-    {
-      return O[pair_slot(k)];
-    }
     int
     col(const int k) const
     {
@@ -473,10 +468,12 @@ namespace rockdda::dda
           if (!invert_spd(piv(i), ipiv(i)))
             return false;
         }
-      dshift(i) = Kdiag(i) - 2. * piv(i);
-      for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+      dshift(i)        = Kdiag(i) - 2. * piv(i);
+      const int    ks  = row_start[i];
+      const Dense *row = row_pairs(i);
+      for (int k = ks; k < row_start[i + 1]; ++k)
         {
-          const Dense &A      = Koff(k);
+          const Dense &A      = row[k - ks];
           const Dense  PiA    = ipiv(i).lazyProduct(A);
           const int    j      = col(k);
           Dense       &target = (separator_update != nullptr && j >= end1)
@@ -538,11 +535,13 @@ namespace rockdda::dda
     {
       for (int i = end - 1; i >= begin; --i)
         {
-          Vector acc = v.template segment<dofs>(dofs * i);
+          Vector       acc = v.template segment<dofs>(dofs * i);
+          const int    ks  = row_start[i];
+          const Dense *row = row_pairs(i);
           // Descending, as backward_rows.
-          for (int k = row_start[i + 1] - 1; k >= row_start[i]; --k)
+          for (int k = row_start[i + 1] - 1; k >= ks; --k)
             acc.noalias()
-              -= Koff(k) * out.template segment<dofs>(dofs * col(k));
+              -= row[k - ks] * out.template segment<dofs>(dofs * col(k));
           out.template segment<dofs>(dofs * i).noalias() = ipiv(i) * acc;
         }
     }
@@ -559,9 +558,11 @@ namespace rockdda::dda
         {
           const Vector s = ipiv(i) * w.template segment<dofs>(dofs * i);
           w.template segment<dofs>(dofs * i) = s;
-          for (int k = row_start[i]; k < row_start[i + 1]; ++k)
+          const int    ks                    = row_start[i];
+          const Dense *row                   = row_pairs(i);
+          for (int k = ks; k < row_start[i + 1]; ++k)
             {
-              const Dense &A      = Koff(k);
+              const Dense &A      = row[k - ks];
               const int    j      = col(k);
               double      *target = (separator_update != nullptr && j >= end1)
                                       ? separator_update + dofs * (j - end1)
@@ -703,10 +704,13 @@ namespace rockdda::dda
     {
       for (int i = begin; i < end; ++i)
         {
-          auto yi      = y.template segment<dofs>(dofs * i);
-          yi.noalias() = piv(i) * x.template segment<dofs>(dofs * i);
-          for (int k = row_start[i]; k < row_start[i + 1]; ++k)
-            yi.noalias() += Koff(k) * x.template segment<dofs>(dofs * col(k));
+          auto yi          = y.template segment<dofs>(dofs * i);
+          yi.noalias()     = piv(i) * x.template segment<dofs>(dofs * i);
+          const int    ks  = row_start[i];
+          const Dense *row = row_pairs(i);
+          for (int k = ks; k < row_start[i + 1]; ++k)
+            yi.noalias()
+              += row[k - ks] * x.template segment<dofs>(dofs * col(k));
           auto wi = w.template segment<dofs>(dofs * i);
           wi      = f.template segment<dofs>(dofs * i) - yi;
           wi.noalias() -= dshift(i) * x.template segment<dofs>(dofs * i);

@@ -11,6 +11,37 @@
 
 namespace rockdda::dda3d
 {
+  namespace
+  {
+    /// The cell data both writers give a block: its ids, centroid
+    /// displacement (m), velocity (m/s), stress (Pa) and volume (m^3).
+    struct BlockFields
+    {
+      std::int32_t id = 0, material = 0;
+      Point        displacement = Point::Zero();
+      Point        velocity     = Point::Zero();
+      Vector6      stress       = Vector6::Zero();
+      double       volume       = 0.;
+    };
+
+    BlockFields
+    block_fields(const BlockSystem &system, const Block &b)
+    {
+      const auto  m    = b.polyhedron.moments();
+      const int   user = system.materials[b.material].id;
+      BlockFields out;
+      out.id           = b.id;
+      out.material     = user >= 0 ? user : b.material;
+      out.displacement = m.centroid - b.initial_centroid;
+      out.velocity     = b.velocity.head<3>();
+      out.stress       = b.stress;
+      out.volume       = m.volume;
+      return out;
+    }
+  } // namespace
+
+
+
   std::string
   blocks_vtu(const BlockSystem &system, const Point &origin)
   {
@@ -78,17 +109,16 @@ namespace rockdda::dda3d
       s->precision(17);
     for (const auto &b : system.blocks)
       {
-        const auto m = b.polyhedron.moments();
-        id << b.id << ' ';
-        const int user = system.materials[b.material].id;
-        material << (user >= 0 ? user : b.material) << ' ';
-        const Point d = m.centroid - b.initial_centroid;
+        const BlockFields c = block_fields(system, b);
+        id << c.id << ' ';
+        material << c.material << ' ';
+        const Point &d = c.displacement;
         disp << d.x() << ' ' << d.y() << ' ' << d.z() << '\n';
-        vel << b.velocity[0] << ' ' << b.velocity[1] << ' ' << b.velocity[2]
+        vel << c.velocity.x() << ' ' << c.velocity.y() << ' ' << c.velocity.z()
             << '\n';
         for (int k = 0; k < 6; ++k)
-          stress << b.stress[k] << (k == 5 ? '\n' : ' ');
-        volume << m.volume << ' ';
+          stress << c.stress[k] << (k == 5 ? '\n' : ' ');
+        volume << c.volume << ' ';
       }
     array("Int32", "block_id", id.str());
     array("Int32", "material", material.str());
@@ -116,9 +146,7 @@ namespace rockdda::dda3d
     std::int64_t              end = 0;
     for (const auto &b : system.blocks)
       {
-        const auto  m    = b.polyhedron.moments();
-        const int   user = system.materials[b.material].id;
-        const Point d    = m.centroid - b.initial_centroid;
+        const BlockFields c = block_fields(system, b);
         for (const auto &f : b.polyhedron.faces)
           {
             for (const int k : f)
@@ -128,14 +156,16 @@ namespace rockdda::dda3d
               }
             end += static_cast<std::int64_t>(f.size());
             out.offsets.push_back(end);
-            id.push_back(b.id);
-            material.push_back(user >= 0 ? user : b.material);
-            disp.insert(disp.end(), {d.x(), d.y(), d.z()});
+            id.push_back(c.id);
+            material.push_back(c.material);
+            disp.insert(disp.end(),
+                        {c.displacement.x(),
+                         c.displacement.y(),
+                         c.displacement.z()});
             vel.insert(vel.end(),
-                       {b.velocity[0], b.velocity[1], b.velocity[2]});
-            for (int k = 0; k < 6; ++k)
-              stress.push_back(b.stress[k]);
-            volume.push_back(m.volume);
+                       {c.velocity.x(), c.velocity.y(), c.velocity.z()});
+            stress.insert(stress.end(), c.stress.data(), c.stress.data() + 6);
+            volume.push_back(c.volume);
           }
       }
     out.description

@@ -6,6 +6,7 @@
  * at the extremes, bad input.
  */
 #include <rockdda/analytical/newmark.h>
+#include <rockdda/dda/assembler.h>
 #include <rockdda/dda/block_file.h>
 #include <rockdda/dda/block_matrices.h>
 #include <rockdda/dda/block_partition.h>
@@ -1177,6 +1178,89 @@ TEST(DdaSolvers, ResultsDoNotDependOnTheThreadCount)
   for (const int threads : {2, 3})
     EXPECT_EQ(max_vertex_difference(one.system, run(threads).system), 0.)
       << threads << " threads";
+}
+
+
+
+TEST(DdaAssembly, ReassemblingTheChangedRowsGivesTheWholeAssembly)
+{
+  // Within a step only the contacts' states (and a relocked contact's
+  // shear reference) change the matrix, so after the step's first assembly
+  // the assembler rebuilds only the block rows and pairs of the contacts
+  // that changed. Each is rebuilt from scratch in contact order, so the
+  // matrix must equal a whole assembly bit for bit, on the one-pass path
+  // (one thread) and the per-row path (threads), while F, which the
+  // friction forces change, is assembled whole.
+  BlockSystem s = running_bond_wall(26, 16);
+  s.gravity     = Point(4., -g_earth);
+  Controls  c   = controls(1e-3, 1., 1e11);
+  DdaSystem dda(s, c);
+  for (int k = 0; k < 10; ++k)
+    dda.step();
+  const BlockSystem   &scene    = dda.system();
+  std::vector<Contact> contacts = dda.contacts();
+  ASSERT_GE(scene.blocks.size(), 8u * Assembler::block_grain);
+  for (const unsigned threads : {1u, 2u})
+    {
+      StepParameters par;
+      par.law.normal_penalty = 1e11;
+      par.threads            = threads;
+      for (const auto &fp : scene.fixed_points)
+        par.fixed_targets.push_back(fp.anchor);
+      std::vector<Contact> now = contacts;
+      Assembler            incremental;
+      BlockSparseMatrix    K;
+      Eigen::VectorXd      F;
+      incremental.prepare_step(scene, now, par, K);
+      EXPECT_EQ(incremental.assemble(now, K, F),
+                static_cast<int>(scene.blocks.size()));
+      // Nothing changed: no row is assembled again.
+      EXPECT_EQ(incremental.assemble(now, K, F), 0);
+      // Change every 37th contact's state, the friction of the sliding
+      // ones, and one shear reference; count their blocks.
+      std::vector<char> touched(scene.blocks.size(), 0);
+      for (std::size_t k = 0; k < now.size(); k += 37)
+        {
+          now[k].state                     = now[k].state == ContactState::open
+                                               ? ContactState::locked
+                                               : ContactState::open;
+          touched[now[k].geometry.block_i] = 1;
+          touched[now[k].geometry.block_j] = 1;
+        }
+      for (auto &ct : now)
+        if (ct.state == ContactState::sliding)
+          ct.normal_force *= 1.5;
+      const int relocked   = 5;
+      now[relocked].state  = ContactState::locked;
+      now[relocked].xi_ref = 0.5 * (now[relocked].xi_ref + 0.5);
+      incremental.set_shear_reference(scene, relocked, now[relocked]);
+      touched[now[relocked].geometry.block_i] = 1;
+      touched[now[relocked].geometry.block_j] = 1;
+      const int n_touched
+        = static_cast<int>(std::count(touched.begin(), touched.end(), char(1)));
+      EXPECT_EQ(incremental.assemble(now, K, F), n_touched);
+      EXPECT_LT(n_touched, static_cast<int>(scene.blocks.size()) / 2);
+
+      Assembler         whole;
+      BlockSparseMatrix K_whole;
+      Eigen::VectorXd   F_whole;
+      whole.prepare_step(scene, contacts, par, K_whole);
+      whole.set_shear_reference(scene, relocked, now[relocked]);
+      whole.assemble(now, K_whole, F_whole);
+      ASSERT_EQ(K.pairs, K_whole.pairs);
+      double largest = 0.;
+      for (std::size_t b = 0; b < K.diag.size(); ++b)
+        {
+          EXPECT_EQ((K.diag[b] - K_whole.diag[b]).cwiseAbs().maxCoeff(), 0.)
+            << "block " << b << ", " << threads << " thread(s)";
+          largest = std::max(largest, K.diag[b].cwiseAbs().maxCoeff());
+        }
+      for (std::size_t p = 0; p < K.off.size(); ++p)
+        EXPECT_EQ((K.off[p] - K_whole.off[p]).cwiseAbs().maxCoeff(), 0.)
+          << "pair " << p << ", " << threads << " thread(s)";
+      EXPECT_EQ((F - F_whole).cwiseAbs().maxCoeff(), 0.);
+      EXPECT_GT(largest, 1e11);
+    }
 }
 
 

@@ -73,12 +73,17 @@ namespace rockdda::dda
      * off-diagonal blocks in chunks of pair_grain pairs
      * (StepParameters::run_chunks), each row adding its contacts in contact
      * order; otherwise in one pass over the contacts. The sums are the same,
-     * bit for bit, on any number of threads.
+     * bit for bit, on any number of threads. F is assembled whole; of K,
+     * after the first call of a step into the same @p matrix, only the
+     * block rows and pairs with a contact whose springs changed (its state
+     * or its shear reference) are assembled again, each from scratch in the
+     * same order, so K is bit for bit the one a whole assembly gives.
+     * Returns the number of diagonal blocks assembled.
      */
-    void
+    int
     assemble(const std::vector<Contact> &contacts,
              BlockSparseMatrix          &matrix,
-             Eigen::VectorXd            &rhs) const;
+             Eigen::VectorXd            &rhs);
 
     /// Contacts per chunk of the kinematics in prepare_step().
     static constexpr std::size_t contact_grain = 256;
@@ -192,14 +197,20 @@ namespace rockdda::dda
     force_tolerance_of(const ContactKinematics &k,
                        const int                block_i,
                        const int                block_j) const;
-    /// Add contact @p ct's springs and friction to the diagonal block @p Kb
-    /// and load @p Fb of its vertex block (@p vertex_side) or edge block.
+    /// Add contact @p ct's springs to the diagonal block @p Kb of its vertex
+    /// block (@p vertex_side) or edge block.
     void
     add_to_block(const Contact           &ct,
                  const ContactKinematics &kin,
                  const bool               vertex_side,
-                 Matrix6                 &Kb,
-                 Eigen::Ref<Vector6>      Fb) const;
+                 Matrix6                 &Kb) const;
+    /// Add contact @p ct's spring and friction loads to the load @p Fb of
+    /// its vertex block (@p vertex_side) or edge block.
+    void
+    add_to_load(const Contact           &ct,
+                const ContactKinematics &kin,
+                const bool               vertex_side,
+                Eigen::Ref<Vector6>      Fb) const;
     /// Add contact @p ct's springs to the off-diagonal block @p Kp of its
     /// pair.
     void
@@ -241,7 +252,15 @@ namespace rockdda::dda
     /// block) and of each pair, in contact order (items_of_rows()).
     ItemsOfRows contacts_of_block, contacts_of_pair;
     /// The pairs with a clamped block (their coupling is eliminated).
-    std::vector<int>           clamped_pairs;
+    std::vector<int> clamped_pairs;
+    /// The matrix the last assemble() of this step filled (nullptr: none
+    /// yet), and the state of each contact in it; a contact whose shear
+    /// reference moved since is marked changed.
+    const BlockSparseMatrix  *assembled_matrix = nullptr;
+    std::vector<ContactState> assembled_state;
+    std::vector<char>         springs_changed;
+    /// Scratch of assemble(): the block rows and pairs to assemble again.
+    std::vector<char>          dirty_block, dirty_pair;
     std::vector<JointMaterial> joints;
   };
 } // namespace rockdda::dda
