@@ -525,6 +525,16 @@ def markdown(rows, end_time):
     return "\n".join(out) + "\n"
 
 
+def symlog_threshold(values_mm):
+    """Linear range of the symlog axes (mm): the power of ten below the
+    median |u| of the plotted values (100 mm at Table 3-2's penalty, 1 mm
+    at 1e10 N/m, where the far field settles by 2-3 mm)."""
+    v = sorted(abs(u) for u in values_mm if u)
+    if not v:
+        return 100.
+    return 10. ** math.floor(math.log10(v[len(v) // 2]))
+
+
 def plots(outdir, rows, series, work, end_time):
     import matplotlib
     matplotlib.use("Agg")
@@ -554,6 +564,8 @@ def plots(outdir, rows, series, work, end_time):
         fig.savefig(os.path.join(outdir, "fig-3-7.png"), dpi=110)
         plt.close(fig)
     # Fig. 3-9: final displacement against b/L.
+    plotted = [1e3 * float(r["uy%d_m" % p]) for r in rows for p in (3, 4, 5)
+               if r.get("uy%d_m" % p) not in (None, "")]
     fig, ax = plt.subplots(1, 3, figsize=(13, 4), sharey=True)
     ref = {r["model"]: r for r in rows}
     for k, p in enumerate((3, 4, 5)):
@@ -570,7 +582,7 @@ def plots(outdir, rows, series, work, end_time):
         ax[k].set(xlabel="b / L", title="point %d" % p)
     ax[0].set_ylabel("final vertical displacement (mm, symlog)")
     for x in ax:
-        x.set_yscale("symlog", linthresh=100)
+        x.set_yscale("symlog", linthresh=symlog_threshold(plotted))
     ax[0].legend()
     fig.tight_layout()
     fig.savefig(os.path.join(outdir, "fig-3-9.png"), dpi=110)
@@ -701,6 +713,9 @@ def seeds_plot(path, summary_rows):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 3, figsize=(14, 4.2), sharey=True)
+    threshold = symlog_threshold(
+        [1e3 * u for r in summary_rows for p in (3, 4, 5)
+         for u in r["values"].get("uy%d_m" % p) or []])
     for ax, p in zip(axes, (3, 4, 5)):
         k = "uy%d_m" % p
         for length, marker in ((5, "o"), (10, "s"), (15, "^")):
@@ -721,7 +736,7 @@ def seeds_plot(path, summary_rows):
             ax.axhspan(min(v), max(v), color="k", alpha=0.15)
             ax.axhline(sum(v) / len(v), color="k", ls="--",
                        label="FMML (mean, range)")
-        ax.set_yscale("symlog", linthresh=100)
+        ax.set_yscale("symlog", linthresh=threshold)
         ax.set_xlabel("b / L")
         ax.set_title("point %d" % p)
     axes[0].set_ylabel("final vertical displacement (mm, symlog)")
