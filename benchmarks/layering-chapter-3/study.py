@@ -571,9 +571,10 @@ def plots(outdir, rows, series, work, end_time):
     for k, p in enumerate((3, 4, 5)):
         for length, style in ((5, "o-"), (10, "s-"), (15, "^-")):
             pts = [(float(r["b_over_L"]), 1e3 * float(r["uy%d_m" % p]))
-                   for r in rows if r.get("L_m") == length and
+                   for r in rows if str(r.get("L_m")) == str(length) and
                    r.get("uy%d_m" % p) not in (None, "")]
             if pts:
+                pts.sort()
                 ax[k].plot(*zip(*pts), style, label="DL, L = %d m" % length)
         f = ref.get("FMML")
         if f and f.get("uy%d_m" % p):
@@ -720,10 +721,11 @@ def seeds_plot(path, summary_rows):
         k = "uy%d_m" % p
         for length, marker in ((5, "o"), (10, "s"), (15, "^")):
             pts = [(float(r["b_over_L"]), r["values"][k]) for r in
-                   summary_rows if r["L_m"] == length and
+                   summary_rows if str(r["L_m"]) == str(length) and
                    r["values"].get(k)]
             if not pts:
                 continue
+            pts.sort(key=lambda q: q[0])
             x = [a for a, _ in pts]
             mean = [1e3 * sum(v) / len(v) for _, v in pts]
             lo = [m - 1e3 * min(v) for m, (_, v) in zip(mean, pts)]
